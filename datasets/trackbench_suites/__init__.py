@@ -1,0 +1,1 @@
+"""Shared suites plugin (in progress)."""

@@ -1,0 +1,1 @@
+"""Hough baseline tracker plugin (in progress)."""
