@@ -129,15 +129,6 @@ def cable_borders(state: CableState) -> tuple[Line, Line]:
     return left, right
 
 
-def _intersection(a: Line, b: Line) -> tuple[float, float] | None:
-    det = a.dx * (-b.dy) - a.dy * (-b.dx)
-    if abs(det) < 1e-12:
-        return None
-    rx, ry = b.x0 - a.x0, b.y0 - a.y0
-    s = (rx * (-b.dy) - ry * (-b.dx)) / det
-    return a.x0 + s * a.dx, a.y0 + s * a.dy
-
-
 def _normalise_angle(angle: float) -> float:
     """Wrap an angle to ``(-pi, pi]``."""
     wrapped = math.remainder(angle, 2.0 * math.pi)
@@ -182,21 +173,25 @@ def cable_from_borders(first: Line, second: Line) -> CableState:
     nx, ny = ty, -tx
     half_angle = 0.5 * math.atan2(abs(ux * vy - uy * vx), ux * vx + uy * vy)
 
-    apex = _intersection(first, second)
-    if apex is None:
-        offsets = sorted((first.offset_along(nx, ny), second.offset_along(nx, ny)))
-        return CableState(0.5 * (offsets[0] + offsets[1]), alpha, offsets[1] - offsets[0], 0.0)
-
-    d = apex[0] * nx + apex[1] * ny
-    c0x, c0y = d * nx, d * ny
-    # Where each border crosses the normal through the foot point c0.
-    crossings = []
+    # Each border as m . p = c with its unit normal m turned towards +n; the
+    # centreline is where the two signed distances cancel, (m1 + m2) . p = c1 + c2.
+    # This avoids the borders' intersection, which is far away for small beta.
+    normals = []
     for line in (first, second):
-        hit = _intersection(line, Line(c0x, c0y, nx, ny))
-        crossings.append(((hit[0] - c0x) * nx + (hit[1] - c0y) * ny) if hit else 0.0)
-    width = abs(crossings[0] - crossings[1])
-    # Borders converge towards +t when the apex lies on the +t side of c0.
-    converging_up = (apex[0] - c0x) * tx + (apex[1] - c0y) * ty > 0
+        mx, my = line.dy, -line.dx
+        if mx * nx + my * ny < 0:
+            mx, my = -mx, -my
+        normals.append((mx, my, mx * line.x0 + my * line.y0))
+    (m1x, m1y, c1), (m2x, m2y, c2) = normals
+    d = (c1 + c2) / math.hypot(m1x + m2x, m1y + m2y)
+    c0x, c0y = d * nx, d * ny
+    # Offsets along n at which each border crosses the normal through c0, and
+    # how they change one unit further along +t.
+    crossings = [(c - (mx * c0x + my * c0y)) / (mx * nx + my * ny) for mx, my, c in normals]
+    slopes = [-(mx * tx + my * ty) / (mx * nx + my * ny) for mx, my, _ in normals]
+    left, right = (0, 1) if crossings[0] <= crossings[1] else (1, 0)
+    width = crossings[right] - crossings[left]
+    converging_up = slopes[right] - slopes[left] < 0
     beta = half_angle if converging_up else -half_angle
     return CableState(d, alpha, width, beta)
 
@@ -251,28 +246,32 @@ class DetectionRule:
 
 def match_line_pairs(
     reported: tuple[Line, Line], truth: tuple[Line, Line], size: ImageSize
-) -> tuple[tuple[Line, Line], tuple[float, float]]:
-    """Match reported lines to ground-truth lines.
+) -> list[tuple[tuple[Line, Line], tuple[float, float]]]:
+    """Match reported lines to ground-truth lines by mid-point distance.
 
     Returns
     -------
-    matched : tuple of Line
-        The reported lines reordered to pair with ``truth[0]``, ``truth[1]``.
-    distances : tuple of float
-        The mid-point distance of each matched pair, in px.
+    list of (matched, distances)
+        The assignments with the smallest summed mid-point distance: usually
+        one, both when they tie.  ``matched`` holds the reported lines
+        reordered to pair with ``truth[0]`` and ``truth[1]``; ``distances``
+        the mid-point distance of each pair in px.
 
     References
     ----------
-    conventions.md section 3: the assignment with the smaller summed
-    mid-point distance.
+    conventions.md section 3.
     """
     mid_r = [np.array(chord_midpoint(line, size)) for line in reported]
     mid_t = [np.array(chord_midpoint(line, size)) for line in truth]
-    straight = (float(np.linalg.norm(mid_r[0] - mid_t[0])), float(np.linalg.norm(mid_r[1] - mid_t[1])))
-    crossed = (float(np.linalg.norm(mid_r[1] - mid_t[0])), float(np.linalg.norm(mid_r[0] - mid_t[1])))
-    if sum(crossed) < sum(straight):
-        return (reported[1], reported[0]), crossed
-    return (reported[0], reported[1]), straight
+    candidates = []
+    for first, second in ((0, 1), (1, 0)):
+        distances = (
+            float(np.linalg.norm(mid_r[first] - mid_t[0])),
+            float(np.linalg.norm(mid_r[second] - mid_t[1])),
+        )
+        candidates.append(((reported[first], reported[second]), distances))
+    best = min(sum(distances) for _, distances in candidates)
+    return [c for c in candidates if sum(c[1]) <= best + 1e-9]
 
 
 def score_line_pair(
@@ -297,8 +296,12 @@ def score_line_pair(
     Returns
     -------
     Outcome
-        ``MISSED`` without a report, ``CORRECT`` when both matched lines are
-        within both thresholds, ``FALSE`` otherwise.
+        ``MISSED`` without a report; ``CORRECT`` when, for each truth line,
+        the matched reported line has its chord mid-point closer than
+        ``max_midpoint_px`` and its orientation closer than
+        ``max_angle_deg``; ``FALSE`` otherwise.  When two assignments tie,
+        either may make the pair correct, so the outcome does not depend on
+        the order of the lines.
 
     References
     ----------
@@ -306,12 +309,14 @@ def score_line_pair(
     """
     if reported is None:
         return Outcome.MISSED
-    matched, distances = match_line_pairs(reported, truth, size)
     max_angle = math.radians(rule.max_angle_deg)
-    for line, true_line, distance in zip(matched, truth, distances):
-        if distance >= rule.max_midpoint_px or orientation_difference(line, true_line) >= max_angle:
-            return Outcome.FALSE
-    return Outcome.CORRECT
+    for matched, distances in match_line_pairs(reported, truth, size):
+        if all(
+            distance < rule.max_midpoint_px and orientation_difference(line, true_line) < max_angle
+            for line, true_line, distance in zip(matched, truth, distances)
+        ):
+            return Outcome.CORRECT
+    return Outcome.FALSE
 
 
 def state_errors(estimate: CableState, truth: CableState) -> tuple[float, float, float, float]:

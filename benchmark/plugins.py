@@ -79,7 +79,7 @@ def make_plugin_manager(disable: Iterable[str] = ()) -> tuple[pluggy.PluginManag
     try:
         manager.check_pending()
     except pluggy.PluginValidationError as exc:
-        raise PluginError(f"plugin {exc.plugin_name!r}: {exc}") from exc
+        raise PluginError(f"plugin {manager.get_name(exc.plugin)!r}: {exc}") from exc
     return manager, origins
 
 
@@ -91,8 +91,8 @@ def fill_registry(manager: pluggy.PluginManager, origins: dict[str, Origin]) -> 
     """
     registry = Registry()
     for hook_name in REGISTER_HOOKS:
-        # pluggy lists implementations last-registered first; call in load order.
-        for impl in reversed(getattr(manager.hook, hook_name).get_hookimpls()):
+        # get_hookimpls() lists implementations in load order (pluggy calls them reversed).
+        for impl in getattr(manager.hook, hook_name).get_hookimpls():
             origin = origins.get(impl.plugin_name, Origin(impl.plugin_name))
             with registry.acting_for(origin):
                 try:

@@ -106,8 +106,9 @@ class Tracker(ABC):
         rng : numpy.random.Generator
             The only source of randomness the tracker may use.
         init : optional
-            The first frame's ground truth when the run initialises from
-            truth (``--init truth``), otherwise None.
+            The first frame's whole ground-truth object (camera: a
+            ``CameraTruth``) when the run initialises from truth
+            (``--init truth``), otherwise None.
         """
 
     @abstractmethod

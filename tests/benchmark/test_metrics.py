@@ -1,0 +1,67 @@
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from benchmark.metrics import CameraScorer, EstimateError, FrameScore, frame_table, scorer_for, summarise
+from benchmark.model import UNKNOWN_CABLE, CableState, CameraTruth, Outcome, SequenceInfo
+
+INFO = SequenceInfo("test/seq", "camera", 3, frame_size=(320, 240))
+TRUTH = CameraTruth(CableState(5.0, 0.1, 30.0, 0.02))
+scorer = CameraScorer()
+
+
+def test_camera_scorer_outcomes_and_errors():
+    outcome, errors = scorer.score(CableState(7.0, 0.1, 33.0, 0.02), TRUTH, INFO)
+    assert outcome is Outcome.CORRECT
+    assert errors == pytest.approx((2.0, 0.0, 3.0, 0.0))
+    outcome, errors = scorer.score(CableState(5.0, 0.2, 30.0, 0.02), TRUTH, INFO)
+    assert outcome is Outcome.FALSE and errors[1] == pytest.approx(math.degrees(0.1))
+    outcome, errors = scorer.score(None, TRUTH, INFO)
+    assert outcome is Outcome.MISSED and all(math.isnan(e) for e in errors)
+
+
+def test_frames_without_truth_are_not_scored():
+    assert scorer.score(CableState(0, 0, 1, 0), CameraTruth(UNKNOWN_CABLE), INFO)[0] is None
+    assert scorer.score(None, None, INFO)[0] is None
+
+
+@pytest.mark.parametrize("garbage", ["cable", (1, 2, 3, 4), CableState(math.nan, 0, 1, 0), CableState(0, 0, math.inf, 0)])
+def test_garbage_estimates_are_refused(garbage):
+    with pytest.raises(EstimateError):
+        scorer.check(garbage)
+    scorer.check(None)
+
+
+def test_unknown_modality_is_named():
+    with pytest.raises(KeyError, match="lidar"):
+        scorer_for("lidar")
+
+
+outcomes = st.lists(st.sampled_from([*Outcome, None]), min_size=1, max_size=60)
+
+
+@given(outcomes)
+def test_rates_sum_to_100_over_scored_frames(sequence):
+    scores = [FrameScore(i, o, dict(zip(scorer.error_columns, (1.0,) * 4)), 0.01) for i, o in enumerate(sequence)]
+    summary = summarise(frame_table(scores), scorer.error_columns)
+    scored = sum(o is not None for o in sequence)
+    assert summary["frames"] == scored
+    if scored:
+        total = summary["correct_pct"] + summary["false_pct"] + summary["missed_pct"]
+        assert total == pytest.approx(100.0)
+        assert summary["missed_pct"] == pytest.approx(100.0 * sequence.count(Outcome.MISSED) / scored)
+    assert summary["fps"] == pytest.approx(100.0)
+
+
+def test_rmse_ignores_frames_without_an_error():
+    errors = [(3.0, 1.0, 0.0, 0.0), (4.0, -1.0, 0.0, 0.0), (math.nan,) * 4]
+    scores = [
+        FrameScore(i, Outcome.CORRECT, dict(zip(scorer.error_columns, e)), 0.5) for i, e in enumerate(errors)
+    ]
+    summary = summarise(frame_table(scores), scorer.error_columns)
+    assert summary["rmse_d_px"] == pytest.approx(np.sqrt((9 + 16) / 2))
+    assert summary["rmse_alpha_deg"] == pytest.approx(1.0)
+    assert summary["fps"] == pytest.approx(2.0)
