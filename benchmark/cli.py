@@ -1,0 +1,277 @@
+"""The ``trackbench`` command line.
+
+::
+
+    trackbench [--disable PLUGIN]... COMMAND
+
+    list          trackers: name, version, modality, origin and parameters
+    datasets      suites and their sequences
+    run           run cells, store them and publish the leaderboard
+    leaderboard   re-publish the leaderboard of an existing results database
+    make-dataset  write a suite's sequences as PNG frames plus sequence files
+
+``run`` forms a cell for every selected tracker, sequence and seed whose
+modalities match, runs the cells (in a process pool unless ``--jobs 0``),
+stores each finished cell in ``DIR/results.sqlite`` and writes
+``leaderboard.csv``, ``leaderboard.md`` and ``leaderboard.html`` into
+``DIR``.  One line per finished cell goes to stderr as progress; the board
+goes to stdout.
+
+Every error trackbench reports to its user (an unknown name, a bad
+parameter, an unreadable file, a broken plugin) ends the command with a
+one-line ``Error: ...`` and exit status 2, without a traceback.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import sys
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import click
+
+from benchmark import plugins
+from benchmark.errors import TrackbenchError
+from benchmark.registry import Registry
+from benchmark.runner import DEFAULT_TIMEOUT_S, CellResult, run_cells
+
+if TYPE_CHECKING:
+    from benchmark.store import ResultStore
+
+DEFAULT_OUT = Path("reports") / "latest"
+
+
+class ReportedError(click.ClickException):
+    """A :class:`~benchmark.errors.TrackbenchError` shown as ``Error: ...``, exit status 2."""
+
+    exit_code = 2
+
+
+class TrackbenchGroup(click.Group):
+    """A command group that reports trackbench's own errors without a traceback."""
+
+    def invoke(self, ctx: click.Context) -> Any:
+        try:
+            return super().invoke(ctx)
+        except TrackbenchError as exc:
+            raise ReportedError(str(exc)) from exc
+
+
+@dataclasses.dataclass
+class Session:
+    """State shared by the commands of one invocation: the plugins to block and the registry."""
+
+    disable: tuple[str, ...] = ()
+    _registry: Registry | None = None
+
+    @property
+    def registry(self) -> Registry:
+        """Trackers and suites of every plugin not disabled, loaded on first use."""
+        if self._registry is None:
+            self._registry = plugins.load_registry(disable=self.disable)
+        return self._registry
+
+
+@click.group(cls=TrackbenchGroup)
+@click.option(
+    "--disable",
+    "disable",
+    multiple=True,
+    metavar="NAME",
+    help="Block the plugin with this entry-point name (repeatable).",
+)
+@click.version_option(package_name="subsea-trackbench", prog_name="trackbench")
+@click.pass_context
+def main(ctx: click.Context, disable: tuple[str, ...]) -> None:
+    """trackbench: a benchmark for subsea cable and pipeline trackers."""
+    ctx.obj = Session(disable)
+
+
+@main.command("list")
+@click.pass_obj
+def list_trackers(session: Session) -> None:
+    """List the trackers with their origin and parameters."""
+    trackers = session.registry.trackers
+    if not trackers:
+        click.echo("No trackers registered.")
+    for entry in trackers.values():
+        click.echo(
+            f"{entry.name} {entry.version}  modality {entry.modality}  "
+            f"from {entry.origin.distribution} (plugin {entry.origin.plugin})"
+        )
+        values = dataclasses.asdict(entry.params)
+        if not values:
+            click.echo("    (no parameters)")
+        for key, value in values.items():
+            click.echo(f"    {key} = {value!r}")
+
+
+@main.command("datasets")
+@click.pass_obj
+def list_datasets(session: Session) -> None:
+    """List the suites and their sequences."""
+    suites = session.registry.suites
+    if not suites:
+        click.echo("No suites registered.")
+    for suite in suites.values():
+        click.echo(f"{suite.name}  from {suite.origin.distribution} (plugin {suite.origin.plugin})")
+        for sequence in suite.sequences:
+            info = sequence.info
+            frames = "?" if info.n_frames is None else str(info.n_frames)
+            description = str(info.extra.get("description", "")).strip()
+            line = f"    {info.name}  {info.modality}  {frames} frames"
+            click.echo(f"{line}  {description}" if description else line)
+
+
+def _progress(result: CellResult) -> str:
+    summary = result.summary()
+    correct = summary.get("correct_pct", float("nan"))
+    fps = summary.get("fps", float("nan"))
+    line = (
+        f"{result.tracker}  {result.dataset}  seed {result.seed}  {result.status}  "
+        f"correct {correct:.1f}%  {fps:.0f} fps  ({len(result.scores)} frames, {result.elapsed_s:.1f} s)"
+    )
+    if result.message:
+        line += f"  {result.message}"
+    return line
+
+
+def _publish(store: ResultStore, out: Path, run_id: int | None, all_runs: bool = False) -> None:
+    from benchmark import leaderboard
+
+    run_id = store.latest_run() if run_id is None and not all_runs else run_id
+    boards = leaderboard.load_leaderboards(store, run_id, all_runs=all_runs)
+    caption = (
+        f"All runs of {store.path}." if all_runs else f"Run {run_id} of {store.path}." if run_id else "No runs."
+    )
+    click.echo(leaderboard.to_text(boards))
+    for path in leaderboard.write_leaderboards(boards, out, caption):
+        click.echo(f"wrote {path}", err=True)
+
+
+@main.command("run")
+@click.option("--suite", "suites", multiple=True, metavar="SUITE", help="Run every sequence of a suite (repeatable).")
+@click.option("--tracker", "trackers", multiple=True, metavar="NAME", help="Run this tracker (repeatable; default all).")
+@click.option(
+    "--dataset",
+    "datasets",
+    multiple=True,
+    metavar="NAME|PATH",
+    help="A registered sequence (suite/name) or a sequence file, image folder or video (repeatable).",
+)
+@click.option("--seeds", type=click.IntRange(min=1), default=1, show_default=True, help="Run seeds 0..N-1.")
+@click.option(
+    "--jobs",
+    type=click.IntRange(min=0),
+    default=None,
+    help="Worker processes (default: all cores; 0 runs inline).",
+)
+@click.option(
+    "--init",
+    type=click.Choice(["truth", "none"]),
+    default="truth",
+    show_default=True,
+    help="Initialise trackers from the first frame's ground truth, or not.",
+)
+@click.option(
+    "--out",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=DEFAULT_OUT,
+    show_default=True,
+    help="Folder for results.sqlite and the leaderboards.",
+)
+@click.option("--resume", is_flag=True, help="Skip cells this database already finished with status ok.")
+@click.option(
+    "--timeout",
+    type=click.FloatRange(min=0, min_open=True),
+    default=DEFAULT_TIMEOUT_S,
+    show_default=True,
+    metavar="SECONDS",
+    help="Time limit of each cell.",
+)
+@click.option("--param", "params", multiple=True, metavar="TRACKER.KEY=VALUE", help="Override a tracker parameter.")
+@click.pass_context
+def run(
+    ctx: click.Context,
+    suites: tuple[str, ...],
+    trackers: tuple[str, ...],
+    datasets: tuple[str, ...],
+    seeds: int,
+    jobs: int | None,
+    init: str,
+    out: Path,
+    resume: bool,
+    timeout: float,
+    params: tuple[str, ...],
+) -> None:
+    """Run trackers on datasets, store the cells and publish the leaderboard."""
+    from benchmark import selection
+    from benchmark.store import DATABASE_NAME, ResultStore
+
+    session: Session = ctx.obj
+    registry = session.registry
+    overrides = selection.parse_param_overrides(params)
+    entries = selection.apply_param_overrides(selection.select_trackers(registry, trackers), overrides)
+    sequences = selection.select_sequences(registry, suites, datasets)
+    cells = selection.make_cells(entries, sequences, range(seeds), init)
+
+    out.mkdir(parents=True, exist_ok=True)
+    with ResultStore(out / DATABASE_NAME) as store:
+        options = {key: list(value) if isinstance(value, tuple) else value for key, value in ctx.params.items()}
+        run_id = store.start_run(sys.argv, {**options, "out": str(out), "disable": list(session.disable)})
+        if resume:
+            done = store.find_ok_cells(cell.key for cell in cells)
+            store.reuse_cells(run_id, done.values())
+            cells = [cell for cell in cells if cell.key not in done]
+            click.echo(f"resume: {len(done)} cells already finished, {len(cells)} to run", err=True)
+        for result in run_cells(cells, jobs=jobs, timeout_s=timeout):
+            store.add_cell(run_id, result)
+            click.echo(_progress(result), err=True)
+        store.finish_run(run_id)
+        _publish(store, out, run_id)
+
+
+@main.command("leaderboard")
+@click.option(
+    "--out",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=DEFAULT_OUT,
+    show_default=True,
+    help="Folder holding results.sqlite; the leaderboards are written there.",
+)
+@click.option("--all-runs", is_flag=True, help="Take the latest cell of every run, not only the latest run.")
+def leaderboard_command(out: Path, all_runs: bool) -> None:
+    """Print and export the leaderboard of an existing results database.
+
+    The leaderboard of a run holds the cells it ran and those it resumed;
+    for each tracker, dataset, seed and initialisation the latest cell.
+    """
+    from benchmark.errors import DataError
+    from benchmark.store import DATABASE_NAME, ResultStore
+
+    database = out / DATABASE_NAME
+    if not database.is_file():
+        raise DataError(f"{database}: no results database (run 'trackbench run --out {out}' first)")
+    with ResultStore(database) as store:
+        if store.latest_run() is None:
+            raise DataError(f"{database}: no finished cells yet")
+        _publish(store, out, None, all_runs)
+
+
+@main.command("make-dataset")
+@click.argument("suite")
+@click.option(
+    "--out", type=click.Path(file_okay=False, path_type=Path), required=True, help="Folder to write the sequences to."
+)
+@click.pass_obj
+def make_dataset(session: Session, suite: str, out: Path) -> None:
+    """Write every sequence of SUITE as PNG frames plus an image sequence file."""
+    from benchmark.io import export_sequence
+    from benchmark.selection import SelectionError
+
+    suites = session.registry.suites
+    if suite not in suites:
+        raise SelectionError(f"unknown suite {suite!r} (known: {', '.join(sorted(suites)) or 'none'})")
+    for sequence in suites[suite].sequences:
+        click.echo(export_sequence(sequence, out))

@@ -1,0 +1,248 @@
+"""Choosing what to run: trackers, sequences, parameter overrides and cells.
+
+A benchmark run is a set of cells, one per tracker x sequence x seed, where
+the tracker reads the sequence's modality.  The user narrows the registry
+with names on the command line (``--tracker``, ``--suite``, ``--dataset``),
+changes parameters with ``TRACKER.KEY=VALUE`` overrides, and this module
+turns those words into :class:`~benchmark.runner.Cell` objects.  Every name
+it cannot resolve is an error that lists the names it knows, so a typo is
+fixed from the message alone.
+
+A ``--dataset`` is either the name of a registered sequence (``camera/S3``)
+or the path of an image sequence file, image folder or video, opened with
+:func:`benchmark.io.open_sequence` and named in the results by the path as
+the user wrote it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from collections.abc import Iterable, Iterator, Mapping
+
+from benchmark.errors import ParameterError, TrackbenchError
+from benchmark.model import Frame, Sequence, SequenceInfo
+from benchmark.registry import Registry, TrackerEntry
+from benchmark.runner import Cell, InitMode
+
+
+class SelectionError(TrackbenchError):
+    """A tracker, suite or dataset name that nothing registered answers to."""
+
+
+def _known(names: Iterable[str]) -> str:
+    listed = ", ".join(sorted(names))
+    return listed or "none"
+
+
+def select_trackers(registry: Registry, names: Iterable[str] = ()) -> list[TrackerEntry]:
+    """The registered trackers named, or all of them when no name is given.
+
+    Parameters
+    ----------
+    registry : Registry
+        The registry the plugins filled.
+    names : iterable of str
+        Tracker names; repeated names count once.
+
+    Returns
+    -------
+    list of TrackerEntry
+        In the order given, or in registration order for all.
+
+    Raises
+    ------
+    SelectionError
+        For a name no plugin registered, listing the known trackers.
+    """
+    wanted = list(dict.fromkeys(names))
+    if not wanted:
+        return list(registry.trackers.values())
+    unknown = [name for name in wanted if name not in registry.trackers]
+    if unknown:
+        raise SelectionError(
+            f"unknown tracker {', '.join(map(repr, unknown))} (known: {_known(registry.trackers)})"
+        )
+    return [registry.trackers[name] for name in wanted]
+
+
+def parse_param_overrides(specs: Iterable[str]) -> dict[str, dict[str, str]]:
+    """Parse ``TRACKER.KEY=VALUE`` words into ``{tracker: {key: value}}``.
+
+    The tracker name is everything before the last dot of the left-hand
+    side, so tracker names may contain dots; parameter names cannot.
+
+    Raises
+    ------
+    ParameterError
+        For a word without ``=`` or without a ``TRACKER.`` prefix.
+    """
+    overrides: dict[str, dict[str, str]] = {}
+    for spec in specs:
+        target, equals, value = spec.partition("=")
+        tracker, dot, key = target.strip().rpartition(".")
+        if not equals or not dot or not tracker or not key:
+            raise ParameterError(f"--param {spec!r}: expected TRACKER.KEY=VALUE, e.g. hough.sigma=3")
+        overrides.setdefault(tracker, {})[key] = value.strip()
+    return overrides
+
+
+def apply_param_overrides(
+    entries: Iterable[TrackerEntry], overrides: Mapping[str, Mapping[str, str]]
+) -> list[TrackerEntry]:
+    """The entries with their parameter overrides applied.
+
+    Parameters
+    ----------
+    entries : iterable of TrackerEntry
+        The selected trackers.
+    overrides : mapping
+        ``{tracker: {parameter: value}}`` as from :func:`parse_param_overrides`;
+        string values are converted to the type of the default.
+
+    Returns
+    -------
+    list of TrackerEntry
+        Same order; entries without overrides are returned unchanged.
+
+    Raises
+    ------
+    ParameterError
+        For an override of a tracker that is not selected, or of a parameter
+        the tracker does not declare (the message names both).
+    """
+    selected = list(entries)
+    names = {entry.name for entry in selected}
+    stray = [name for name in overrides if name not in names]
+    if stray:
+        raise ParameterError(
+            f"--param names tracker {', '.join(map(repr, stray))}, which is not selected "
+            f"(selected: {_known(names)})"
+        )
+    return [entry.with_params(overrides[entry.name]) if entry.name in overrides else entry for entry in selected]
+
+
+@dataclasses.dataclass(frozen=True)
+class NamedSequence(Sequence):
+    """A sequence shown under another name: a dataset path as the user wrote it."""
+
+    inner: Sequence
+    name: str
+
+    @property
+    def info(self) -> SequenceInfo:
+        return dataclasses.replace(self.inner.info, name=self.name)
+
+    def frames(self) -> Iterator[Frame]:
+        return self.inner.frames()
+
+
+def open_dataset_path(path: str) -> Sequence:
+    """Open a sequence file, image folder or video, named by ``path`` as given.
+
+    Raises
+    ------
+    DataError
+        If nothing readable is at ``path`` (from :func:`benchmark.io.open_sequence`).
+    """
+    from benchmark.io import open_sequence
+
+    sequence = open_sequence(path)
+    return sequence if sequence.info.name == path else NamedSequence(sequence, path)
+
+
+def select_sequences(registry: Registry, suites: Iterable[str] = (), datasets: Iterable[str] = ()) -> list[Sequence]:
+    """The sequences of the named suites and datasets; all suites when none is named.
+
+    Parameters
+    ----------
+    registry : Registry
+        The registry the plugins filled.
+    suites : iterable of str
+        Suite names; each contributes all its sequences.
+    datasets : iterable of str
+        Registered sequence names (``suite/sequence``) or paths of sequence
+        files, image folders or videos.
+
+    Returns
+    -------
+    list of Sequence
+        Suites first, then datasets, each sequence once (by name).
+
+    Raises
+    ------
+    SelectionError
+        For a suite no plugin registered, or a dataset that is neither a
+        registered sequence nor an existing path; both list the known names.
+    DataError
+        If an existing path cannot be read as a sequence.
+    """
+    suite_names = list(dict.fromkeys(suites))
+    dataset_names = list(dict.fromkeys(datasets))
+    if not suite_names and not dataset_names:
+        suite_names = list(registry.suites)
+    unknown = [name for name in suite_names if name not in registry.suites]
+    if unknown:
+        raise SelectionError(f"unknown suite {', '.join(map(repr, unknown))} (known: {_known(registry.suites)})")
+    chosen: dict[str, Sequence] = {}
+    for name in suite_names:
+        for sequence in registry.suites[name].sequences:
+            chosen.setdefault(sequence.info.name, sequence)
+    registered = {seq.info.name: seq for suite in registry.suites.values() for seq in suite.sequences}
+    for name in dataset_names:
+        if name in registered:
+            chosen.setdefault(name, registered[name])
+        elif os.path.exists(name):
+            chosen.setdefault(name, open_dataset_path(name))
+        else:
+            raise SelectionError(
+                f"unknown dataset {name!r}: not a registered sequence and no such file or folder "
+                f"(registered: {_known(registered)})"
+            )
+    return list(chosen.values())
+
+
+def make_cells(
+    trackers: Iterable[TrackerEntry], sequences: Iterable[Sequence], seeds: Iterable[int], init: InitMode
+) -> list[Cell]:
+    """Every tracker x sequence x seed whose modalities match.
+
+    Parameters
+    ----------
+    trackers : iterable of TrackerEntry
+        Selected trackers, parameters already applied.
+    sequences : iterable of Sequence
+        Selected sequences.
+    seeds : iterable of int
+        Seeds of each (tracker, sequence) pair.
+    init : {"truth", "none"}
+        Initialise trackers from the first frame's ground truth, or not.
+
+    Returns
+    -------
+    list of Cell
+        Ordered by tracker, then sequence, then seed.
+
+    Raises
+    ------
+    SelectionError
+        If no tracker reads the modality of any selected sequence.
+    """
+    tracker_list = list(trackers)
+    sequence_list = list(sequences)
+    seed_list = list(seeds)
+    cells = [
+        Cell(tracker, sequence, seed, init)
+        for tracker in tracker_list
+        for sequence in sequence_list
+        if sequence.info.modality == tracker.modality
+        for seed in seed_list
+    ]
+    if not cells and seed_list:
+        tracker_modalities = _known({f"{t.name} ({t.modality})" for t in tracker_list})
+        sequence_modalities = _known({f"{s.info.name} ({s.info.modality})" for s in sequence_list})
+        raise SelectionError(
+            "nothing to run: no selected tracker reads the modality of a selected sequence "
+            f"(trackers: {tracker_modalities}; sequences: {sequence_modalities})"
+        )
+    return cells

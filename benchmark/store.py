@@ -1,0 +1,361 @@
+"""The results database: runs, cells and per-frame scores in SQLite.
+
+Every ``trackbench run`` is a row of ``runs``; every finished cell is a row
+of ``cells`` together with its frame rows, written in one transaction, so a
+run that is killed keeps every cell it finished and loses only those in
+flight.  Only the main process writes; worker processes hand their results
+back to it.
+
+Schema (``PRAGMA user_version`` = :data:`SCHEMA_VERSION`)::
+
+    runs(id, started, finished, argv JSON, options JSON, version)
+    cells(id, run_id -> runs, tracker, tracker_version, tracker_key, params JSON,
+          dataset, modality, seed, init, status, message, detail, frames,
+          elapsed_s, finished)
+    run_cells(run_id -> runs, cell_id -> cells)
+    frames(cell_id -> cells, position, frame, outcome, step_ms)
+    frame_errors(cell_id, position, name, value)
+
+``status`` is ``ok``, ``error`` or ``timeout``; ``message`` is the one-line
+reason and ``detail`` the traceback.  ``position`` numbers a cell's frames
+in the order they were processed (``frame`` is the sequence's own index).
+``outcome`` is ``correct``, ``false``, ``missed`` or NULL for an unscored
+frame (seeds/004, Table V).  Errors are stored long, one row per frame and
+error column (``err_d_px``, ``err_alpha_deg``, ... for cameras; the names
+carry units, ``conventions.md`` section 4), so that every modality's columns
+fit the same table; a non-finite error is simply not stored.
+
+``run_cells`` lists the cells that make up a run's results: those it ran
+and those it took over from earlier runs with ``--resume``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sqlite3
+from collections.abc import Iterable, Mapping, Sequence
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import pandas as pd
+
+from benchmark.errors import DataError
+
+if TYPE_CHECKING:
+    from benchmark.runner import CellKey, CellResult
+
+SCHEMA_VERSION = 1
+DATABASE_NAME = "results.sqlite"
+
+_SCHEMA = """
+CREATE TABLE IF NOT EXISTS runs (
+    id INTEGER PRIMARY KEY,
+    started TEXT NOT NULL,
+    finished TEXT,
+    argv TEXT NOT NULL,
+    options TEXT NOT NULL,
+    version TEXT NOT NULL
+);
+CREATE TABLE IF NOT EXISTS cells (
+    id INTEGER PRIMARY KEY,
+    run_id INTEGER NOT NULL REFERENCES runs(id),
+    tracker TEXT NOT NULL,
+    tracker_version TEXT NOT NULL,
+    tracker_key TEXT NOT NULL,
+    params TEXT NOT NULL,
+    dataset TEXT NOT NULL,
+    modality TEXT NOT NULL,
+    seed INTEGER NOT NULL,
+    init TEXT NOT NULL,
+    status TEXT NOT NULL CHECK (status IN ('ok', 'error', 'timeout')),
+    message TEXT NOT NULL,
+    detail TEXT NOT NULL,
+    frames INTEGER NOT NULL,
+    elapsed_s REAL NOT NULL,
+    finished TEXT NOT NULL
+);
+CREATE INDEX IF NOT EXISTS cells_by_key ON cells (tracker_key, dataset, seed, init);
+CREATE TABLE IF NOT EXISTS run_cells (
+    run_id INTEGER NOT NULL REFERENCES runs(id),
+    cell_id INTEGER NOT NULL REFERENCES cells(id),
+    PRIMARY KEY (run_id, cell_id)
+);
+CREATE TABLE IF NOT EXISTS frames (
+    cell_id INTEGER NOT NULL REFERENCES cells(id),
+    position INTEGER NOT NULL,
+    frame INTEGER NOT NULL,
+    outcome TEXT,
+    step_ms REAL NOT NULL,
+    PRIMARY KEY (cell_id, position)
+);
+CREATE TABLE IF NOT EXISTS frame_errors (
+    cell_id INTEGER NOT NULL,
+    position INTEGER NOT NULL,
+    name TEXT NOT NULL,
+    value REAL NOT NULL,
+    PRIMARY KEY (cell_id, position, name),
+    FOREIGN KEY (cell_id, position) REFERENCES frames(cell_id, position)
+);
+"""
+
+CELL_COLUMNS = (
+    "id",
+    "run_id",
+    "tracker",
+    "tracker_version",
+    "tracker_key",
+    "params",
+    "dataset",
+    "modality",
+    "seed",
+    "init",
+    "status",
+    "message",
+    "detail",
+    "frames",
+    "elapsed_s",
+    "finished",
+)
+"""Columns of the table :meth:`ResultStore.cells` returns."""
+
+
+def _now() -> str:
+    return datetime.now(UTC).isoformat(timespec="seconds")
+
+
+def _chunks(values: Sequence[int], size: int = 500) -> Iterable[Sequence[int]]:
+    for start in range(0, len(values), size):
+        yield values[start : start + size]
+
+
+class ResultStore:
+    """A results database on disk, created on first use.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The SQLite file; its folder must exist.
+
+    Raises
+    ------
+    DataError
+        If the file is not a trackbench database of this schema version.
+
+    Examples
+    --------
+    >>> with ResultStore("reports/latest/results.sqlite") as store:    # doctest: +SKIP
+    ...     run = store.start_run(sys.argv, {})
+    ...     store.add_cell(run, result)
+    """
+
+    def __init__(self, path: str | os.PathLike[str]) -> None:
+        self.path = Path(path)
+        try:
+            self._db = sqlite3.connect(self.path)
+            self._db.execute("PRAGMA foreign_keys = ON")
+            version = self._db.execute("PRAGMA user_version").fetchone()[0]
+            if version not in (0, SCHEMA_VERSION):
+                raise DataError(
+                    f"{self.path}: results database of schema version {version}; "
+                    f"this trackbench reads version {SCHEMA_VERSION}"
+                )
+            self._db.execute("PRAGMA journal_mode = WAL")
+            with self._db:
+                self._db.executescript(_SCHEMA)
+                self._db.execute(f"PRAGMA user_version = {SCHEMA_VERSION}")
+        except sqlite3.DatabaseError as exc:
+            raise DataError(f"{self.path}: not a trackbench results database ({exc})") from exc
+
+    def close(self) -> None:
+        """Close the connection; everything written is already committed."""
+        self._db.close()
+
+    def __enter__(self) -> ResultStore:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def start_run(self, argv: Sequence[str], options: Mapping[str, Any], version: str | None = None) -> int:
+        """Record the start of a run and return its id.
+
+        Parameters
+        ----------
+        argv : sequence of str
+            The command line.
+        options : mapping
+            The parsed options, stored as JSON (non-JSON values as their repr).
+        version : str, optional
+            trackbench's version; defaults to the installed one.
+        """
+        if version is None:
+            from benchmark import __version__ as version
+        with self._db:
+            cursor = self._db.execute(
+                "INSERT INTO runs (started, argv, options, version) VALUES (?, ?, ?, ?)",
+                (_now(), json.dumps(list(argv)), json.dumps(dict(options), default=repr), version),
+            )
+        return int(cursor.lastrowid)
+
+    def finish_run(self, run_id: int) -> None:
+        """Mark a run as finished (a run killed early keeps ``finished`` NULL)."""
+        with self._db:
+            self._db.execute("UPDATE runs SET finished = ? WHERE id = ?", (_now(), run_id))
+
+    def add_cell(self, run_id: int, result: CellResult) -> int:
+        """Store a cell and all its frames in one transaction; return the cell id."""
+        n_frames = len(result.scores)
+        with self._db:
+            cursor = self._db.execute(
+                "INSERT INTO cells (run_id, tracker, tracker_version, tracker_key, params, dataset, modality, "
+                "seed, init, status, message, detail, frames, elapsed_s, finished) "
+                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                (
+                    run_id,
+                    result.tracker,
+                    result.tracker_version,
+                    result.tracker_key,
+                    json.dumps(result.params, sort_keys=True, default=repr),
+                    result.dataset,
+                    result.modality,
+                    int(result.seed),
+                    result.init,
+                    result.status,
+                    result.message,
+                    result.detail,
+                    n_frames,
+                    float(result.elapsed_s),
+                    _now(),
+                ),
+            )
+            cell_id = int(cursor.lastrowid)
+            self._db.executemany(
+                "INSERT INTO frames (cell_id, position, frame, outcome, step_ms) VALUES (?, ?, ?, ?, ?)",
+                (
+                    (cell_id, position, int(score.index), None if score.outcome is None else str(score.outcome),
+                     1000.0 * float(score.step_s))
+                    for position, score in enumerate(result.scores)
+                ),
+            )
+            self._db.executemany(
+                "INSERT INTO frame_errors (cell_id, position, name, value) VALUES (?, ?, ?, ?)",
+                (
+                    (cell_id, position, name, float(value))
+                    for position, score in enumerate(result.scores)
+                    for name, value in score.errors.items()
+                    if math.isfinite(float(value))
+                ),
+            )
+            self._db.execute("INSERT INTO run_cells (run_id, cell_id) VALUES (?, ?)", (run_id, cell_id))
+        return cell_id
+
+    def find_ok_cells(self, keys: Iterable[CellKey]) -> dict[CellKey, int]:
+        """The latest cell with status ``ok`` for each key that has one.
+
+        Parameters
+        ----------
+        keys : iterable of CellKey
+            ``(tracker_key, dataset, seed, init)`` of the wanted cells.
+
+        Returns
+        -------
+        dict
+            Key to cell id, for the keys already computed successfully.
+        """
+        found: dict[CellKey, int] = {}
+        for key in keys:
+            row = self._db.execute(
+                "SELECT max(id) FROM cells WHERE tracker_key = ? AND dataset = ? AND seed = ? AND init = ? "
+                "AND status = 'ok'",
+                (key.tracker_key, key.dataset, int(key.seed), key.init),
+            ).fetchone()
+            if row[0] is not None:
+                found[key] = int(row[0])
+        return found
+
+    def reuse_cells(self, run_id: int, cell_ids: Iterable[int]) -> None:
+        """Make earlier cells part of a run's results (``--resume``)."""
+        with self._db:
+            self._db.executemany(
+                "INSERT OR IGNORE INTO run_cells (run_id, cell_id) VALUES (?, ?)",
+                ((run_id, int(cell_id)) for cell_id in cell_ids),
+            )
+
+    def runs(self) -> pd.DataFrame:
+        """All runs, oldest first, with the number of cells in each."""
+        rows = self._db.execute(
+            "SELECT runs.id, started, finished, argv, options, version, count(run_cells.cell_id) "
+            "FROM runs LEFT JOIN run_cells ON run_cells.run_id = runs.id GROUP BY runs.id ORDER BY runs.id"
+        ).fetchall()
+        return pd.DataFrame.from_records(
+            rows, columns=["id", "started", "finished", "argv", "options", "version", "cells"]
+        )
+
+    def latest_run(self) -> int | None:
+        """Id of the latest run that has at least one cell, or None."""
+        row = self._db.execute("SELECT max(run_id) FROM run_cells").fetchone()
+        return None if row[0] is None else int(row[0])
+
+    def cells(self, run_id: int | None = None, *, all_runs: bool = False) -> pd.DataFrame:
+        """The cells that make up a leaderboard.
+
+        Parameters
+        ----------
+        run_id : int, optional
+            The run whose cells (run or resumed) to take; defaults to
+            :meth:`latest_run`.
+        all_runs : bool
+            Take cells from every run instead.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Columns :data:`CELL_COLUMNS`; for each ``(tracker_key, dataset,
+            seed, init)`` only the latest cell, whatever its status.
+        """
+        select = ", ".join(f"cells.{column}" for column in CELL_COLUMNS)
+        if all_runs:
+            rows = self._db.execute(f"SELECT {select} FROM cells ORDER BY cells.id").fetchall()
+        else:
+            run_id = self.latest_run() if run_id is None else run_id
+            rows = self._db.execute(
+                f"SELECT {select} FROM cells JOIN run_cells ON run_cells.cell_id = cells.id "
+                "WHERE run_cells.run_id = ? ORDER BY cells.id",
+                (run_id,),
+            ).fetchall()
+        table = pd.DataFrame.from_records(rows, columns=list(CELL_COLUMNS))
+        return table.drop_duplicates(["tracker_key", "dataset", "seed", "init"], keep="last").reset_index(drop=True)
+
+    def frame_tables(self, cell_ids: Iterable[int]) -> pd.DataFrame:
+        """Frame scores of the given cells, one row per frame.
+
+        Returns
+        -------
+        pandas.DataFrame
+            ``cell_id``, ``frame``, ``outcome``, ``step_ms`` and one column per
+            error name found (``nan`` where not stored), in processing order.
+        """
+        ids = sorted({int(cell_id) for cell_id in cell_ids})
+        frame_rows: list[tuple] = []
+        error_rows: list[tuple] = []
+        for chunk in _chunks(ids):
+            marks = ", ".join("?" * len(chunk))
+            frame_rows += self._db.execute(
+                f"SELECT cell_id, position, frame, outcome, step_ms FROM frames WHERE cell_id IN ({marks})", chunk
+            ).fetchall()
+            error_rows += self._db.execute(
+                f"SELECT cell_id, position, name, value FROM frame_errors WHERE cell_id IN ({marks})", chunk
+            ).fetchall()
+        frames = pd.DataFrame.from_records(
+            frame_rows, columns=["cell_id", "position", "frame", "outcome", "step_ms"]
+        ).astype({"cell_id": "int64", "position": "int64", "frame": "int64", "step_ms": "float64"})
+        if error_rows:
+            errors = pd.DataFrame.from_records(error_rows, columns=["cell_id", "position", "name", "value"])
+            wide = errors.pivot(index=["cell_id", "position"], columns="name", values="value")
+            wide.columns = [str(name) for name in wide.columns]
+            frames = frames.merge(wide.reset_index(), on=["cell_id", "position"], how="left")
+        frames = frames.sort_values(["cell_id", "position"], kind="stable")
+        return frames.drop(columns="position").reset_index(drop=True)

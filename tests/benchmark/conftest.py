@@ -1,0 +1,202 @@
+"""Fixtures of the harness tests: fake trackers, a fake camera sequence, a fake registry.
+
+The fakes are module-level classes so that worker processes can unpickle
+them; tests reach them through the ``fakes`` fixture (this module).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import sys
+import time
+import types
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+import pytest
+
+from benchmark.errors import DataError
+from benchmark.model import CableState, CameraTruth, Frame, Sequence, SequenceInfo
+from benchmark.registry import Origin, Registry
+from benchmark.tracker import Tracker
+
+WIDTH, HEIGHT = 64, 48
+
+
+def truth_at(index: int) -> CameraTruth:
+    """The ground truth of frame ``index`` of every fake sequence: a cable drifting right."""
+    return CameraTruth(CableState(d=-6.0 + 1.5 * index, alpha=0.01 * index, w=12.0, beta=0.02), visible_fraction=1.0)
+
+
+@dataclass(frozen=True)
+class FakeSequence(Sequence):
+    """A tiny camera sequence; ``corrupt_at`` makes reading that frame raise a DataError."""
+
+    name: str = "fake/S1"
+    n_frames: int = 10
+    corrupt_at: int | None = None
+    description: str = "tiny fake sequence"
+
+    @property
+    def info(self) -> SequenceInfo:
+        return SequenceInfo(
+            name=self.name,
+            modality="camera",
+            n_frames=self.n_frames,
+            frame_size=(WIDTH, HEIGHT),
+            frame_interval_s=0.04,
+            extra={"description": self.description},
+        )
+
+    def frames(self) -> Iterator[Frame]:
+        for index in range(self.n_frames):
+            if index == self.corrupt_at:
+                raise DataError(f"{self.name}: frame {index} is corrupt")
+            image = np.full((HEIGHT, WIDTH), 40 + index, dtype=np.uint8)
+            yield Frame(index, image, truth_at(index), time_s=0.04 * index)
+
+
+class Perfect(Tracker):
+    """Returns the frame's true cable state."""
+
+    name = "perfect"
+    version = "1.0"
+    modality = "camera"
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        self.init = init
+
+    def step(self, frame: Frame) -> Any:
+        return frame.truth.cable
+
+
+class Counting(Perfect):
+    """A perfect tracker that counts its instances (in this process)."""
+
+    name = "counting"
+    created: ClassVar[int] = 0
+
+    def __init__(self, params: Any = None) -> None:
+        super().__init__(params)
+        type(self).created += 1
+
+
+class Blind(Perfect):
+    """Never detects anything."""
+
+    name = "blind"
+
+    def step(self, frame: Frame) -> Any:
+        return None
+
+
+@dataclasses.dataclass(frozen=True)
+class RaisingParams:
+    fail_at: int = 3
+
+
+class Raising(Perfect):
+    """Correct until frame ``fail_at``, where it raises."""
+
+    name = "raising"
+    Params = RaisingParams
+
+    def step(self, frame: Frame) -> Any:
+        if frame.index == self.params.fail_at:
+            raise RuntimeError("lost the cable")
+        return frame.truth.cable
+
+
+@dataclasses.dataclass(frozen=True)
+class SleepyParams:
+    from_frame: int = 1
+    sleep_s: float = 60.0
+
+
+class Sleepy(Perfect):
+    """Sleeps ``sleep_s`` in every step from frame ``from_frame`` on (a hang when long)."""
+
+    name = "sleepy"
+    Params = SleepyParams
+
+    def step(self, frame: Frame) -> Any:
+        if frame.index >= self.params.from_frame:
+            time.sleep(self.params.sleep_s)
+        return frame.truth.cable
+
+
+@dataclasses.dataclass(frozen=True)
+class GarbageParams:
+    kind: str = "string"
+    at: int = 2
+
+
+class Garbage(Perfect):
+    """Returns a string (or a NaN state, ``kind="nan"``) at frame ``at``."""
+
+    name = "garbage"
+    Params = GarbageParams
+
+    def step(self, frame: Frame) -> Any:
+        if frame.index != self.params.at:
+            return frame.truth.cable
+        if self.params.kind == "nan":
+            return CableState(math.nan, 0.0, 10.0, 0.0)
+        return "a cable, probably"
+
+
+@dataclasses.dataclass(frozen=True)
+class NoisyParams:
+    sigma_px: float = 4.0
+
+
+class Noisy(Perfect):
+    """The true state plus Gaussian noise from the cell's generator, sometimes nothing."""
+
+    name = "noisy"
+    Params = NoisyParams
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        self.rng = rng
+
+    def step(self, frame: Frame) -> Any:
+        if self.rng.random() < 0.2:
+            return None
+        noise = self.rng.normal(0.0, 1.0, 4) * np.array([self.params.sigma_px, 0.03, 2.0, 0.01])
+        return CableState.from_array(frame.truth.cable.as_array() + noise)
+
+
+class SonarOnly(Perfect):
+    """Reads sonar, so never meets a camera sequence."""
+
+    name = "sonar-only"
+    modality = "sonar"
+
+
+ALL_TRACKERS = (Perfect, Counting, Blind, Raising, Sleepy, Garbage, Noisy, SonarOnly)
+ORIGIN = Origin("fakes", "fake-trackers 9.9")
+
+
+def make_registry(trackers: tuple[type[Tracker], ...] = ALL_TRACKERS) -> Registry:
+    """A registry with the fake trackers and a suite ``fake`` of two sequences."""
+    registry = Registry()
+    with registry.acting_for(ORIGIN):
+        for tracker in trackers:
+            registry.add_tracker(tracker)
+        registry.add_suite("fake", [FakeSequence("fake/S1", 10), FakeSequence("fake/S2", 6, description="shorter")])
+    return registry
+
+
+@pytest.fixture(scope="session")
+def fakes() -> types.ModuleType:
+    """This module: the fake classes and helpers above."""
+    return sys.modules[__name__]
+
+
+@pytest.fixture
+def fake_registry() -> Registry:
+    """A fresh registry of fake trackers and the suite ``fake``."""
+    return make_registry()

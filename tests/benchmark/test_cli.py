@@ -1,0 +1,271 @@
+"""Tests of benchmark.cli through click's test runner, with a fake plugin registry."""
+
+from __future__ import annotations
+
+import sqlite3
+import types
+from collections.abc import Callable
+from pathlib import Path
+
+import cv2
+import pandas as pd
+import pytest
+from click.testing import CliRunner, Result
+
+import benchmark.plugins
+from benchmark.cli import main
+from benchmark.errors import PluginError
+from benchmark.registry import Registry
+
+Invoke = Callable[..., Result]
+
+
+@pytest.fixture
+def loads(fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch) -> list[tuple[str, ...]]:
+    """Serve the fake registry to the CLI; records the ``disable`` argument of every load."""
+    calls: list[tuple[str, ...]] = []
+
+    def load_registry(disable: tuple[str, ...] = ()) -> Registry:
+        calls.append(tuple(disable))
+        return fakes.make_registry()
+
+    monkeypatch.setattr(benchmark.plugins, "load_registry", load_registry)
+    return calls
+
+
+@pytest.fixture
+def invoke(loads: list[tuple[str, ...]]) -> Invoke:
+    def run(*args: str) -> Result:
+        return CliRunner().invoke(main, list(args))
+
+    return run
+
+
+def board(out: Path) -> pd.DataFrame:
+    return pd.read_csv(out / "leaderboard.csv")
+
+
+def cell_rows(out: Path) -> list[tuple]:
+    with sqlite3.connect(out / "results.sqlite") as connection:
+        return connection.execute("SELECT id, run_id, tracker, dataset, seed, status FROM cells ORDER BY id").fetchall()
+
+
+def test_list_shows_trackers_with_origin_and_parameters(invoke: Invoke) -> None:
+    result = invoke("list")
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.splitlines()
+    raising = next(line for line in lines if line.startswith("raising "))
+    assert "1.0" in raising and "camera" in raising and "fake-trackers 9.9" in raising and "plugin fakes" in raising
+    assert "    fail_at = 3" in lines and "    sleep_s = 60.0" in lines
+    assert any(line.startswith("sonar-only ") and "sonar" in line for line in lines)
+
+
+def test_datasets_lists_suites_and_sequences(invoke: Invoke) -> None:
+    result = invoke("datasets")
+    assert result.exit_code == 0, result.output
+    assert "fake  from fake-trackers 9.9" in result.stdout
+    line = next(line for line in result.stdout.splitlines() if "fake/S2" in line)
+    assert "camera" in line and "6 frames" in line and "shorter" in line
+
+
+def test_disable_reaches_the_plugin_loader(invoke: Invoke, loads: list[tuple[str, ...]]) -> None:
+    assert invoke("--disable", "hough", "--disable", "suites", "list").exit_code == 0
+    assert loads == [("hough", "suites")]
+
+
+def test_a_broken_plugin_is_a_one_line_error(monkeypatch: pytest.MonkeyPatch) -> None:
+    def broken(disable: tuple[str, ...] = ()) -> Registry:
+        raise PluginError("plugin 'bad' (bad-dist 1.0) failed to import 'bad': ImportError: nope")
+
+    monkeypatch.setattr(benchmark.plugins, "load_registry", broken)
+    result = CliRunner().invoke(main, ["list"])
+    assert result.exit_code == 2
+    assert result.stderr.strip() == "Error: plugin 'bad' (bad-dist 1.0) failed to import 'bad': ImportError: nope"
+
+
+def test_run_writes_the_three_files_and_prints_the_board(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    result = invoke("run", "--tracker", "perfect", "--tracker", "blind", "--seeds", "2", "--jobs", "0",
+                    "--out", str(out))
+    assert result.exit_code == 0, result.output
+    for name in ("leaderboard.csv", "leaderboard.md", "leaderboard.html", "results.sqlite"):
+        assert (out / name).is_file()
+    table = board(out)
+    per_dataset = table[table["dataset"] != "(all)"].set_index(["tracker", "dataset"])
+    assert set(per_dataset.index) == {(t, d) for t in ("perfect", "blind") for d in ("fake/S1", "fake/S2")}
+    assert per_dataset.loc[("perfect", "fake/S1"), "correct_pct"] == 100.0
+    assert per_dataset.loc[("blind", "fake/S2"), "missed_pct"] == 100.0
+    assert (per_dataset["seeds"] == 2).all() and (per_dataset["status"] == "ok").all()
+    assert "perfect" in result.stdout and "correct_pct" in result.stdout and "(all)" in result.stdout
+    progress = [line for line in result.stderr.splitlines() if " seed " in line]
+    assert len(progress) == 8
+    assert any(line.startswith("perfect  fake/S1  seed 1  ok  correct 100.0%") for line in progress)
+
+
+def test_run_selects_suites_datasets_and_matching_modalities(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    result = invoke("run", "--dataset", "fake/S2", "--tracker", "perfect", "--tracker", "sonar-only",
+                    "--jobs", "0", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    assert [(row[2], row[3]) for row in cell_rows(out)] == [("perfect", "fake/S2")]
+
+
+def test_run_reports_failures_as_rows_and_finishes_the_rest(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    result = invoke("run", "--tracker", "raising", "--tracker", "garbage", "--tracker", "perfect",
+                    "--dataset", "fake/S1", "--jobs", "0", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    table = board(out).set_index(["tracker", "dataset"])
+    assert table.loc[("raising", "fake/S1"), "status"] == "error (1/1 cells): RuntimeError: lost the cable (frame 3)"
+    assert table.loc[("garbage", "fake/S1"), "status"].startswith("error (1/1 cells): EstimateError")
+    assert table.loc[("perfect", "fake/S1"), "status"] == "ok"
+    assert table.loc[("perfect", "fake/S1"), "rank"] == 1
+    assert table.loc[("raising", "fake/S1"), "frames"] == 3
+
+
+def test_param_overrides_reach_the_tracker(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    result = invoke("run", "--tracker", "raising", "--dataset", "fake/S1", "--param", "raising.fail_at=7",
+                    "--jobs", "0", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    assert "(frame 7)" in board(out).set_index("dataset").loc["fake/S1", "status"]
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--tracker", "nope"], ["unknown tracker 'nope'", "perfect", "raising"]),
+        (["--suite", "nope"], ["unknown suite 'nope'", "fake"]),
+        (["--dataset", "nope/S9"], ["unknown dataset 'nope/S9'", "fake/S1"]),
+        (["--tracker", "raising", "--param", "raising.speed=3"], ["'raising'", "'speed'", "fail_at"]),
+        (["--tracker", "raising", "--param", "raising.fail_at=soon"], ["'raising'", "'fail_at'", "soon"]),
+        (["--tracker", "raising", "--param", "perfect.x=1"], ["'perfect'", "not selected"]),
+        (["--param", "no-equals-sign"], ["TRACKER.KEY=VALUE"]),
+        (["--tracker", "sonar-only"], ["nothing to run", "sonar-only (sonar)"]),
+    ],
+)
+def test_bad_selections_exit_2_with_a_clear_message(
+    invoke: Invoke, tmp_path: Path, args: list[str], words: list[str]
+) -> None:
+    result = invoke("run", *args, "--jobs", "0", "--out", str(tmp_path / "out"))
+    assert result.exit_code == 2
+    message = result.stderr.strip()
+    assert message.startswith("Error: ") and "\n" not in message and "Traceback" not in result.output
+    for word in words:
+        assert word in message
+
+
+def test_resume_skips_ok_cells_and_redoes_failed_ones(
+    invoke: Invoke, fakes: types.ModuleType, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    out = tmp_path / "out"
+    args = ["run", "--tracker", "counting", "--tracker", "raising", "--dataset", "fake/S1", "--seeds", "2",
+            "--jobs", "0", "--out", str(out)]
+    monkeypatch.setattr(fakes.Counting, "created", 0)
+    assert invoke(*args).exit_code == 0
+    assert fakes.Counting.created == 2
+    first = cell_rows(out)
+    first_board = board(out)
+
+    result = invoke(*args, "--resume")
+    assert result.exit_code == 0, result.output
+    assert fakes.Counting.created == 2
+    assert "resume: 2 cells already finished, 2 to run" in result.stderr
+    second = cell_rows(out)
+    added = second[len(first):]
+    assert [(row[1], row[2], row[5]) for row in added] == [(2, "raising", "error"), (2, "raising", "error")]
+    pd.testing.assert_frame_equal(board(out).drop(columns="fps"), first_board.drop(columns="fps"))
+
+    assert invoke(*args).exit_code == 0
+    assert fakes.Counting.created == 4
+
+
+def test_an_interrupted_run_keeps_its_cells_for_resume(
+    invoke: Invoke, fakes: types.ModuleType, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import benchmark.runner
+
+    out = tmp_path / "out"
+    real = benchmark.runner.run_cell
+    finished: list[str] = []
+
+    def stop_after_two(cell, timeout_s=None):  # noqa: ANN001, ANN202
+        if len(finished) == 2:
+            raise KeyboardInterrupt
+        finished.append(cell.label())
+        return real(cell, timeout_s)
+
+    monkeypatch.setattr(benchmark.runner, "run_cell", stop_after_two)
+    monkeypatch.setattr(fakes.Counting, "created", 0)
+    args = ["run", "--tracker", "counting", "--seeds", "3", "--jobs", "0", "--out", str(out)]
+    assert invoke(*args).exit_code != 0
+    assert len(cell_rows(out)) == 2
+
+    monkeypatch.setattr(benchmark.runner, "run_cell", real)
+    result = invoke(*args, "--resume")
+    assert result.exit_code == 0, result.output
+    assert fakes.Counting.created == 2 + 4
+    assert board(out).query("dataset != '(all)'")["seeds"].tolist() == [3, 3]
+
+
+def test_leaderboard_command_republishes_the_latest_run(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "noisy", "--seeds", "2", "--jobs", "0", "--out", str(out)).exit_code == 0
+    expected = board(out)
+    for name in ("leaderboard.csv", "leaderboard.md", "leaderboard.html"):
+        (out / name).unlink()
+    result = invoke("leaderboard", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    pd.testing.assert_frame_equal(board(out), expected)
+    assert (out / "leaderboard.md").is_file() and (out / "leaderboard.html").is_file()
+    assert "noisy" in result.stdout
+
+
+def test_leaderboard_without_a_database_is_a_clear_error(invoke: Invoke, tmp_path: Path) -> None:
+    result = invoke("leaderboard", "--out", str(tmp_path / "missing"))
+    assert result.exit_code == 2
+    assert "no results database" in result.stderr
+
+
+def test_run_in_a_pool(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    result = invoke("run", "--tracker", "perfect", "--tracker", "raising", "--jobs", "2", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    statuses = {(row[2], row[3]): row[5] for row in cell_rows(out)}
+    assert statuses == {
+        ("perfect", "fake/S1"): "ok",
+        ("perfect", "fake/S2"): "ok",
+        ("raising", "fake/S1"): "error",
+        ("raising", "fake/S2"): "error",
+    }
+
+
+def test_dataset_path_runs_a_sequence_file(invoke: Invoke, fakes: types.ModuleType, tmp_path: Path) -> None:
+    pytest.importorskip("benchmark.io")
+    folder = tmp_path / "mine"
+    (folder / "img").mkdir(parents=True)
+    lines = ["# CableDistance CableAngle CableWidth CableSkew # Filename"]
+    for index in range(4):
+        cable = fakes.truth_at(index).cable
+        image = fakes.FakeSequence().frames().__next__().observation
+        assert cv2.imwrite(str(folder / "img" / f"{index:03d}.png"), image)
+        lines.append(f"{cable.d} {cable.alpha} {cable.w} {cable.beta} # img/{index:03d}.png")
+    (folder / "seq.txt").write_text("\n".join(lines) + "\n")
+    path = str(folder / "seq.txt")
+    out = tmp_path / "out"
+
+    result = invoke("run", "--tracker", "perfect", "--dataset", path, "--jobs", "0", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    row = board(out).set_index("dataset").loc[path]
+    assert row["frames"] == 4 and row["correct_pct"] == 100.0
+
+
+def test_make_dataset_exports_every_sequence_of_a_suite(invoke: Invoke, tmp_path: Path) -> None:
+    pytest.importorskip("benchmark.io")
+    out = tmp_path / "export"
+    result = invoke("make-dataset", "fake", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    written = [Path(line) for line in result.stdout.splitlines()]
+    assert len(written) == 2 and all(path.is_file() for path in written)
+    assert len(list(out.rglob("*.png"))) == 10 + 6
+    assert invoke("make-dataset", "nope", "--out", str(out)).exit_code == 2

@@ -1,0 +1,214 @@
+"""Tests of benchmark.leaderboard: pooled rows, ranks, units and exports."""
+
+from __future__ import annotations
+
+import io
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from benchmark.leaderboard import (
+    ALL_DATASETS,
+    display_table,
+    leaderboards,
+    to_csv,
+    to_markdown,
+    write_leaderboards,
+)
+
+ERRORS = ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
+
+
+class Cells:
+    """Builds cells and frames tables shaped like the store's."""
+
+    def __init__(self) -> None:
+        self.cells: list[dict] = []
+        self.frames: list[dict] = []
+
+    def add(
+        self,
+        tracker: str,
+        dataset: str,
+        seed: int,
+        outcomes: list[str | None],
+        d_errors: list[float] | None = None,
+        step_ms: float = 10.0,
+        status: str = "ok",
+        message: str = "",
+        key: str | None = None,
+        modality: str = "camera",
+    ) -> None:
+        cell_id = len(self.cells) + 1
+        self.cells.append(
+            {
+                "id": cell_id,
+                "tracker": tracker,
+                "tracker_key": key or f"key-{tracker}",
+                "dataset": dataset,
+                "modality": modality,
+                "seed": seed,
+                "init": "truth",
+                "status": status,
+                "message": message,
+            }
+        )
+        d_errors = d_errors or [math.nan] * len(outcomes)
+        for index, (outcome, d_error) in enumerate(zip(outcomes, d_errors, strict=True)):
+            self.frames.append(
+                {
+                    "cell_id": cell_id,
+                    "frame": index,
+                    "outcome": outcome,
+                    "step_ms": step_ms,
+                    "err_d_px": d_error,
+                    "err_alpha_deg": d_error / 10,
+                    "err_w_px": 0.0 if outcome not in (None, "missed") else math.nan,
+                    "err_beta_deg": math.nan,
+                }
+            )
+
+    def boards(self) -> dict[str, pd.DataFrame]:
+        return leaderboards(pd.DataFrame(self.cells), pd.DataFrame(self.frames))
+
+
+def rows(board: pd.DataFrame, dataset: str) -> pd.DataFrame:
+    return board[board["dataset"] == dataset].set_index("tracker")
+
+
+def test_camera_board_has_unit_named_columns() -> None:
+    data = Cells()
+    data.add("a", "s/1", 0, ["correct", "false"], [1.0, 2.0])
+    board = data.boards()["camera"]
+    for column in ("rank", "tracker", "dataset", "seeds", "frames", "correct_pct", "false_pct", "missed_pct",
+                   "rmse_d_px", "rmse_alpha_deg", "rmse_w_px", "rmse_beta_deg", "fps", "status"):
+        assert column in board.columns
+    numeric = [c for c in board.columns if pd.api.types.is_float_dtype(board[c])]
+    assert numeric and all(re.search(r"(_pct|_px|_deg|_m|^fps)$", column) for column in numeric)
+
+
+def test_seeds_pool_by_frames_not_by_mean_of_rates() -> None:
+    data = Cells()
+    data.add("a", "s/1", 0, ["correct", "correct", "correct", "missed"], [1.0, 1.0, 1.0, math.nan], step_ms=10.0)
+    data.add("a", "s/1", 1, ["false"], [4.0], step_ms=30.0)
+    row = rows(data.boards()["camera"], "s/1").loc["a"]
+    assert row["seeds"] == 2 and row["frames"] == 5
+    assert (row["correct_pct"], row["false_pct"], row["missed_pct"]) == pytest.approx((60.0, 20.0, 20.0))
+    assert row["rmse_d_px"] == pytest.approx(math.sqrt((1 + 1 + 1 + 16) / 4))
+    assert row["fps"] == pytest.approx(5 / 0.07)
+    assert row["status"] == "ok"
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.lists(st.lists(st.sampled_from(["correct", "false", "missed", None]), min_size=1, max_size=8),
+                min_size=1, max_size=4))
+def test_pooled_rates_are_frame_weighted_and_sum_to_100(seeds: list[list[str | None]]) -> None:
+    data = Cells()
+    for seed, outcomes in enumerate(seeds):
+        data.add("a", "s/1", seed, outcomes)
+    row = rows(data.boards()["camera"], "s/1").loc["a"]
+    scored = [o for outcomes in seeds for o in outcomes if o is not None]
+    assert row["frames"] == len(scored)
+    if scored:
+        assert row["correct_pct"] == pytest.approx(100 * scored.count("correct") / len(scored))
+        assert row["correct_pct"] + row["false_pct"] + row["missed_pct"] == pytest.approx(100.0)
+    else:
+        assert math.isnan(row["correct_pct"])
+
+
+def test_rank_by_correct_then_rmse_d_with_failures_last() -> None:
+    data = Cells()
+    data.add("worse", "s/1", 0, ["correct", "false"], [1.0, 9.0])
+    data.add("tied-precise", "s/1", 0, ["correct", "correct", "missed", "missed"], [0.5, 0.5, math.nan, math.nan])
+    data.add("tied-rough", "s/1", 0, ["correct", "correct", "false", "false"], [3.0, 3.0, 3.0, 3.0])
+    data.add("best", "s/1", 0, ["correct", "correct", "correct", "false"], [2.0, 2.0, 2.0, 2.0])
+    data.add("crashed", "s/1", 0, ["correct"], [0.0], status="error", message="RuntimeError: x (frame 1)")
+    board = data.boards()["camera"]
+    ranked = board[board["dataset"] == "s/1"]
+    assert ranked["tracker"].tolist() == ["best", "tied-precise", "tied-rough", "worse", "crashed"]
+    assert ranked["rank"].tolist() == [1, 2, 3, 4, 5]
+
+
+def test_overall_rows_come_first_and_pool_all_datasets() -> None:
+    data = Cells()
+    data.add("a", "s/1", 0, ["correct"] * 3)
+    data.add("a", "s/2", 0, ["missed"])
+    data.add("b", "s/1", 0, ["false"] * 2)
+    data.add("b", "s/2", 0, ["correct"] * 2)
+    board = data.boards()["camera"]
+    assert board["dataset"].tolist()[:2] == [ALL_DATASETS, ALL_DATASETS]
+    overall = rows(board, ALL_DATASETS)
+    assert overall.loc["a", "correct_pct"] == pytest.approx(75.0)
+    assert overall.loc["b", "correct_pct"] == pytest.approx(50.0)
+    assert overall.loc["a", "rank"] == 1
+    assert board["dataset"].tolist()[2:] == ["s/1", "s/1", "s/2", "s/2"]
+
+
+def test_status_counts_failed_cells_and_quotes_the_first_message() -> None:
+    data = Cells()
+    data.add("a", "s/1", 0, ["correct"])
+    data.add("a", "s/1", 1, ["correct"], status="error", message="RuntimeError: boom (frame 1)")
+    data.add("a", "s/1", 2, [], status="timeout", message="no result within the 5 s limit")
+    data.add("t", "s/1", 0, [], status="timeout", message="no result within the 5 s limit")
+    board = rows(data.boards()["camera"], "s/1")
+    assert board.loc["a", "status"] == "error (2/3 cells): RuntimeError: boom (frame 1)"
+    assert board.loc["t", "status"].startswith("timeout (1/1 cells)")
+    assert board.loc["t", "frames"] == 0
+
+
+def test_one_board_per_modality() -> None:
+    data = Cells()
+    data.add("a", "s/1", 0, ["correct"])
+    data.add("sonar-thing", "sonar/1", 0, ["correct"], modality="sonar")
+    boards = data.boards()
+    assert list(boards) == ["camera", "sonar"]
+    assert boards["sonar"]["tracker"].unique().tolist() == ["sonar-thing"]
+
+
+def test_one_name_with_two_parameter_sets_is_shown_twice() -> None:
+    data = Cells()
+    data.add("a", "s/1", 0, ["correct"], key="1111111111")
+    data.add("a", "s/1", 0, ["false"], key="2222222222")
+    trackers = set(rows(data.boards()["camera"], "s/1").index)
+    assert trackers == {"a [11111111]", "a [22222222]"}
+
+
+def test_display_rounds_but_csv_keeps_full_precision(tmp_path: Path) -> None:
+    data = Cells()
+    data.add("a", "s/1", 0, ["correct", "correct", "false"], [1.0, 2.0, 3.0], step_ms=3.0)
+    boards = data.boards()
+    board = boards["camera"]
+    shown = display_table(board).iloc[0]
+    assert shown["correct_pct"] == "66.7" and shown["rmse_d_px"] == f"{math.sqrt(14 / 3):.2f}"
+    assert shown["fps"] == "333" and shown["rmse_beta_deg"] == ""
+    back = pd.read_csv(io.StringIO(to_csv(boards)))
+    assert back["modality"].tolist() == ["camera", "camera"]
+    np.testing.assert_allclose(back["correct_pct"], board["correct_pct"])
+    np.testing.assert_allclose(back["rmse_d_px"], board["rmse_d_px"])
+
+    written = write_leaderboards(boards, tmp_path / "out", caption="Run 1.")
+    assert [p.name for p in written] == ["leaderboard.csv", "leaderboard.md", "leaderboard.html"]
+    markdown = (tmp_path / "out" / "leaderboard.md").read_text()
+    assert "## camera" in markdown and re.search(r"\|\s+66\.7 \|", markdown) and "Run 1." in markdown
+    page = (tmp_path / "out" / "leaderboard.html").read_text()
+    assert "<table" in page and "<td>66.7</td>" in page
+
+
+def test_empty_results_export_cleanly(tmp_path: Path) -> None:
+    assert "No results." in to_markdown({})
+    written = write_leaderboards({}, tmp_path)
+    assert all(path.exists() for path in written)
+
+
+def test_cells_without_any_frame_still_get_a_row() -> None:
+    data = Cells()
+    data.add("killed", "s/1", 0, [], status="timeout", message="no result within the 5 s limit")
+    board = leaderboards(pd.DataFrame(data.cells), pd.DataFrame())["camera"]
+    row = rows(board, "s/1").loc["killed"]
+    assert row["frames"] == 0 and math.isnan(row["correct_pct"]) and row["status"].startswith("timeout (1/1")

@@ -1,0 +1,159 @@
+"""Tests of benchmark.runner: cells run, score, fail and time out in isolation."""
+
+from __future__ import annotations
+
+import types
+from collections.abc import Callable
+
+import pandas as pd
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from benchmark.model import CameraTruth
+from benchmark.registry import Registry
+from benchmark.runner import Cell, CellResult, cell_rng, run_cell, run_cells
+
+MakeCell = Callable[..., Cell]
+
+
+@pytest.fixture
+def make_cell(fakes: types.ModuleType, fake_registry: Registry) -> MakeCell:
+    """Build a cell of a fake tracker (with parameter overrides) on a fake sequence."""
+
+    def make(tracker: str, sequence: object = None, seed: int = 0, init: str = "truth", **params: object) -> Cell:
+        entry = fake_registry.trackers[tracker]
+        if params:
+            entry = entry.with_params(params)
+        return Cell(entry, sequence or fakes.FakeSequence(), seed, init)
+
+    return make
+
+
+def without_timing(result: CellResult) -> pd.DataFrame:
+    return result.frames.drop(columns="step_ms")
+
+
+def test_perfect_tracker_scores_every_frame_correct(make_cell: MakeCell, fake_registry: Registry) -> None:
+    result = run_cell(make_cell("perfect"))
+    summary = result.summary()
+    assert result.status == "ok" and result.message == ""
+    assert [s.index for s in result.scores] == list(range(10))
+    assert summary["correct_pct"] == 100.0
+    assert summary["correct_pct"] + summary["false_pct"] + summary["missed_pct"] == pytest.approx(100.0)
+    assert summary["rmse_d_px"] == 0.0
+    assert (result.tracker, result.dataset, result.modality) == ("perfect", "fake/S1", "camera")
+    assert result.tracker_key == fake_registry.trackers["perfect"].cache_key
+
+
+def test_blind_tracker_misses_every_frame(make_cell: MakeCell) -> None:
+    assert run_cell(make_cell("blind")).summary()["missed_pct"] == 100.0
+
+
+@settings(max_examples=15, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), sigma=st.floats(0.0, 20.0))
+def test_rates_of_any_run_sum_to_100(fakes: types.ModuleType, seed: int, sigma: float) -> None:
+    entry = fakes.make_registry().trackers["noisy"].with_params({"sigma_px": sigma})
+    summary = run_cell(Cell(entry, fakes.FakeSequence(), seed)).summary()
+    assert summary["frames"] == 10
+    assert summary["correct_pct"] + summary["false_pct"] + summary["missed_pct"] == pytest.approx(100.0)
+
+
+def test_reset_gets_the_whole_first_truth_or_none(
+    make_cell: MakeCell, fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    seen: list[object] = []
+    original = fakes.Perfect.reset
+
+    def spy(self, info, rng, init=None):  # noqa: ANN001, ANN202
+        seen.append(init)
+        return original(self, info, rng, init)
+
+    monkeypatch.setattr(fakes.Perfect, "reset", spy)
+    run_cell(make_cell("perfect"))
+    run_cell(make_cell("perfect", init="none"))
+    assert isinstance(seen[0], CameraTruth) and seen[0] == fakes.truth_at(0)
+    assert seen[1] is None
+
+
+def test_raising_tracker_becomes_an_error_row_keeping_earlier_frames(make_cell: MakeCell) -> None:
+    result = run_cell(make_cell("raising", fail_at=4))
+    assert result.status == "error"
+    assert result.message.startswith("RuntimeError: lost the cable")
+    assert result.message.endswith("(frame 4)")
+    assert [s.index for s in result.scores] == [0, 1, 2, 3]
+    assert "lost the cable" in result.detail and "Traceback" in result.detail
+
+
+@pytest.mark.parametrize(("kind", "returned"), [("string", "'a cable, probably'"), ("nan", "non-finite")])
+def test_garbage_estimate_becomes_an_error_naming_tracker_frame_and_value(
+    make_cell: MakeCell, kind: str, returned: str
+) -> None:
+    result = run_cell(make_cell("garbage", kind=kind, at=2))
+    assert result.status == "error"
+    assert result.message.startswith("EstimateError")
+    assert "'garbage'" in result.message and result.message.endswith("(frame 2)") and returned in result.message
+    assert len(result.scores) == 2
+
+
+def test_corrupt_frame_becomes_an_error_naming_the_frame(make_cell: MakeCell, fakes: types.ModuleType) -> None:
+    result = run_cell(make_cell("perfect", fakes.FakeSequence(corrupt_at=5)))
+    assert result.status == "error"
+    assert result.message.startswith("DataError: fake/S1: frame 5 is corrupt")
+    assert result.message.endswith("(reading frame 5)")
+    assert len(result.scores) == 5
+
+
+def test_empty_sequence_is_an_error(make_cell: MakeCell, fakes: types.ModuleType) -> None:
+    result = run_cell(make_cell("perfect", fakes.FakeSequence(n_frames=0)))
+    assert result.status == "error" and "no frames" in result.message
+
+
+def test_same_seed_replays_bit_for_bit_and_other_seeds_differ(make_cell: MakeCell) -> None:
+    first = run_cell(make_cell("noisy", seed=7))
+    again = run_cell(make_cell("noisy", seed=7))
+    other = run_cell(make_cell("noisy", seed=8))
+    pd.testing.assert_frame_equal(without_timing(first), without_timing(again))
+    assert not without_timing(first).equals(without_timing(other))
+
+
+def test_cell_generators_are_independent_per_seed_tracker_and_dataset() -> None:
+    keys = [(0, "a", "x"), (0, "b", "x"), (0, "a", "y"), (1, "a", "x")]
+    draws = {key: tuple(cell_rng(*key).random(4)) for key in keys}
+    assert len(set(draws.values())) == len(keys)
+    assert tuple(cell_rng(0, "a", "x").random(4)) == draws[(0, "a", "x")]
+
+
+def test_inline_timeout_is_checked_between_frames_and_keeps_frames(make_cell: MakeCell) -> None:
+    result = run_cell(make_cell("sleepy", from_frame=0, sleep_s=0.05), timeout_s=0.01)
+    assert result.status == "timeout"
+    assert "0.01 s" in result.message
+    assert len(result.scores) == 1
+
+
+def test_inline_run_keeps_input_order_and_finishes_after_failures(make_cell: MakeCell) -> None:
+    cells = [make_cell("raising"), make_cell("perfect"), make_cell("garbage")]
+    results = list(run_cells(cells, jobs=0))
+    assert [r.tracker for r in results] == ["raising", "perfect", "garbage"]
+    assert [r.status for r in results] == ["error", "ok", "error"]
+
+
+def test_cell_rejects_an_unknown_init_mode(make_cell: MakeCell) -> None:
+    with pytest.raises(ValueError, match="init"):
+        make_cell("perfect", init="guess")
+
+
+def test_pool_isolates_a_hanging_and_a_raising_tracker(make_cell: MakeCell) -> None:
+    cells = [
+        make_cell("sleepy", from_frame=1, sleep_s=60.0),
+        make_cell("raising", fail_at=2),
+        make_cell("perfect"),
+        make_cell("noisy", seed=3),
+    ]
+    results = {r.tracker: r for r in run_cells(cells, jobs=2, timeout_s=1.0)}
+    assert results["sleepy"].status == "timeout" and "1 s" in results["sleepy"].message
+    assert results["raising"].status == "error" and results["raising"].message.endswith("(frame 2)")
+    assert len(results["raising"].scores) == 2
+    assert results["perfect"].status == "ok" and results["perfect"].summary()["correct_pct"] == 100.0
+    inline = run_cell(make_cell("noisy", seed=3))
+    pd.testing.assert_frame_equal(without_timing(results["noisy"]), without_timing(inline))
