@@ -4,9 +4,12 @@ import importlib.metadata
 import sys
 import types
 
+import pandas as pd
 import pytest
+from click.testing import CliRunner
 
 from benchmark import Tracker, hookimpl
+from benchmark.cli import main
 from benchmark.errors import PluginError
 from benchmark.plugins import DISABLE_ENV, load_registry
 
@@ -111,3 +114,30 @@ def test_an_exception_in_a_hook_is_named(monkeypatch, installed):
     installed.append(FakeDistribution("acme-trackers", [("acme", "acme_trackers")]))
     with pytest.raises(PluginError, match=r"plugin 'acme'.*trackbench_register_datasets.*database offline"):
         load_registry()
+
+
+def test_a_third_party_tracker_shows_up_ranked(monkeypatch, installed, fakes, tmp_path):
+    class Acme(fakes.Perfect):
+        name = "acme"
+
+    def register_trackers(registry):
+        registry.add_tracker(Acme)
+        registry.add_tracker(fakes.Blind)
+
+    def register_datasets(registry):
+        registry.add_suite("acme-suite", [fakes.FakeSequence("acme-suite/mini", n_frames=6)])
+
+    plugin_module(
+        monkeypatch,
+        "acme_trackers",
+        trackbench_register_trackers=register_trackers,
+        trackbench_register_datasets=register_datasets,
+    )
+    installed.append(FakeDistribution("acme-trackers", [("acme", "acme_trackers")]))
+    arguments = ["run", "--suite", "acme-suite", "--tracker", "acme", "--tracker", "blind"]
+    result = CliRunner().invoke(main, [*arguments, "--jobs", "0", "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    board = pd.read_csv(tmp_path / "leaderboard.csv")
+    row = board[(board.tracker == "acme") & (board.dataset == "acme-suite/mini")].iloc[0]
+    assert row["rank"] == 1 and row["correct_pct"] == 100.0
+    assert board[(board.tracker == "blind") & (board.dataset == "acme-suite/mini")].iloc[0]["rank"] == 2
