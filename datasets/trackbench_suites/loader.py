@@ -1,0 +1,124 @@
+"""Suites written as TOML files: parsing, defaults and scene kinds.
+
+Each ``*.toml`` file next to this module defines one suite::
+
+    [suite]
+    name = "camera"          # suite name; sequences are "camera/S1", ...
+    kind = "camera"          # which scene class renders its sequences
+    description = "..."
+
+    [defaults]               # merged under every sequence (tables merge
+    focal_px = 380.0         # key by key, other values are replaced)
+
+    [[sequence]]
+    name = "S1"
+    n_frames = 248
+    seed = 1
+    ...
+
+The ``kind`` selects a factory in :data:`SCENE_KINDS` that turns one merged
+sequence table into a :class:`benchmark.model.Sequence`; a new modality
+adds its kind there and its suites as more TOML files.  Errors name the
+file and the sequence.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from collections.abc import Callable, Iterator, Mapping
+from importlib import resources
+from importlib.resources.abc import Traversable
+from typing import Any
+
+from benchmark.errors import DataError
+from benchmark.model import Sequence
+from benchmark.scenes import CameraScene
+
+SceneFactory = Callable[[Mapping[str, Any], str], Sequence]
+"""Builds a sequence from its merged table and a description of where it came from."""
+
+SCENE_KINDS: dict[str, SceneFactory] = {"camera": CameraScene.from_dict}
+"""Scene kinds a suite file may name, and the factory of each."""
+
+
+def merge_tables(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[str, Any]:
+    """``base`` updated by ``override``; nested tables merge key by key, anything else is replaced."""
+    merged = dict(base)
+    for key, value in override.items():
+        if isinstance(value, Mapping) and isinstance(merged.get(key), Mapping):
+            merged[key] = merge_tables(merged[key], value)
+        else:
+            merged[key] = value
+    return merged
+
+
+def parse_suite(text: str, source: str) -> tuple[str, list[Sequence]]:
+    """The suite a TOML document defines.
+
+    Parameters
+    ----------
+    text : str
+        The TOML document.
+    source : str
+        Its file name, for error messages.
+
+    Returns
+    -------
+    name : str
+        The suite name.
+    sequences : list of Sequence
+        Named ``"<suite>/<sequence>"``, in file order.
+
+    Raises
+    ------
+    DataError
+        For invalid TOML, a missing or unknown ``[suite]`` key or ``kind``, a
+        sequence without a name, a repeated name, or an invalid sequence
+        definition.
+    """
+    try:
+        document = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DataError(f"{source}: not valid TOML: {exc}") from exc
+    unknown = sorted(set(document) - {"suite", "defaults", "sequence"})
+    if unknown:
+        raise DataError(f"{source}: unknown top-level key(s) {unknown}; expected suite, defaults, sequence")
+    header = document.get("suite")
+    if not isinstance(header, Mapping) or not isinstance(header.get("name"), str) or not header["name"]:
+        raise DataError(f"{source}: needs a [suite] table with a non-empty name")
+    suite = header["name"]
+    kind = header.get("kind")
+    if kind not in SCENE_KINDS:
+        raise DataError(f"{source}: [suite] kind {kind!r} is not one of {sorted(SCENE_KINDS)}")
+    extra = sorted(set(header) - {"name", "kind", "description"})
+    if extra:
+        raise DataError(f"{source}: unknown [suite] key(s) {extra}")
+    defaults = document.get("defaults", {})
+    entries = document.get("sequence", [])
+    if not isinstance(defaults, Mapping) or not isinstance(entries, list) or not entries:
+        raise DataError(f"{source}: needs [defaults] as a table and at least one [[sequence]]")
+    factory = SCENE_KINDS[kind]
+    sequences: list[Sequence] = []
+    seen: set[str] = set()
+    for position, entry in enumerate(entries, start=1):
+        short = entry.get("name") if isinstance(entry, Mapping) else None
+        if not isinstance(short, str) or not short:
+            raise DataError(f"{source}: [[sequence]] number {position} needs a non-empty name")
+        if short in seen:
+            raise DataError(f"{source}: sequence name {short!r} appears twice")
+        seen.add(short)
+        table = merge_tables(defaults, entry)
+        table["name"] = f"{suite}/{short}"
+        sequences.append(factory(table, f"{source} [sequence {short}]"))
+    return suite, sequences
+
+
+def suite_files() -> Iterator[Traversable]:
+    """The ``*.toml`` suite files shipped in this package, sorted by name."""
+    folder = resources.files(__package__)
+    yield from sorted((item for item in folder.iterdir() if item.name.endswith(".toml")), key=lambda i: i.name)
+
+
+def load_suites() -> list[tuple[str, list[Sequence]]]:
+    """Every suite shipped in this package, as ``(name, sequences)``."""
+    return [parse_suite(item.read_text(encoding="utf-8"), item.name) for item in suite_files()]

@@ -1,0 +1,67 @@
+"""Suites as TOML: parsing, defaults and the errors bad files get."""
+
+from __future__ import annotations
+
+import pytest
+
+from benchmark.errors import DataError
+from trackbench_suites.loader import merge_tables, parse_suite
+
+GOOD = """
+[suite]
+name = "demo"
+kind = "camera"
+
+[defaults]
+focal_px = 300.0
+[defaults.optics]
+blur_px = 0.0
+noise_grey = 1.0
+
+[[sequence]]
+name = "A"
+n_frames = 4
+[sequence.optics]
+noise_grey = 2.0
+
+[[sequence]]
+name = "B"
+n_frames = 2
+focal_px = 500.0
+"""
+
+
+def test_merge_tables_merges_nested_tables_and_replaces_the_rest() -> None:
+    base = {"a": 1, "t": {"x": 1, "y": [1, 2]}, "l": [1]}
+    merged = merge_tables(base, {"t": {"y": [3]}, "l": [2, 3], "b": 2})
+    assert merged == {"a": 1, "t": {"x": 1, "y": [3]}, "l": [2, 3], "b": 2}
+    assert base["t"] == {"x": 1, "y": [1, 2]}
+
+
+def test_sequences_get_the_defaults_and_the_suite_prefix() -> None:
+    name, sequences = parse_suite(GOOD, "demo.toml")
+    assert name == "demo"
+    a, b = (seq.spec for seq in sequences)
+    assert (a.name, b.name) == ("demo/A", "demo/B")
+    assert (a.focal_px, b.focal_px) == (300.0, 500.0)
+    assert (a.optics.blur_px, a.optics.noise_grey, b.optics.noise_grey) == (0.0, 2.0, 1.0)
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("[suite\n", r"bad\.toml: not valid TOML"),
+        (GOOD.replace('kind = "camera"', 'kind = "lidar"'), r"kind 'lidar' is not one of \['camera'\]"),
+        (GOOD.replace('name = "B"', 'name = "A"'), r"sequence name 'A' appears twice"),
+        (GOOD.replace('name = "B"\n', ""), r"\[\[sequence\]\] number 2 needs a non-empty name"),
+        (
+            GOOD.replace("n_frames = 4", "n_frames = 4\nfocal = 1.0"),
+            r"bad\.toml \[sequence A\]: unknown key\(s\) 'focal'",
+        ),
+        (GOOD + "\n[extra]\n", r"unknown top-level key"),
+        (GOOD.replace('name = "demo"\n', ""), r"needs a \[suite\] table with a non-empty name"),
+    ],
+)
+def test_bad_suite_files_name_file_and_sequence(text: str, message: str) -> None:
+    with pytest.raises(DataError, match=message):
+        parse_suite(text, "bad.toml")
