@@ -1,0 +1,206 @@
+"""Straight lines from the edge image: the Hough transform and its bookkeeping.
+
+The Hough transform for lines (seeds/000, section 2.1; seeds/004,
+section IV) votes every edge pixel into a ``(rho, theta)`` accumulator;
+OpenCV's ``HoughLinesWithAccumulator`` returns the local maxima above a vote
+threshold together with their votes.  OpenCV's ``(rho, theta)`` are pixel
+coordinates with the origin at the top-left pixel centre:
+``u cos(theta) + v sin(theta) = rho``, ``theta`` in ``[0, pi)``.
+
+The tracker compares lines in a centred normal form instead,
+``x cos(phi) + y sin(phi) = r`` in model coordinates (origin at the image
+centre, ``y`` up; conventions.md section 1) with ``phi`` in
+``(-pi/2, pi/2]``.  There a near-vertical line, the usual cable border, has
+``phi`` near 0 and ``r`` its signed horizontal offset from the centre, so
+distances in ``(r, phi)`` stay meaningful where OpenCV's ``theta`` wraps from
+``pi`` to 0.  A search window in ``phi`` is translated back into one or two
+``theta`` intervals, which is how the transform is limited around a
+previous result (seeds/000, section 2.1, after Balasuriya et al.).
+
+The accumulator's local maxima still come in clusters along one blurred
+edge; :func:`suppress_duplicates` keeps the strongest line of each cluster
+so that the two borders of a pair are two different edges.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import cv2
+import numpy as np
+
+from benchmark.geometry import ImageSize, Line
+
+
+def wrap_half_turn(angle: float) -> float:
+    """Wrap an angle to ``(-pi/2, pi/2]``: line normals are equal modulo ``pi``."""
+    wrapped = math.remainder(angle, math.pi)
+    return math.pi / 2 if wrapped == -math.pi / 2 else wrapped
+
+
+@dataclass(frozen=True, slots=True)
+class HoughLine:
+    """One accumulator maximum.
+
+    Attributes
+    ----------
+    rho : float
+        OpenCV distance in px from the top-left pixel centre.
+    theta : float
+        OpenCV normal angle in rad, in ``[0, pi)``.
+    votes : float
+        Accumulator value: the number of edge pixels on the line.
+    r : float
+        Signed distance in px of the line from the image centre, along
+        ``(cos phi, sin phi)`` in model coordinates.
+    phi : float
+        Normal angle in model coordinates, in ``(-pi/2, pi/2]``.
+    """
+
+    rho: float
+    theta: float
+    votes: float
+    r: float
+    phi: float
+
+    @classmethod
+    def from_opencv(cls, rho: float, theta: float, votes: float, size: ImageSize) -> HoughLine:
+        """Build a line from OpenCV's ``(rho, theta)`` and fill in ``(r, phi)``.
+
+        In model coordinates ``u = x + (W-1)/2``, ``v = (H-1)/2 - y``, so the
+        line reads ``x cos(theta) - y sin(theta) = rho - cu cos(theta) - cv
+        sin(theta)``: normal angle ``-theta``, folded into ``(-pi/2, pi/2]``.
+        """
+        cu, cv = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
+        r = rho - cu * math.cos(theta) - cv * math.sin(theta)
+        phi = -theta
+        if phi <= -math.pi / 2:
+            phi, r = phi + math.pi, -r
+        return cls(float(rho), float(theta), float(votes), float(r), float(phi))
+
+    def line(self, size: ImageSize) -> Line:
+        """The line in model coordinates (:class:`benchmark.geometry.Line`)."""
+        c, s = math.cos(self.theta), math.sin(self.theta)
+        foot = (self.rho * c, self.rho * s)
+        return Line.from_pixels(foot, (foot[0] - s, foot[1] + c), size)
+
+    def distance_to(self, r: float, phi: float) -> tuple[float, float]:
+        """Absolute differences ``(|dr|, |dphi|)`` to a line ``(r, phi)``, modulo the half turn."""
+        dphi = self.phi - phi
+        wrapped = wrap_half_turn(dphi)
+        # Wrapping by a half turn flips the other normal, and with it the sign of r.
+        other_r = -r if abs(dphi - wrapped) > math.pi / 2 else r
+        return abs(self.r - other_r), abs(wrapped)
+
+
+def normal_form(line: Line) -> tuple[float, float]:
+    """Centred normal form ``(r, phi)`` of a model-coordinate line, ``phi`` in ``(-pi/2, pi/2]``."""
+    nx, ny = -line.dy, line.dx
+    r = line.x0 * nx + line.y0 * ny
+    phi = math.atan2(ny, nx)
+    folded = wrap_half_turn(phi)
+    return (r if abs(folded - phi) < math.pi / 2 else -r), folded
+
+
+def theta_intervals(phi_low: float, phi_high: float) -> list[tuple[float, float]]:
+    """OpenCV ``theta`` intervals that cover the model angles ``[phi_low, phi_high]``.
+
+    Parameters
+    ----------
+    phi_low, phi_high : float
+        A window of normal angles in rad with ``phi_low <= phi_high``; a
+        window of ``pi`` or more covers every line.
+
+    Returns
+    -------
+    list of (float, float)
+        One or two ``(min_theta, max_theta)`` pairs inside ``[0, pi]``.
+    """
+    if phi_high - phi_low >= math.pi:
+        return [(0.0, math.pi)]
+    # theta = -phi modulo pi, so the window reverses and may wrap at 0 / pi.
+    low = (-phi_high) % math.pi
+    high = low + (phi_high - phi_low)
+    if high <= math.pi:
+        return [(low, high)]
+    return [(low, math.pi), (0.0, high - math.pi)]
+
+
+def hough_lines(
+    edges: np.ndarray,
+    rho_step: float,
+    theta_step: float,
+    min_votes: int,
+    intervals: list[tuple[float, float]] | None = None,
+) -> list[HoughLine]:
+    """Lines of a binary edge image by the standard Hough transform.
+
+    Parameters
+    ----------
+    edges : numpy.ndarray
+        ``uint8`` binary image of shape ``(H, W)``; it is not modified.
+    rho_step : float
+        Accumulator resolution in distance, px.
+    theta_step : float
+        Accumulator resolution in angle, rad.
+    min_votes : int
+        Only lines with more votes than this are returned.
+    intervals : list of (float, float), optional
+        OpenCV ``theta`` intervals to search (:func:`theta_intervals`); the
+        whole range ``[0, pi)`` when None.
+
+    Returns
+    -------
+    list of HoughLine
+        Strongest first.
+
+    References
+    ----------
+    seeds/000, section 2.1 (Hough transform [HA62], limited parameter space);
+    seeds/004, section IV (normal parametrisation, Fig. 7a).
+    """
+    size = (edges.shape[1], edges.shape[0])
+    found: list[HoughLine] = []
+    for low, high in intervals or [(0.0, math.pi)]:
+        if high - low < theta_step:
+            low, high = max(0.0, 0.5 * (low + high) - theta_step), min(math.pi, 0.5 * (low + high) + theta_step)
+        raw = cv2.HoughLinesWithAccumulator(
+            edges.copy(), rho_step, theta_step, int(min_votes), min_theta=float(low), max_theta=float(high)
+        )
+        if raw is None:
+            continue
+        for rho, theta, votes in np.asarray(raw, dtype=np.float64).reshape(-1, 3):
+            found.append(HoughLine.from_opencv(rho, theta, votes, size))
+    found.sort(key=lambda item: -item.votes)
+    return found
+
+
+def suppress_duplicates(lines: list[HoughLine], r_tolerance: float, phi_tolerance: float) -> list[HoughLine]:
+    """Non-maximum suppression in ``(r, phi)``.
+
+    Walking from the strongest line down, a line is dropped when a kept one
+    lies within ``r_tolerance`` px and ``phi_tolerance`` rad of it.
+
+    Parameters
+    ----------
+    lines : list of HoughLine
+        Candidate lines, strongest first.
+    r_tolerance : float
+        Distance in px below which two lines are the same edge.
+    phi_tolerance : float
+        Angle in rad below which two lines are the same edge.
+
+    Returns
+    -------
+    list of HoughLine
+        The kept lines, strongest first.
+    """
+    kept: list[HoughLine] = []
+    for line in lines:
+        if all(
+            not (dr < r_tolerance and dphi < phi_tolerance)
+            for dr, dphi in (line.distance_to(other.r, other.phi) for other in kept)
+        ):
+            kept.append(line)
+    return kept

@@ -1,0 +1,92 @@
+"""The limited Hough parameter space used while a cable is being tracked.
+
+"Once the cable is successfully detected, the search space for line
+detection can be limited around the determined parameters, i.e. the Hough
+transform has to be computed only for a small range of angles and
+distances" (seeds/000, section 2.1, on Balasuriya et al. and Matsumoto and
+Ito).  A :class:`SearchWindow` is that range: around each of the two
+borders found last, ``r_half`` px in distance and ``phi_half`` rad in
+angle, in the centred normal form of :mod:`trackbench_hough.lines`.
+
+The window restricts the transform itself to the ``theta`` range spanned by
+the two borders (:meth:`SearchWindow.theta_intervals`) and then admits only
+lines within the distance range (:meth:`SearchWindow.admits`).  A new pair
+must have one border in the window of each previous border
+(:meth:`SearchWindow.deviation`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from benchmark.geometry import Line
+from trackbench_hough.lines import HoughLine, normal_form, theta_intervals, wrap_half_turn
+
+
+@dataclass(frozen=True, slots=True)
+class SearchWindow:
+    """Search ranges around the two borders of the previous result.
+
+    Attributes
+    ----------
+    borders : tuple of (float, float)
+        ``(r, phi)`` of the two previous borders (centred normal form).
+    r_half : float
+        Half-width of the distance range, px.
+    phi_half : float
+        Half-width of the angle range, rad.
+    """
+
+    borders: tuple[tuple[float, float], tuple[float, float]]
+    r_half: float
+    phi_half: float
+
+    @classmethod
+    def around(cls, first: HoughLine, second: HoughLine, r_half: float, phi_half: float) -> SearchWindow:
+        """The window around a detected pair of Hough lines."""
+        return cls(((first.r, first.phi), (second.r, second.phi)), r_half, phi_half)
+
+    @classmethod
+    def around_borders(cls, borders: tuple[Line, Line], r_half: float, phi_half: float) -> SearchWindow:
+        """The window around two border lines in model coordinates (e.g. an initial state)."""
+        return cls((normal_form(borders[0]), normal_form(borders[1])), r_half, phi_half)
+
+    def theta_intervals(self) -> list[tuple[float, float]]:
+        """OpenCV ``theta`` intervals covering both borders' angle ranges.
+
+        References
+        ----------
+        seeds/000, section 2.1: the transform is computed only for a small
+        range of angles.
+        """
+        (_, phi_a), (_, phi_b) = self.borders
+        # The borders are nearly parallel: take phi_b relative to phi_a across the wrap.
+        delta = wrap_half_turn(phi_b - phi_a)
+        low, high = phi_a + min(0.0, delta), phi_a + max(0.0, delta)
+        return theta_intervals(low - self.phi_half, high + self.phi_half)
+
+    def _within(self, line: HoughLine, border: tuple[float, float]) -> tuple[float, float] | None:
+        dr, dphi = line.distance_to(*border)
+        if dr <= self.r_half and dphi <= self.phi_half:
+            return dr / self.r_half, dphi / self.phi_half
+        return None
+
+    def admits(self, line: HoughLine) -> bool:
+        """True when the line lies in the window of either previous border."""
+        return any(self._within(line, border) is not None for border in self.borders)
+
+    def deviation(self, first: HoughLine, second: HoughLine) -> float | None:
+        """How far a candidate pair lies from the previous pair, or None if outside.
+
+        The two lines are matched to the two previous borders in the order
+        that fits; the deviation is the largest normalised offset, in
+        ``[0, 1]`` (0: exactly the previous pair, 1: at the window's edge).
+        """
+        best: float | None = None
+        for a, b in ((first, second), (second, first)):
+            fit_a, fit_b = self._within(a, self.borders[0]), self._within(b, self.borders[1])
+            if fit_a is None or fit_b is None:
+                continue
+            worst = max(*fit_a, *fit_b)
+            best = worst if best is None else min(best, worst)
+        return best

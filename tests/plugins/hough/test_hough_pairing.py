@@ -1,0 +1,85 @@
+"""Tests of border-pair grouping (seeds/004, section IV)."""
+
+from __future__ import annotations
+
+import math
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from benchmark.geometry import Line, cable_borders
+from benchmark.model import CableState
+from trackbench_hough.lines import HoughLine, normal_form
+from trackbench_hough.pairing import choose_pair, compatible_pairs
+from trackbench_hough.window import SearchWindow
+
+SIZE = (320, 240)
+LIMITS = dict(max_skew=math.radians(10.0), max_divergence=math.radians(1.0), min_width=5.0, max_width=100.0)
+
+
+def hough_line(line: Line, votes: float) -> HoughLine:
+    """The HoughLine (with OpenCV's rho, theta) of a model-coordinate line."""
+    r, phi = normal_form(line)
+    theta = (-phi) % math.pi
+    cu, cv = (SIZE[0] - 1) / 2.0, (SIZE[1] - 1) / 2.0
+    # OpenCV's theta is -phi folded into [0, pi); folding flips the normal when phi > 0.
+    sign = 1.0 if phi <= 0 else -1.0
+    rho = sign * r + cu * math.cos(theta) + cv * math.sin(theta)
+    return HoughLine.from_opencv(rho, theta, votes, SIZE)
+
+
+def cable_lines(state: CableState, votes: tuple[float, float] = (100.0, 90.0)) -> list[HoughLine]:
+    left, right = cable_borders(state)
+    return [hough_line(left, votes[0]), hough_line(right, votes[1])]
+
+
+@settings(max_examples=50, deadline=None)
+@given(
+    d=st.floats(-80.0, 80.0),
+    alpha_deg=st.floats(-40.0, 40.0),
+    w=st.floats(6.0, 99.0),
+    beta_deg=st.floats(0.0, 1.0),
+)
+def test_a_cable_pair_is_compatible_and_gives_back_its_state(d, alpha_deg, w, beta_deg):
+    truth = CableState(d, math.radians(alpha_deg), w, math.radians(beta_deg))
+    pairs = compatible_pairs(cable_lines(truth), SIZE, **LIMITS)
+    assert len(pairs) == 1
+    state = pairs[0].state
+    assert math.isclose(state.d, truth.d, abs_tol=1e-6) and math.isclose(state.w, truth.w, abs_tol=1e-6)
+    assert math.isclose(state.alpha, truth.alpha, abs_tol=1e-9) and math.isclose(state.beta, truth.beta, abs_tol=1e-9)
+    assert pairs[0].votes == 190.0
+
+
+def test_implausible_pairs_are_rejected():
+    cases = {
+        "too narrow": CableState(0.0, 0.0, 4.0, 0.0),
+        "too wide": CableState(0.0, 0.0, 120.0, 0.0),
+        "too skewed": CableState(0.0, 0.0, 90.0, math.radians(12.0)),
+        "diverging": CableState(0.0, 0.0, 40.0, -math.radians(3.0)),
+        "crossing in the image": CableState(0.0, 0.0, 20.0, math.radians(8.0)),
+    }
+    for why, state in cases.items():
+        assert compatible_pairs(cable_lines(state), SIZE, **LIMITS) == [], why
+    assert compatible_pairs(cable_lines(CableState(0.0, 0.0, 40.0, -math.radians(0.5))), SIZE, **LIMITS)
+
+
+def test_the_pair_with_most_votes_wins_without_a_window():
+    weak = cable_lines(CableState(-60.0, 0.0, 30.0, 0.0), (80.0, 80.0))
+    strong = cable_lines(CableState(60.0, 0.0, 30.0, 0.0), (120.0, 110.0))
+    pairs = compatible_pairs(weak + strong, SIZE, **LIMITS)
+    chosen = choose_pair(pairs)
+    assert chosen is not None and math.isclose(chosen.state.d, 60.0, abs_tol=1e-6)
+    assert choose_pair([]) is None
+
+
+def test_a_window_keeps_out_far_pairs_and_favours_near_ones():
+    previous = cable_lines(CableState(-60.0, 0.0, 30.0, 0.0))
+    window = SearchWindow.around(previous[0], previous[1], 15.0, math.radians(5.0))
+    near = cable_lines(CableState(-55.0, 0.0, 30.0, 0.0), (80.0, 80.0))
+    far = cable_lines(CableState(60.0, 0.0, 30.0, 0.0), (150.0, 150.0))
+    edge = cable_lines(CableState(-47.0, 0.0, 30.0, 0.0), (90.0, 90.0))
+    assert choose_pair(compatible_pairs(far, SIZE, **LIMITS), window) is None
+    chosen = choose_pair(compatible_pairs(near + far + edge, SIZE, **LIMITS), window, closeness_weight=0.5)
+    assert chosen is not None and math.isclose(chosen.state.d, -55.0, abs_tol=1e-6)
+    chosen = choose_pair(compatible_pairs(near + edge, SIZE, **LIMITS), window, closeness_weight=0.0)
+    assert chosen is not None and math.isclose(chosen.state.d, -47.0, abs_tol=1e-6)

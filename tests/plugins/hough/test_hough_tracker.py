@@ -1,0 +1,132 @@
+"""Tests of the Hough baseline tracker on drawn cable images."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from benchmark.errors import DataError, ParameterError
+from benchmark.geometry import cable_borders, score_line_pair
+from benchmark.model import CableState, CameraTruth, Frame, Outcome, SequenceInfo
+from trackbench_hough.tracker import HoughTracker
+
+SIZE = (320, 240)
+INFO = SequenceInfo("drawn", "camera", frame_size=SIZE)
+
+
+def fresh(**overrides) -> HoughTracker:
+    tracker = HoughTracker(HoughTracker.make_params(overrides))
+    tracker.reset(INFO, np.random.default_rng(0))
+    return tracker
+
+
+def outcome(estimate: CableState | None, truth: CableState) -> Outcome:
+    return score_line_pair(None if estimate is None else cable_borders(estimate), cable_borders(truth), SIZE)
+
+
+@pytest.mark.parametrize("contrast", [60.0, -60.0], ids=["bright", "dark"])
+def test_finds_the_drawn_cable_for_both_polarities(drawing, contrast):
+    truth = CableState(12.0, math.radians(8.0), 34.0, math.radians(1.5))
+    estimate = fresh().step(Frame(0, drawing.draw_cable(truth, contrast=contrast)))
+    assert outcome(estimate, truth) is Outcome.CORRECT
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    d=st.floats(-60.0, 60.0),
+    alpha_deg=st.floats(-30.0, 30.0),
+    w=st.floats(15.0, 60.0),
+    beta_deg=st.floats(0.0, 1.5),
+    dark=st.booleans(),
+    seed=st.integers(0, 2**16),
+)
+def test_finds_random_cables(drawing, d, alpha_deg, w, beta_deg, dark, seed):
+    truth = CableState(d, math.radians(alpha_deg), w, math.radians(beta_deg))
+    image = drawing.draw_cable(truth, contrast=-50.0 if dark else 50.0, seed=seed)
+    assert outcome(fresh().step(Frame(0, image)), truth) is Outcome.CORRECT
+
+
+def test_returns_none_on_blank_and_noise_only_images(drawing):
+    tracker = fresh()
+    assert tracker.step(Frame(0, np.full(SIZE[::-1], 128, np.uint8))) is None
+    for seed in range(3):
+        assert tracker.step(Frame(1 + seed, drawing.to_uint8(drawing.background(SIZE, seed)))) is None
+    assert not tracker.tracking
+
+
+def test_tracking_window_ignores_a_far_pair_until_enough_misses(drawing):
+    cable = CableState(-70.0, math.radians(5.0), 30.0, 0.0)
+    distractor = CableState(75.0, math.radians(-12.0), 40.0, 0.0)
+    tracker = fresh(max_misses=3)
+    assert outcome(tracker.step(Frame(0, drawing.draw_cable(cable))), cable) is Outcome.CORRECT
+    assert tracker.tracking
+    # The distractor alone is found at once by a tracker that searches everywhere ...
+    assert outcome(fresh().step(Frame(0, drawing.draw_cable(distractor, seed=1))), distractor) is Outcome.CORRECT
+    # ... but a tracking one misses it while the window is limited, then widens.
+    for index in range(1, 4):
+        assert tracker.step(Frame(index, drawing.draw_cable(distractor, seed=index))) is None
+    assert not tracker.tracking
+    assert outcome(tracker.step(Frame(4, drawing.draw_cable(distractor, seed=4))), distractor) is Outcome.CORRECT
+
+
+def test_tracking_prefers_the_pair_near_the_previous_one(drawing):
+    cable = CableState(-60.0, 0.0, 30.0, 0.0)
+    stronger = CableState(60.0, 0.0, 30.0, 0.0)
+    tracker = fresh()
+    tracker.step(Frame(0, drawing.draw_cable(cable)))
+    moved = CableState(-54.0, math.radians(2.0), 30.0, 0.0)
+    sand = drawing.background(SIZE, 7)
+    both = drawing.to_uint8(drawing.paint_band(drawing.paint_band(sand, moved, 40.0), stronger, 90.0))
+    assert outcome(fresh().step(Frame(0, both)), stronger) is Outcome.CORRECT
+    assert outcome(tracker.step(Frame(1, both)), moved) is Outcome.CORRECT
+
+
+def test_init_starts_in_the_window_around_it(drawing):
+    cable = CableState(-70.0, math.radians(5.0), 30.0, 0.0)
+    distractor = CableState(75.0, math.radians(-12.0), 40.0, 0.0)
+    tracker = HoughTracker()
+    tracker.reset(INFO, np.random.default_rng(0), init=CameraTruth(cable))
+    assert tracker.tracking
+    assert tracker.step(Frame(0, drawing.draw_cable(distractor))) is None
+    ignoring = HoughTracker(HoughTracker.make_params({"use_init": "false"}))
+    ignoring.reset(INFO, np.random.default_rng(0), init=cable)
+    assert not ignoring.tracking
+    assert outcome(ignoring.step(Frame(0, drawing.draw_cable(distractor))), distractor) is Outcome.CORRECT
+
+
+def test_reset_forgets_the_previous_sequence(drawing):
+    tracker = fresh()
+    tracker.step(Frame(0, drawing.draw_cable(CableState(-70.0, 0.0, 30.0, 0.0))))
+    assert tracker.tracking
+    tracker.reset(INFO, np.random.default_rng(0))
+    assert not tracker.tracking
+
+
+def test_is_deterministic(drawing):
+    images = [drawing.draw_cable(CableState(5.0 * k, 0.02 * k, 30.0, 0.0), seed=k) for k in range(4)]
+    runs = []
+    for seed in (1, 2):
+        tracker = HoughTracker()
+        tracker.reset(INFO, np.random.default_rng(seed))
+        runs.append([tracker.step(Frame(k, image)) for k, image in enumerate(images)])
+    assert runs[0] == runs[1]
+    assert all(estimate is not None for estimate in runs[0])
+
+
+def test_unknown_parameter_is_a_parameter_error():
+    with pytest.raises(ParameterError, match="log_sigmaa"):
+        HoughTracker.make_params({"log_sigmaa": 2.0})
+
+
+def test_parameters_from_strings_are_converted():
+    params = HoughTracker.make_params({"log_sigma": "5", "max_misses": "2"})
+    assert params.log_sigma == 5.0 and params.max_misses == 2
+
+
+def test_colour_image_is_a_data_error():
+    with pytest.raises(DataError, match="frame 3"):
+        fresh().step(Frame(3, np.zeros((*SIZE[::-1], 3), np.uint8)))
