@@ -17,6 +17,8 @@ Modules, from the geometry up:
 * :mod:`~benchmark.scenes.motion`: trajectories and the speeds of eq. (7);
 * :mod:`~benchmark.scenes.texture`: seabed and pipe albedo maps;
 * :mod:`~benchmark.scenes.burial`: sand over the pipe, visible fraction;
+* :mod:`~benchmark.scenes.overgrowth`: algae and stones on the pipe and
+  against its sides, drawn over its borders;
 * :mod:`~benchmark.scenes.render`: the per-frame ray caster;
 * :mod:`~benchmark.scenes.spec`: sequence definitions as data;
 * :mod:`~benchmark.scenes.camera_scene`: :class:`CameraScene`, the

@@ -44,6 +44,7 @@ from benchmark.model import (
 )
 from benchmark.scenes.burial import sand_level, visible_fraction
 from benchmark.scenes.motion import Trajectory, build_trajectory, vehicle_speeds
+from benchmark.scenes.overgrowth import overgrowth_layer
 from benchmark.scenes.projection import pixel_rays, pose_axes
 from benchmark.scenes.render import Renderer, SceneAssets, camera_rays, vignette_gain
 from benchmark.scenes.silhouette import cable_truth
@@ -159,6 +160,11 @@ class CameraScene(Sequence):
         seabed = seabed_map(spec.seabed, grid, self._stream(_TEXTURE, 1))
         surface = cable_map(spec.cable, grid.nz, grid.cell, spec.radius, self._stream(_TEXTURE, 2))
         jitter = 0.08 * spec.radius * lowpass_noise(self._stream(_TEXTURE, 3), surface.shape, (3.0, 3.0))
+        cover, cover_x0 = None, 0.0
+        layer = overgrowth_layer(spec.overgrowth, grid, spec.radius, self._stream(_TEXTURE, 4))
+        if layer is not None:
+            seabed = layer.composite(seabed)
+            cover, cover_x0 = layer.pipe_band(spec.radius)
         return SceneAssets(
             grid=grid,
             seabed=seabed,
@@ -169,6 +175,8 @@ class CameraScene(Sequence):
             rays=camera_rays(spec.focal_px, spec.frame_size),
             vignette=vignette_gain(spec.frame_size, spec.optics.vignetting),
             reference_distance_m=_reference_distance(spec, state.trajectory),
+            cover=cover,
+            cover_x0=cover_x0,
         )
 
     def trajectory(self) -> Trajectory:

@@ -14,7 +14,9 @@ processed at once with numpy:
    :func:`cv2.remap` (a coarser, pre-filtered copy takes over where a pixel
    covers several texels), the pipe map at ``(psi, Z)``; where the pipe lies
    below the sand level the pixel keeps the seabed behind it, so a buried
-   pipe disappears but for a faint trace;
+   pipe disappears but for a faint trace; where algae or stones lie on
+   the pipe (:mod:`benchmark.scenes.overgrowth`) and their top is above the
+   pipe point, the pixel shows them, lit like the seabed around them;
 4. light from a lamp at the camera: Lambertian shading (so the middle of
    the pipe, facing the lamp, is brightest) with an ambient share, a
    highlight along the pipe, fall-off with the distance squared (softened
@@ -63,6 +65,9 @@ REMAP_ROW = 1024
 LAMP_CLAMP = 4.0
 """Largest fall-off factor of the lamp (for surfaces much nearer than the reference distance)."""
 
+COVER_EDGE_M = 0.01
+"""Height over which overgrowth fades in where its top meets the pipe's surface."""
+
 
 @dataclass(frozen=True)
 class SceneAssets:
@@ -87,6 +92,14 @@ class SceneAssets:
         Per-pixel gain, shape ``(H * W,)``.
     reference_distance_m : float
         Distance at which the lamp's fall-off factor is 1.
+    cover : numpy.ndarray or None
+        Shape ``(nz, ncols, 3)``: the overgrowth over the pipe, as alpha,
+        albedo times alpha and top height above the seabed (m), on columns
+        of the seabed grid from ``X = cover_x0`` (see
+        :meth:`benchmark.scenes.overgrowth.CoverLayer.pipe_band`); None
+        when there is none.
+    cover_x0 : float
+        ``X`` of the first column of ``cover``, m.
     """
 
     grid: TextureGrid
@@ -98,6 +111,8 @@ class SceneAssets:
     rays: np.ndarray
     vignette: np.ndarray
     reference_distance_m: float
+    cover: np.ndarray | None = None
+    cover_x0: float = 0.0
 
 
 def remap_flat(source: np.ndarray, col: np.ndarray, row: np.ndarray) -> np.ndarray:
@@ -407,6 +422,8 @@ class Renderer:
             for _ in range(HIGHLIGHT_SQUARINGS - 1):
                 highlight *= highlight
             lit += np.float32(spec.cable.specular) * highlight
+        if assets.cover is not None:
+            self._overgrow(lit, hits, px, py, row)
         sand_rows = np.clip(row.astype(np.int32), 0, grid.nz - 1)
         under = py < assets.sand[sand_rows] + surface[:, 1]
         if not under.any():
@@ -414,6 +431,29 @@ class Renderer:
         above = ~under
         relief = 1.0 + MOUND_RELIEF * (facing[under] + hy[under] / hn[under])
         return hits[above], lit[above], t[above], hits[under], relief.astype(np.float32)
+
+    def _overgrow(self, lit: np.ndarray, hits: np.ndarray, px: np.ndarray, py: np.ndarray, row: np.ndarray) -> None:
+        """Lay the overgrowth over the lit pipe pixels ``hits`` (in place on ``lit``).
+
+        The layer is sampled at the pipe point's ``(X, Z)``; it hides the
+        pipe where its top is above the point (with a soft step of
+        :data:`COVER_EDGE_M`) and is lit with the seabed's Lambertian
+        factor of the same ray, so an alga or a stone looks the same on both
+        sides of a border it crosses.
+        """
+        spec, assets = self.spec, self.assets
+        cell = np.float32(assets.grid.cell)
+        col = (px - np.float32(assets.cover_x0)) / cell
+        cover = remap_flat(assets.cover, col, row)
+        step = cover[:, 2] - py
+        step -= np.float32(spec.radius)
+        step *= np.float32(1.0 / COVER_EDGE_M)
+        step += np.float32(0.5)
+        np.clip(step, 0.0, 1.0, out=step)
+        ambient = np.float32(spec.optics.ambient)
+        shade = self._work.facing[hits] * (1 - ambient) + ambient
+        lit *= 1.0 - cover[:, 0] * step
+        lit += cover[:, 1] * step * shade
 
     def _sensor(self, image: np.ndarray, rng: np.random.Generator) -> np.ndarray:
         """Blur, suspended particles, noise and quantisation."""

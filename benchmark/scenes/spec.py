@@ -15,6 +15,8 @@ The tree mirrors the parts of the scene model of seeds/004, section II:
   texture, :class:`Ripples`, :class:`Clutter` of rocks and algae);
 * :class:`CableLook`: the pipe's surface (albedo, shine, marine growth);
 * :class:`Burial`: stretches where sand covers the pipe (seeds/004, Fig. 14);
+* :class:`Overgrowth`: algae and stones on the pipe and against its sides,
+  which break its borders (seeds/000, section 5.2.3);
 * :class:`OpticsSpec`: light, water and sensor.
 
 Lengths are in metres, angles in degrees (converted to radians where the
@@ -37,6 +39,29 @@ ZRange = tuple[float, float]
 """A stretch ``(from, to)`` along the pipe axis ``Z``, in m."""
 
 EVERYWHERE: ZRange = (-math.inf, math.inf)
+
+DensityProfile = tuple[tuple[float, float], ...]
+"""Points ``(Z in m, factor)`` of a density that varies along the pipe.
+
+The factor is interpolated linearly between points and held constant
+beyond the first and the last; an empty profile is 1 everywhere.
+"""
+
+
+def check_profile(points: DensityProfile) -> None:
+    """Raise ``ValueError`` unless ``points`` is a valid :data:`DensityProfile`.
+
+    Parameters
+    ----------
+    points : DensityProfile
+        Positions must be finite and strictly increasing, factors finite
+        and ``>= 0``.
+    """
+    zs = [z for z, _ in points]
+    if not all(math.isfinite(z) and math.isfinite(f) and f >= 0 for z, f in points):
+        raise ValueError(f"density profile needs finite positions and factors >= 0, got {points}")
+    if any(b <= a for a, b in zip(zs, zs[1:])):
+        raise ValueError(f"density profile positions must increase strictly, got {zs}")
 
 
 @dataclass(frozen=True)
@@ -184,6 +209,8 @@ class Clutter:
         Typical diameter of a rock and length of an algae tuft.
     rock_albedo, algae_albedo : float
         Their mean albedos.
+    density : DensityProfile
+        Factor on both densities along ``Z``; empty for a constant density.
     """
 
     z_m: ZRange = EVERYWHERE
@@ -194,10 +221,12 @@ class Clutter:
     algae_per_m2: float = 0.0
     algae_size_m: float = 0.25
     algae_albedo: float = 0.18
+    density: DensityProfile = ()
 
     def __post_init__(self) -> None:
         if min(self.rocks_per_m2, self.algae_per_m2) < 0 or min(self.rock_size_m, self.algae_size_m) <= 0:
             raise ValueError("densities must be >= 0 and sizes > 0")
+        check_profile(self.density)
 
 
 @dataclass(frozen=True)
@@ -294,6 +323,83 @@ class Burial:
             raise ValueError(f"burial z_m must be a finite (from, to) with from <= to, got {self.z_m}")
         if self.ramp_m < 0 or self.roughness < 0:
             raise ValueError("ramp_m and roughness must be >= 0")
+
+
+@dataclass(frozen=True)
+class Overgrowth:
+    """Algae and stones on the pipe and against its sides (seeds/000, section 5.2.3).
+
+    Unlike :class:`Clutter`, which lies on the seabed beside the pipe, this
+    layer is drawn over the pipe as well: algae mats and fronds drape over
+    it and across its borders, stones lean against its flanks or lie on top,
+    so stretches of the borders disappear and the fronds add short straight
+    edges of every orientation, some nearly parallel to the pipe.
+
+    Attributes
+    ----------
+    z_m : tuple of float
+        Stretch along the pipe; it is clipped to the seabed the camera sees.
+    density : DensityProfile
+        Factor along ``Z`` on the mat cover and on the numbers of fronds and
+        stones; empty for a constant density.
+    x_m : float
+        Half width of the band around the pipe axis where mats lie and
+        fronds are rooted.
+    mat_cover : float
+        Share in [0, 1) of the band that algae mats cover where the factor
+        is 1.
+    mat_scale_m : float
+        Typical size of a mat.
+    mat_albedo : float
+        Mean albedo of the mats.
+    fronds_per_m : float
+        Tufts of fronds (seaweed, seagrass) per metre of pipe (Poisson).
+    frond_length_m, frond_width_m : float
+        Typical length and width of one frond.
+    frond_albedo : float
+        Mean albedo of the fronds.
+    parallel_share : float
+        Share in [0, 1] of the tufts that lie along the pipe (within about
+        10 deg); the others point anywhere.
+    side_stones_per_m : float
+        Stones per metre of pipe that lie against its sides, either side.
+    top_stones_per_m : float
+        Stones per metre of pipe that lie on top of it.
+    stone_size_m : float
+        Typical diameter of a stone.
+    stone_height : float
+        Height of a stone as a share of its diameter.
+    stone_albedo : float
+        Mean albedo of the stones.
+    """
+
+    z_m: ZRange = EVERYWHERE
+    density: DensityProfile = ()
+    x_m: float = 0.5
+    mat_cover: float = 0.0
+    mat_scale_m: float = 0.08
+    mat_albedo: float = 0.22
+    fronds_per_m: float = 0.0
+    frond_length_m: float = 0.3
+    frond_width_m: float = 0.02
+    frond_albedo: float = 0.2
+    parallel_share: float = 0.3
+    side_stones_per_m: float = 0.0
+    top_stones_per_m: float = 0.0
+    stone_size_m: float = 0.15
+    stone_height: float = 0.6
+    stone_albedo: float = 0.35
+
+    def __post_init__(self) -> None:
+        if min(self.fronds_per_m, self.side_stones_per_m, self.top_stones_per_m) < 0:
+            raise ValueError("fronds_per_m, side_stones_per_m and top_stones_per_m must be >= 0")
+        if min(self.x_m, self.mat_scale_m, self.frond_length_m, self.frond_width_m, self.stone_size_m) <= 0:
+            raise ValueError("x_m, mat_scale_m, frond_length_m, frond_width_m and stone_size_m must be > 0")
+        if not (0 <= self.mat_cover < 1 and 0 <= self.parallel_share <= 1 and self.stone_height > 0):
+            raise ValueError("need 0 <= mat_cover < 1, 0 <= parallel_share <= 1 and stone_height > 0")
+        if not all(0 <= a <= 1 for a in (self.mat_albedo, self.frond_albedo, self.stone_albedo)):
+            raise ValueError("mat_albedo, frond_albedo and stone_albedo must be in [0, 1]")
+        check_profile(self.density)
 
 
 @dataclass(frozen=True)
@@ -396,6 +502,7 @@ class CameraSceneSpec:
     seabed: SeabedSpec = field(default_factory=SeabedSpec)
     cable: CableLook = field(default_factory=CableLook)
     burial: tuple[Burial, ...] = ()
+    overgrowth: tuple[Overgrowth, ...] = ()
     optics: OpticsSpec = field(default_factory=OpticsSpec)
 
     def __post_init__(self) -> None:

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from benchmark.scenes.spec import CableLook, Clutter, Ripples, SeabedSpec, ZRange
+from benchmark.scenes.spec import CableLook, Clutter, DensityProfile, Ripples, SeabedSpec, ZRange
 
 PSI_CELLS = 128
 """Texels around the pipe's circumference."""
@@ -114,6 +114,35 @@ def zone_weight(z: np.ndarray, zone: ZRange, fade: float) -> np.ndarray:
     return (0.5 - 0.5 * np.cos(math.pi * np.minimum(rise, fall))).astype(np.float32)
 
 
+def profile_factor(z: np.ndarray | float, profile: DensityProfile) -> np.ndarray:
+    """A density profile's factor at positions ``z`` along the pipe.
+
+    Parameters
+    ----------
+    z : numpy.ndarray or float
+        Positions in m.
+    profile : DensityProfile
+        Points ``(Z, factor)``, interpolated linearly and held beyond the
+        ends; empty for 1 everywhere.
+
+    Returns
+    -------
+    numpy.ndarray
+        Factors, ``float64``, of the shape of ``z``.
+    """
+    z = np.asarray(z, dtype=float)
+    if not profile:
+        return np.ones_like(z)
+    zs, factors = zip(*profile)
+    return np.interp(z, zs, factors)
+
+
+def profile_peak(profile: DensityProfile, lo: float, hi: float) -> float:
+    """Largest factor of a density profile over the stretch ``[lo, hi]`` of ``Z``."""
+    inside = [f for z, f in profile if lo <= z <= hi]
+    return float(max([*inside, *profile_factor(np.array([lo, hi]), profile)]))
+
+
 def _add_ripples(albedo: np.ndarray, grid: TextureGrid, ripples: Ripples, rng: np.random.Generator) -> None:
     x = grid.x_coords().astype(np.float32)[None, :]
     z = grid.z_coords().astype(np.float32)[:, None]
@@ -144,9 +173,12 @@ def _add_rocks(albedo: np.ndarray, grid: TextureGrid, clutter: Clutter, rng: np.
     if box is None or clutter.rocks_per_m2 <= 0:
         return
     x_lo, x_hi, z_lo, z_hi = box
-    count = int(rng.poisson(clutter.rocks_per_m2 * (x_hi - x_lo) * (z_hi - z_lo)))
+    peak = profile_peak(clutter.density, z_lo, z_hi)
+    count = int(rng.poisson(clutter.rocks_per_m2 * peak * (x_hi - x_lo) * (z_hi - z_lo)))
     for _ in range(count):
         cx, cz = rng.uniform(x_lo, x_hi), rng.uniform(z_lo, z_hi)
+        if clutter.density and rng.uniform(0.0, peak) >= profile_factor(cz, clutter.density):
+            continue
         size = clutter.rock_size_m * float(rng.lognormal(0.0, 0.35))
         semi_a = 0.5 * size * rng.uniform(0.8, 1.25) / grid.cell
         semi_b = semi_a * rng.uniform(0.45, 1.0)
@@ -179,13 +211,16 @@ def _add_algae(albedo: np.ndarray, grid: TextureGrid, clutter: Clutter, rng: np.
     if box is None or clutter.algae_per_m2 <= 0:
         return
     x_lo, x_hi, z_lo, z_hi = box
-    count = int(rng.poisson(clutter.algae_per_m2 * (x_hi - x_lo) * (z_hi - z_lo)))
+    peak = profile_peak(clutter.density, z_lo, z_hi)
+    count = int(rng.poisson(clutter.algae_per_m2 * peak * (x_hi - x_lo) * (z_hi - z_lo)))
     if count == 0:
         return
     mask = np.zeros(grid.shape, dtype=np.uint8)
     scale = 4  # sub-texel precision of cv2.polylines (shift = 2)
     for _ in range(count):
         cx, cz = rng.uniform(x_lo, x_hi), rng.uniform(z_lo, z_hi)
+        if clutter.density and rng.uniform(0.0, peak) >= profile_factor(cz, clutter.density):
+            continue
         length = clutter.algae_size_m * float(rng.lognormal(0.0, 0.3)) / grid.cell
         heading0 = rng.uniform(0.0, 2 * math.pi)
         for _ in range(int(rng.integers(6, 15))):

@@ -99,3 +99,53 @@ def test_remap_flat_samples_like_remap_on_a_grid() -> None:
     assert two.shape == (3000, 2)
     np.testing.assert_allclose(two[:, 0], expected, atol=0.6)
     np.testing.assert_allclose(two[:, 1], -expected, atol=0.6)
+
+
+OVERGROWTH = {
+    "x_m": 0.4,
+    "mat_cover": 0.25,
+    "mat_albedo": 0.5,
+    "fronds_per_m": 6.0,
+    "frond_albedo": 0.5,
+    "side_stones_per_m": 3.0,
+    "top_stones_per_m": 1.0,
+    "stone_albedo": 0.5,
+}
+"""Overgrowth of mid-grey albedo, neither the flat scene's sand nor its pipe."""
+
+
+def test_overgrowth_hides_part_of_the_borders_in_an_untextured_scene(flat_scene) -> None:
+    scene = CameraScene.from_dict(flat_scene(overgrowth=[OVERGROWTH]))
+    hidden = checked = sand_covered = 0
+    for frame in scene.frames():
+        left, right = cable_borders(frame.truth.cable)
+        rows = np.arange(0, 240, 3)
+        for line, inward in ((left, 2), (right, -2)):
+            for row, u in zip(rows, _border_columns(line, rows)):
+                pipe_side, sand_side = round(u + inward), round(u - inward)
+                if 0 <= pipe_side < 320 and 0 <= sand_side < 320:
+                    checked += 1
+                    hidden += int(frame.observation[row, pipe_side] != PIPE)
+                    sand_covered += int(frame.observation[row, sand_side] != SAND)
+    assert checked > 500
+    # Overgrowth crosses the borders in places, but most of their length stays bare.
+    assert 0.05 < hidden / checked < 0.6
+    assert sand_covered / checked > 0.05
+
+
+def test_overgrowth_with_zero_density_renders_exactly_as_none() -> None:
+    data = {"name": "camera/plain", "n_frames": 2, "seed": 11, "seabed": {"clutter": [{"rocks_per_m2": 5.0}]}}
+    zero = dict(data, overgrowth=[dict(OVERGROWTH, density=[[0.0, 0.0]])])
+    plain = [f.observation for f in CameraScene.from_dict(data).frames()]
+    for frame, expected in zip(CameraScene.from_dict(zero).frames(), plain):
+        np.testing.assert_array_equal(frame.observation, expected)
+    dense = CameraScene.from_dict(dict(data, overgrowth=[OVERGROWTH])).render(0)
+    assert np.mean(dense != plain[0]) > 0.02
+
+
+def test_overgrowth_repeats_bit_for_bit_for_a_seed() -> None:
+    data = {"name": "camera/overgrown", "n_frames": 2, "seed": 21, "overgrowth": [OVERGROWTH]}
+    first = [f.observation.tobytes() for f in CameraScene.from_dict(data).frames()]
+    again = [f.observation.tobytes() for f in CameraScene.from_dict(data).frames()]
+    other = CameraScene.from_dict(dict(data, seed=22)).render(0).tobytes()
+    assert first == again and other != first[0]

@@ -7,7 +7,7 @@ import math
 import pytest
 
 from benchmark.errors import DataError
-from benchmark.scenes.spec import CameraSceneSpec, Ripples
+from benchmark.scenes.spec import CameraSceneSpec, Overgrowth, Ripples
 
 
 def test_nested_tables_become_nested_specs(flat_scene) -> None:
@@ -25,6 +25,20 @@ def test_round_trip_through_plain_data(flat_scene) -> None:
     assert CameraSceneSpec.from_dict(spec.to_dict()) == spec
 
 
+def test_overgrowth_and_density_profiles_from_plain_data(flat_scene) -> None:
+    data = flat_scene(
+        overgrowth=[{"density": [[1, 1.0], [2, 0.25]], "fronds_per_m": 4, "parallel_share": 0.5}],
+        seabed={"clutter": [{"rocks_per_m2": 2.0, "density": [[0.0, 2.0]]}]},
+    )
+    spec = CameraSceneSpec.from_dict(data)
+    assert spec.overgrowth == (
+        Overgrowth(density=((1.0, 1.0), (2.0, 0.25)), fronds_per_m=4.0, parallel_share=0.5),
+    )
+    assert spec.seabed.clutter[0].density == ((0.0, 2.0),)
+    assert CameraSceneSpec.from_dict(spec.to_dict()) == spec
+    assert CameraSceneSpec.from_dict(flat_scene()).overgrowth == ()
+
+
 @pytest.mark.parametrize(
     ("change", "message"),
     [
@@ -36,6 +50,11 @@ def test_round_trip_through_plain_data(flat_scene) -> None:
         ({"motion": {"phi_deg": {"waves": [{"amplitude": 1.0, "period_frames": 0.0}]}}}, r"period_frames must be > 0"),
         ({"burial": [{"z_m": [1.0, "inf"]}]}, r"here\.burial\[0\]\.z_m\[1\]: expected a number"),
         ({"motion": {"cx_m": 0.1}}, r"here\.motion\.cx_m: expected a table for Signal"),
+        ({"overgrowth": [{"density": [[2.0, 1.0], [1.0, 0.5]]}]}, r"here\.overgrowth\[0\]: .*increase strictly"),
+        ({"overgrowth": [{"density": [[1.0, -0.5]]}]}, r"here\.overgrowth\[0\]: .*factors >= 0"),
+        ({"overgrowth": [{"density": [[1.0]]}]}, r"here\.overgrowth\[0\]\.density\[0\]: expected 2 values"),
+        ({"overgrowth": [{"mat_cover": 1.0}]}, r"here\.overgrowth\[0\]: need 0 <= mat_cover < 1"),
+        ({"seabed": {"clutter": [{"density": [[0.0, "a"]]}]}}, r"here\.seabed\.clutter\[0\]\.density\[0\]\[1\]"),
     ],
 )
 def test_bad_data_names_where_it_is(flat_scene, change, message) -> None:

@@ -6,9 +6,20 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from benchmark.scenes.spec import CableLook, Clutter, Ripples, SeabedSpec
-from benchmark.scenes.texture import PSI_CELLS, TextureGrid, cable_map, lowpass_noise, seabed_map, zone_weight
+from benchmark.scenes.texture import (
+    PSI_CELLS,
+    TextureGrid,
+    cable_map,
+    lowpass_noise,
+    profile_factor,
+    profile_peak,
+    seabed_map,
+    zone_weight,
+)
 
 GRID = TextureGrid(x0=-1.28, z0=0.0, cell=0.01, nx=256, nz=400)
 
@@ -88,3 +99,40 @@ def test_marine_growth_covers_the_flanks_not_the_top() -> None:
     change = np.abs(grown - bare)
     assert change[:, flanks].mean() > 10 * change[:, top].mean()
     assert change[:, flanks].mean() > 0.05
+
+
+profiles = st.lists(
+    st.tuples(st.floats(-10, 10), st.floats(0, 5)), min_size=1, max_size=6, unique_by=lambda p: p[0]
+).map(lambda points: tuple(sorted(points)))
+
+
+@settings(max_examples=60, deadline=None)
+@given(profiles, st.floats(-20, 20), st.floats(0, 10))
+def test_profile_factor_interpolates_its_points_and_the_peak_bounds_it(profile, lo, length) -> None:
+    factors = [f for _, f in profile]
+    z = np.linspace(lo, lo + length, 97)
+    values = profile_factor(z, profile)
+    assert np.all(values >= min(factors) - 1e-12) and np.all(values <= max(factors) + 1e-12)
+    for point, factor in profile:
+        assert profile_factor(point, profile) == pytest.approx(factor)
+    assert profile_peak(profile, lo, lo + length) >= values.max() - 1e-12
+    np.testing.assert_array_equal(profile_factor(z, ()), np.ones_like(z))
+
+
+def test_clutter_with_a_zero_density_profile_is_no_clutter() -> None:
+    plain = seabed_map(SeabedSpec(), GRID, _rng())
+    none = Clutter(rocks_per_m2=30.0, algae_per_m2=10.0, density=((0.0, 0.0),))
+    np.testing.assert_array_equal(seabed_map(SeabedSpec(clutter=(none,)), GRID, _rng()), plain)
+
+
+def test_clutter_density_profile_confines_rocks_and_algae() -> None:
+    plain = seabed_map(SeabedSpec(), GRID, _rng())
+    profile = ((1.0, 1.0), (1.5, 0.0))
+    rocky = seabed_map(
+        SeabedSpec(clutter=(Clutter(rocks_per_m2=30.0, algae_per_m2=5.0, algae_size_m=0.1, density=profile),)),
+        GRID,
+        _rng(),
+    )
+    z = GRID.z_coords()
+    np.testing.assert_array_equal(plain[z > 2.0], rocky[z > 2.0])
+    assert np.abs(rocky[z < 1.0] - plain[z < 1.0]).mean() > 0.02

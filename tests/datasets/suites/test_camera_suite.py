@@ -7,6 +7,8 @@ import math
 import numpy as np
 import pytest
 
+from benchmark.scenes.overgrowth import overgrowth_layer
+from benchmark.scenes.texture import TextureGrid, profile_factor
 from trackbench_suites.loader import load_suites
 
 
@@ -79,3 +81,24 @@ def test_a_frame_renders(camera) -> None:
     state = frame.truth.cable
     column = round(159.5 + state.d / math.cos(state.alpha))
     assert np.median(frame.observation[110:130, column - 2 : column + 3]) > np.median(frame.observation) + 30
+
+
+def test_s1_clutter_over_the_cable_is_dense_early_and_light_late(camera) -> None:
+    seq = camera["S1"]
+    spec, trajectory = seq.spec, seq.trajectory()
+    assert spec.overgrowth and spec.seabed.clutter[0].density
+    # The seabed at the image centre: the optical axis meets it this far ahead of the camera.
+    centre = trajectory.cz + (trajectory.cy + spec.radius) / np.tan(trajectory.phi)
+    early, late = centre[:80], centre[170 : spec.n_frames]
+    for profile in (spec.overgrowth[0].density, spec.seabed.clutter[0].density):
+        assert profile_factor(early, profile).min() >= 0.9
+        assert profile_factor(late, profile).max() <= 0.3
+    # The layer over the pipe itself follows the same profile.
+    grid = TextureGrid(x0=-1.28, z0=-1.0, cell=0.01, nx=256, nz=1000)
+    layer = overgrowth_layer(spec.overgrowth, grid, spec.radius, np.random.default_rng(0))
+    band, _ = layer.pipe_band(spec.radius)
+    z = grid.z_coords()
+    cover = band[..., 0].mean(axis=1)
+    dense = cover[(z > early.min()) & (z < early.max())].mean()
+    light = cover[(z > late.min()) & (z < late.max())].mean()
+    assert dense > 0.15 and light < 0.3 * dense
