@@ -159,22 +159,25 @@ def _add_ripples(albedo: np.ndarray, grid: TextureGrid, ripples: Ripples, rng: n
     albedo *= 1.0 + ripples.amplitude * profile * weight
 
 
-def _zone_box(grid: TextureGrid, clutter: Clutter) -> tuple[float, float, float, float] | None:
+def _zone_draws(
+    grid: TextureGrid, clutter: Clutter, per_m2: float, rng: np.random.Generator
+) -> tuple[tuple[float, float, float, float], float, int] | None:
+    """The clutter zone's box in the grid, its peak density and a Poisson count of items in it."""
     z_lo = max(clutter.z_m[0], grid.z0)
     z_hi = min(clutter.z_m[1], grid.z0 + grid.cell * (grid.nz - 1))
     x_half = min(clutter.x_m, -grid.x0 - grid.cell)
-    if z_hi <= z_lo or x_half <= 0:
+    if z_hi <= z_lo or x_half <= 0 or per_m2 <= 0:
         return None
-    return -x_half, x_half, z_lo, z_hi
+    peak = profile_peak(clutter.density, z_lo, z_hi)
+    count = int(rng.poisson(per_m2 * peak * (2.0 * x_half) * (z_hi - z_lo)))
+    return (-x_half, x_half, z_lo, z_hi), peak, count
 
 
 def _add_rocks(albedo: np.ndarray, grid: TextureGrid, clutter: Clutter, rng: np.random.Generator) -> None:
-    box = _zone_box(grid, clutter)
-    if box is None or clutter.rocks_per_m2 <= 0:
+    draws = _zone_draws(grid, clutter, clutter.rocks_per_m2, rng)
+    if draws is None:
         return
-    x_lo, x_hi, z_lo, z_hi = box
-    peak = profile_peak(clutter.density, z_lo, z_hi)
-    count = int(rng.poisson(clutter.rocks_per_m2 * peak * (x_hi - x_lo) * (z_hi - z_lo)))
+    (x_lo, x_hi, z_lo, z_hi), peak, count = draws
     for _ in range(count):
         cx, cz = rng.uniform(x_lo, x_hi), rng.uniform(z_lo, z_hi)
         if clutter.density and rng.uniform(0.0, peak) >= profile_factor(cz, clutter.density):
@@ -207,14 +210,10 @@ def _add_rocks(albedo: np.ndarray, grid: TextureGrid, clutter: Clutter, rng: np.
 
 
 def _add_algae(albedo: np.ndarray, grid: TextureGrid, clutter: Clutter, rng: np.random.Generator) -> None:
-    box = _zone_box(grid, clutter)
-    if box is None or clutter.algae_per_m2 <= 0:
+    draws = _zone_draws(grid, clutter, clutter.algae_per_m2, rng)
+    if draws is None or draws[2] == 0:
         return
-    x_lo, x_hi, z_lo, z_hi = box
-    peak = profile_peak(clutter.density, z_lo, z_hi)
-    count = int(rng.poisson(clutter.algae_per_m2 * peak * (x_hi - x_lo) * (z_hi - z_lo)))
-    if count == 0:
-        return
+    (x_lo, x_hi, z_lo, z_hi), peak, count = draws
     mask = np.zeros(grid.shape, dtype=np.uint8)
     scale = 4  # sub-texel precision of cv2.polylines (shift = 2)
     for _ in range(count):
