@@ -1,0 +1,114 @@
+"""A weighted particle set: the Monte Carlo picture of a probability density.
+
+``N`` particles of dimension ``D`` are one ``(N, D)`` array of states and one
+``(N,)`` array of weights summing to one (seeds/000, section 3.3), so every
+operation acts on all particles at once.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+def normalise_weights(raw: np.ndarray) -> np.ndarray:
+    """Scale non-negative weights to sum to one.
+
+    Parameters
+    ----------
+    raw : numpy.ndarray
+        Unnormalised weights ``pi'``, shape ``(N,)``, finite and ``>= 0``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``pi = pi' / sum(pi')`` (seeds/000, eq. 4.12 and section 3.4.3).  When
+        every weight is zero the set carries no information and the weights
+        become uniform.
+
+    Raises
+    ------
+    ValueError
+        If a weight is negative or not finite, or the array is empty.
+    """
+    weights = np.asarray(raw, dtype=float)
+    if weights.ndim != 1 or weights.size == 0:
+        raise ValueError(f"weights must be a non-empty 1-D array, got shape {weights.shape}")
+    if not np.all(np.isfinite(weights)) or np.any(weights < 0):
+        bad = int(np.flatnonzero(~np.isfinite(weights) | (weights < 0))[0])
+        raise ValueError(f"weights must be finite and non-negative; weight {bad} is {weights[bad]}")
+    total = weights.sum()
+    if total <= 0 or not np.isfinite(total):
+        return np.full(weights.size, 1.0 / weights.size)
+    return weights / total
+
+
+def effective_sample_size(weights: np.ndarray) -> float:
+    """Estimated number of effective particles, ``1 / sum(pi^2)``.
+
+    Lies in ``[1, N]`` for normalised weights: ``N`` when they are uniform,
+    1 when one particle holds all the weight.
+
+    References
+    ----------
+    seeds/000, eq. (3.10), after Liu (1996).
+    """
+    weights = np.asarray(weights, dtype=float)
+    return float(1.0 / np.dot(weights, weights))
+
+
+@dataclass(frozen=True)
+class ParticleSet:
+    """``N`` weighted samples of a ``D``-dimensional state.
+
+    Attributes
+    ----------
+    states : numpy.ndarray
+        Shape ``(N, D)``.
+    weights : numpy.ndarray
+        Shape ``(N,)``, non-negative, summing to one.
+
+    References
+    ----------
+    seeds/000, section 3.3.
+    """
+
+    states: np.ndarray
+    weights: np.ndarray
+
+    def __post_init__(self) -> None:
+        states = np.asarray(self.states, dtype=float)
+        weights = np.asarray(self.weights, dtype=float)
+        if states.ndim != 2 or weights.shape != (states.shape[0],) or states.shape[0] == 0:
+            raise ValueError(f"states (N, D) and weights (N,) do not match: {states.shape} and {weights.shape}")
+        object.__setattr__(self, "states", states)
+        object.__setattr__(self, "weights", weights)
+
+    @classmethod
+    def equally_weighted(cls, states: np.ndarray) -> ParticleSet:
+        """Particles with weights ``1/N`` (seeds/000, Fig. 4.10, step 1)."""
+        states = np.asarray(states, dtype=float)
+        return cls(states, np.full(states.shape[0], 1.0 / states.shape[0]))
+
+    @property
+    def size(self) -> int:
+        """The number of particles ``N``."""
+        return self.states.shape[0]
+
+    @property
+    def effective_size(self) -> float:
+        """:func:`effective_sample_size` of the weights (seeds/000, eq. 3.10)."""
+        return effective_sample_size(self.weights)
+
+    def mmse(self) -> np.ndarray:
+        """Minimum mean square error estimate ``sum_i pi_i s_i`` (seeds/000, eq. 3.11)."""
+        return self.weights @ self.states
+
+    def best(self) -> np.ndarray:
+        """The state of the highest-weight particle."""
+        return self.states[int(np.argmax(self.weights))]
+
+    def take(self, indices: np.ndarray) -> ParticleSet:
+        """The particles at ``indices``, equally weighted: the result of resampling."""
+        return ParticleSet.equally_weighted(self.states[np.asarray(indices)])

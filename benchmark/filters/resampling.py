@@ -1,0 +1,87 @@
+"""Resampling: draw ``N`` particles in proportion to their weights.
+
+All four schemes return the indices of the chosen particles, so that the
+caller copies states however it stores them.  They share one primitive: the
+walk up the cumulative weights ``c_i = c_(i-1) + pi_i`` (seeds/000, eqs.
+3.8-3.9, Figs. 3.6-3.7) done by binary search (``numpy.searchsorted``), with
+the last cumulative weight clamped to exactly one so that round-off never
+yields an index past the end.  They differ in how the ``N`` points on
+``[0, 1)`` are drawn:
+
+* multinomial: ``N`` independent uniforms (the thesis' Fig. 3.6);
+* stratified: one uniform in each of the ``N`` strata ``[k/N, (k+1)/N)``;
+* systematic: one uniform ``u`` and the points ``(k + u) / N``;
+* residual: ``floor(N pi_i)`` copies of each particle, the rest multinomial
+  on the residual weights.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+Resampler = Callable[[np.ndarray, np.random.Generator], np.ndarray]
+"""``(weights, rng) -> indices``: ``N`` indices into the particles."""
+
+
+def cumulative_weights(weights: np.ndarray) -> np.ndarray:
+    """Cumulative weights ``c_1..c_N`` with ``c_N`` clamped to 1 (seeds/000, eqs. 3.8-3.9)."""
+    cumulative = np.cumsum(np.asarray(weights, dtype=float))
+    cumulative[-1] = 1.0
+    return cumulative
+
+
+def _walk(weights: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """For each point ``r`` in ``[0, 1)`` the first ``j`` with ``c_j > r`` (binary search)."""
+    indices = np.searchsorted(cumulative_weights(weights), points, side="right")
+    return np.minimum(indices, len(weights) - 1)
+
+
+def multinomial_resample(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """Draw each index independently with probability ``pi_i``.
+
+    References
+    ----------
+    seeds/000, section 3.4.1, Figs. 3.6-3.7.
+    """
+    return _walk(weights, rng.random(len(weights)))
+
+
+def stratified_resample(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """One uniform draw in each stratum ``[k/N, (k+1)/N)``."""
+    n = len(weights)
+    return _walk(weights, (np.arange(n) + rng.random(n)) / n)
+
+
+def systematic_resample(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """One uniform offset shared by the ``N`` evenly spaced points ``(k + u)/N``.
+
+    Each particle gets ``floor(N pi_i)`` or ``ceil(N pi_i)`` copies.
+    """
+    n = len(weights)
+    return _walk(weights, (np.arange(n) + rng.random()) / n)
+
+
+def residual_resample(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """``floor(N pi_i)`` copies of each particle, the remainder drawn multinomially."""
+    weights = np.asarray(weights, dtype=float)
+    n = len(weights)
+    copies = np.floor(n * weights).astype(np.int64)
+    indices = np.repeat(np.arange(n), copies)
+    remaining = n - indices.size
+    if remaining == 0:
+        return indices
+    residual = n * weights - copies
+    residual_total = residual.sum()
+    residual = residual / residual_total if residual_total > 0 else np.full(n, 1.0 / n)
+    return np.concatenate([indices, _walk(residual, rng.random(remaining))])
+
+
+RESAMPLERS: dict[str, Resampler] = {
+    "multinomial": multinomial_resample,
+    "stratified": stratified_resample,
+    "systematic": systematic_resample,
+    "residual": residual_resample,
+}
+"""The resampling schemes by name, for tracker parameters."""
