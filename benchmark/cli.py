@@ -232,14 +232,32 @@ def run(
         _publish(store, out, run_id)
 
 
-@main.command("leaderboard")
-@click.option(
+def _results_store(out: Path) -> ResultStore:
+    """The results database in ``out``, which must hold at least one run."""
+    from benchmark.errors import DataError
+    from benchmark.store import DATABASE_NAME, ResultStore
+
+    database = out / DATABASE_NAME
+    if not database.is_file():
+        raise DataError(f"{database}: no results database (run 'trackbench run --out {out}' first)")
+    store = ResultStore(database)
+    if store.latest_run() is None:
+        store.close()
+        raise DataError(f"{database}: no finished cells yet")
+    return store
+
+
+OUT_OPTION = click.option(
     "--out",
     type=click.Path(file_okay=False, path_type=Path),
     default=DEFAULT_OUT,
     show_default=True,
-    help="Folder holding results.sqlite; the leaderboards are written there.",
+    help="Folder holding results.sqlite; reports are written there.",
 )
+
+
+@main.command("leaderboard")
+@OUT_OPTION
 @click.option("--all-runs", is_flag=True, help="Take the latest cell of every run, not only the latest run.")
 def leaderboard_command(out: Path, all_runs: bool) -> None:
     """Print and export the leaderboard of an existing results database.
@@ -247,16 +265,46 @@ def leaderboard_command(out: Path, all_runs: bool) -> None:
     The leaderboard of a run holds the cells it ran and those it resumed;
     for each tracker, dataset, seed and initialisation the latest cell.
     """
-    from benchmark.errors import DataError
-    from benchmark.store import DATABASE_NAME, ResultStore
-
-    database = out / DATABASE_NAME
-    if not database.is_file():
-        raise DataError(f"{database}: no results database (run 'trackbench run --out {out}' first)")
-    with ResultStore(database) as store:
-        if store.latest_run() is None:
-            raise DataError(f"{database}: no finished cells yet")
+    with _results_store(out) as store:
         _publish(store, out, None, all_runs)
+
+
+@main.command("tables")
+@click.argument("suite")
+@OUT_OPTION
+@click.option("--metric", "metrics", multiple=True, help="Board column to show (repeatable; default: every RMSE).")
+@click.pass_obj
+def tables_command(session: Session, suite: str, out: Path, metrics: tuple[str, ...]) -> None:
+    """Print SUITE's results of the latest run as one table per case.
+
+    For suites whose sequences are named SUITE/CASE-CONDITION, such as
+    stereo/case1-slow: rows are metric and tracker, columns the conditions,
+    as in Tables 6-8 of Sinisterra et al.  Also written to
+    OUT/tables_SUITE.md.
+    """
+    from benchmark import leaderboard
+    from benchmark.report.grid import grid_markdown, grid_tables
+    from benchmark.selection import SelectionError
+
+    suites = session.registry.suites
+    if suite not in suites:
+        raise SelectionError(f"unknown suite {suite!r} (known: {', '.join(sorted(suites)) or 'none'})")
+    order = [sequence.info.name for sequence in suites[suite].sequences]
+    with _results_store(out) as store:
+        boards = leaderboard.load_leaderboards(store, store.latest_run())
+    rows = [board[board["dataset"].isin(order)] for board in boards.values()]
+    board = next((part for part in rows if not part.empty), None)
+    if board is None:
+        raise SelectionError(f"the latest run in {out} has no results for suite {suite!r}")
+    shown = list(metrics) or [column for column in board.columns if column.startswith("rmse_")]
+    unknown = [metric for metric in shown if metric not in board.columns]
+    if unknown:
+        raise SelectionError(f"no column {', '.join(unknown)} (known: {', '.join(board.columns)})")
+    text = grid_markdown(grid_tables(board, shown, order), f"{suite}: results per case")
+    click.echo(text)
+    path = out / f"tables_{suite}.md"
+    path.write_text(text, encoding="utf-8")
+    click.echo(f"wrote {path}", err=True)
 
 
 @main.command("make-dataset")

@@ -269,3 +269,25 @@ def test_make_dataset_exports_every_sequence_of_a_suite(invoke: Invoke, tmp_path
     assert len(written) == 2 and all(path.is_file() for path in written)
     assert len(list(out.rglob("*.png"))) == 10 + 6
     assert invoke("make-dataset", "nope", "--out", str(out)).exit_code == 2
+
+
+def test_tables_lays_out_a_suite_per_case(fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch, tmp_path: Path):
+    def load_registry(disable: tuple[str, ...] = ()) -> Registry:
+        registry = fakes.make_registry((fakes.Perfect, fakes.Blind))
+        names = ["grid/a-slow", "grid/a-fast", "grid/b-slow", "grid/b-fast"]
+        registry.add_suite("grid", [fakes.FakeSequence(name, 5) for name in names])
+        return registry
+
+    monkeypatch.setattr(benchmark.plugins, "load_registry", load_registry)
+    out = str(tmp_path)
+    assert CliRunner().invoke(main, ["run", "--suite", "grid", "--jobs", "0", "--out", out]).exit_code == 0
+    result = CliRunner().invoke(main, ["tables", "grid", "--out", out, "--metric", "correct_pct"])
+    assert result.exit_code == 0, result.output
+    text = (tmp_path / "tables_grid.md").read_text()
+    assert "## a" in text and "## b" in text
+    header = next(line for line in text.splitlines() if "slow" in line)
+    assert header.index("slow") < header.index("fast")  # the suite's order, not alphabetical
+    assert "correct_pct perfect" in text and "100.00" in text
+    bad = CliRunner().invoke(main, ["tables", "grid", "--out", out, "--metric", "nope"])
+    assert bad.exit_code == 2 and "no column nope" in bad.output
+    assert CliRunner().invoke(main, ["tables", "fake", "--out", out]).exit_code == 2

@@ -65,3 +65,27 @@ def test_rmse_ignores_frames_without_an_error():
     assert summary["rmse_d_px"] == pytest.approx(np.sqrt((9 + 16) / 2))
     assert summary["rmse_alpha_deg"] == pytest.approx(1.0)
     assert summary["fps"] == pytest.approx(2.0)
+
+
+def stereo_truth(x=10.0, y=5.0, vx=2.0, vy=0.0):
+    from benchmark.model import StereoTruth, TargetEstimate
+
+    return StereoTruth(TargetEstimate((x, y), (vx, vy)), chase_position_m=(0.0, 0.0), chase_heading=0.0)
+
+
+def test_stereo_scorer_position_speed_and_heading_errors():
+    from benchmark.model import TargetEstimate
+
+    stereo = scorer_for("stereo")
+    info = SequenceInfo("stereo/case1-slow", "stereo", 1)
+    outcome, errors = stereo.score(TargetEstimate((10.6, 5.8), (0.0, 3.0)), stereo_truth(), info)
+    assert outcome is Outcome.CORRECT
+    assert errors == pytest.approx((1.0, 1.0, 90.0))
+    outcome, errors = stereo.score(TargetEstimate((12.0, 5.0), (-2.0, -1e-9)), stereo_truth(), info)
+    assert outcome is Outcome.FALSE and errors[0] == pytest.approx(2.0)
+    assert errors[2] == pytest.approx(-180.0, abs=1e-6) or errors[2] == pytest.approx(180.0, abs=1e-6)
+    assert stereo.score(None, stereo_truth(), info)[0] is Outcome.MISSED
+    with pytest.raises(EstimateError):
+        stereo.check(TargetEstimate((math.nan, 0.0), (0.0, 0.0)))
+    with pytest.raises(EstimateError):
+        stereo.check(CableState(0, 0, 1, 0))
