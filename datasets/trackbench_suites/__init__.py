@@ -13,6 +13,10 @@ The ``camera`` suite holds seven rendered sequences.  ``camera/S1`` to
 section 5.2.3 and appendix A: their lengths, the motion that makes each
 hard, and the frame-to-frame variances of Tables 4.2 and 4.3), and
 ``camera/S7`` on Foresti's pipeline under sand (seeds/004, Fig. 14).
+
+The ``stereo`` suite (``stereo.toml``) holds nine simulated chase-boat
+sequences, ``stereo/case1-slow`` to ``stereo/case3-fast``: the three
+trajectory cases of seeds/002, section 3, each at three speeds.
 """
 
 from benchmark import Registry, hookimpl

@@ -33,11 +33,12 @@ from typing import Any
 from benchmark.errors import DataError
 from benchmark.model import Sequence
 from benchmark.scenes import CameraScene
+from benchmark.scenes.stereo_scene import StereoScene
 
 SceneFactory = Callable[[Mapping[str, Any], str], Sequence]
 """Builds a sequence from its merged table and a description of where it came from."""
 
-SCENE_KINDS: dict[str, SceneFactory] = {"camera": CameraScene.from_dict}
+SCENE_KINDS: dict[str, SceneFactory] = {"camera": CameraScene.from_dict, "stereo": StereoScene.from_dict}
 """Scene kinds a suite file may name, and the factory of each."""
 
 

@@ -1,0 +1,245 @@
+"""A simulated stereo sequence: a chase boat measuring a target boat (seeds/002, section 3).
+
+:class:`StereoScene` turns a :class:`~benchmark.scenes.stereo_spec.StereoSceneSpec`
+into frames, the way the paper simulates its three cases: the trajectories
+of CH and TG (:mod:`~benchmark.scenes.stereo_motion`) give the true relative
+position of TG; it is projected into both images, perturbed with pixel noise
+of variance ``Q_f`` (eq. 19), triangulated again by eq. (15)
+(:mod:`~benchmark.scenes.stereo_sensors`), and CH's GPS position and
+heading get their own noise.  The measurement is taken from CH's true pose;
+only the navigation data a tracker reads is noisy.
+
+Randomness comes from one seed: a :class:`numpy.random.SeedSequence` of
+``spec.seed`` spawns independent streams for the GPS error, the compass
+error, the pixel noise and the dropouts, so changing one leaves the others
+alone and the same spec gives bit-identical frames.  The trajectories are
+deterministic.
+
+The object keeps only its spec; the per-frame arrays (a few kB) are built
+on first use and dropped when the scene is pickled.
+
+Each frame carries
+
+* ``observation``: a :class:`benchmark.model.StereoMeasurement`, or None
+  when the front end lost the target;
+* ``truth``: :class:`benchmark.model.StereoTruth`, TG's true position and
+  velocity (so its speed and heading) and CH's true pose;
+* ``navigation``: :class:`benchmark.model.ChaseNavigation`, CH's GPS
+  position and compass heading.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from benchmark.errors import DataError
+from benchmark.model import (
+    ChaseNavigation,
+    Frame,
+    Sequence,
+    SequenceInfo,
+    StereoMeasurement,
+    StereoTruth,
+    TargetEstimate,
+)
+from benchmark.scenes.stereo_motion import BoatTrack, RelativeGeometry, boat_track, relative_geometry
+from benchmark.scenes.stereo_sensors import (
+    Loss,
+    MeasurementArrays,
+    burst_dropouts,
+    correlated_noise,
+    stereo_measurements,
+)
+from benchmark.scenes.stereo_spec import StereoSceneSpec
+
+MIN_SEPARATION_M = 2.0
+"""The boats must stay at least this far apart."""
+
+# Indices of the independent random streams spawned from the seed.
+_GPS, _COMPASS, _PIXELS, _DROPOUTS = range(4)
+
+
+@dataclass
+class _Cache:
+    """What a scene computes once and keeps while it lives (never pickled)."""
+
+    chase: BoatTrack
+    target: BoatTrack
+    geometry: RelativeGeometry
+    measurements: MeasurementArrays
+    gps_m: np.ndarray
+    compass: np.ndarray
+
+
+class StereoScene(Sequence):
+    """A simulated chase-boat stereo sequence (seeds/002, section 3).
+
+    Parameters
+    ----------
+    spec : StereoSceneSpec
+        The definition, seed included.
+
+    Examples
+    --------
+    >>> scene = StereoScene.from_dict({"name": "stereo/demo", "n_frames": 3})
+    >>> [round(frame.truth.range_m, 1) for frame in scene]
+    [8.0, 8.0, 8.0]
+    """
+
+    def __init__(self, spec: StereoSceneSpec) -> None:
+        self._spec = spec
+        self._cache: _Cache | None = None
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> StereoScene:
+        """A scene from a plain mapping; see :meth:`StereoSceneSpec.from_dict`."""
+        return cls(StereoSceneSpec.from_dict(data, source))
+
+    @property
+    def spec(self) -> StereoSceneSpec:
+        """The definition of this sequence."""
+        return self._spec
+
+    @property
+    def info(self) -> SequenceInfo:
+        """Name, length, frame interval and :class:`StereoCalibration` of the sequence."""
+        spec = self._spec
+        return SequenceInfo(
+            name=spec.name,
+            modality="stereo",
+            n_frames=spec.n_frames,
+            frame_interval_s=spec.frame_interval_s,
+            calibration=spec.camera.calibration(),
+            extra={
+                "description": spec.description,
+                "case": spec.case,
+                "speed": spec.speed,
+                "seed": spec.seed,
+                "source": "simulated",
+            },
+        )
+
+    def __getstate__(self) -> dict[str, Any]:
+        return {"_spec": self._spec}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self._spec = state["_spec"]
+        self._cache = None
+
+    def _stream(self, key: int) -> np.random.Generator:
+        sequence = np.random.SeedSequence(self._spec.seed, spawn_key=(key,))
+        return np.random.Generator(np.random.PCG64(sequence))
+
+    def _state(self) -> _Cache:
+        if self._cache is None:
+            spec = self._spec
+            n, dt = spec.n_frames, spec.frame_interval_s
+            times = np.arange(n) * dt
+            chase = boat_track(spec.chase, times)
+            target = boat_track(spec.target, times)
+            geometry = relative_geometry(chase, target)
+            _check_separation(spec, geometry)
+            sensors = spec.sensors
+            pixel_noise = spec.camera.pixel_noise_px * self._stream(_PIXELS).standard_normal((n, 2))
+            dropped = burst_dropouts(
+                self._stream(_DROPOUTS), n, sensors.dropout_rate, sensors.dropout_burst_frames
+            )
+            measurements = stereo_measurements(
+                geometry.ahead_m,
+                geometry.starboard_m,
+                spec.camera.calibration(),
+                pixel_noise,
+                sensors.min_disparity_px,
+                dropped,
+            )
+            gps_error = correlated_noise(
+                self._stream(_GPS), (n, 2), sensors.gps_sigma_m, sensors.gps_correlation_s / dt
+            )
+            compass_error = math.radians(sensors.heading_sigma_deg) * self._stream(_COMPASS).standard_normal(n)
+            compass = np.mod(chase.heading + compass_error + math.pi, 2.0 * math.pi) - math.pi
+            self._cache = _Cache(chase, target, geometry, measurements, chase.position_m + gps_error, compass)
+        return self._cache
+
+    def tracks(self) -> tuple[BoatTrack, BoatTrack]:
+        """True tracks ``(chase, target)`` at the frame times."""
+        state = self._state()
+        return state.chase, state.target
+
+    def relative_geometry(self) -> RelativeGeometry:
+        """True position of TG relative to CH (range, bearing, ...) at every frame, without noise."""
+        return self._state().geometry
+
+    def losses(self) -> np.ndarray:
+        """Why the front end lost the target, per frame: :class:`~benchmark.scenes.stereo_sensors.Loss` codes."""
+        return self._state().measurements.loss.copy()
+
+    def truth(self, index: int) -> StereoTruth:
+        """Ground truth of frame ``index``: TG's true position and velocity, CH's true pose."""
+        k = self._check(index)
+        state = self._state()
+        target = TargetEstimate(
+            position_m=_pair(state.target.position_m[k]), velocity_mps=_pair(state.target.velocity_mps[k])
+        )
+        return StereoTruth(
+            target=target,
+            chase_position_m=_pair(state.chase.position_m[k]),
+            chase_heading=float(state.chase.heading[k]),
+        )
+
+    def navigation(self, index: int) -> ChaseNavigation:
+        """CH's GPS position and compass heading at frame ``index``, with their errors."""
+        k = self._check(index)
+        state = self._state()
+        return ChaseNavigation(position_m=_pair(state.gps_m[k]), heading=float(state.compass[k]))
+
+    def measurement(self, index: int) -> StereoMeasurement | None:
+        """What the stereo front end reports at frame ``index``; None when it lost the target."""
+        k = self._check(index)
+        m = self._state().measurements
+        if m.loss[k] != Loss.KEPT:
+            return None
+        return StereoMeasurement(
+            left_px=float(m.left_px[k]),
+            right_px=float(m.right_px[k]),
+            relative_m=(float(m.ahead_m[k]), float(m.starboard_m[k])),
+        )
+
+    def frame(self, index: int) -> Frame:
+        """Frame ``index`` on its own (identical to the one :meth:`frames` yields)."""
+        return Frame(
+            index=index,
+            observation=self.measurement(index),
+            truth=self.truth(index),
+            navigation=self.navigation(index),
+            time_s=index * self._spec.frame_interval_s,
+        )
+
+    def frames(self) -> Iterator[Frame]:
+        """Yield the frames in order, one at a time."""
+        for index in range(self._spec.n_frames):
+            yield self.frame(index)
+
+    def _check(self, index: int) -> int:
+        if not 0 <= index < self._spec.n_frames:
+            raise IndexError(f"{self._spec.name}: frame {index} out of range 0..{self._spec.n_frames - 1}")
+        return index
+
+
+def _pair(values: np.ndarray) -> tuple[float, float]:
+    return float(values[0]), float(values[1])
+
+
+def _check_separation(spec: StereoSceneSpec, geometry: RelativeGeometry) -> None:
+    """The boats must not collide: they stay :data:`MIN_SEPARATION_M` apart."""
+    close = np.flatnonzero(geometry.range_m < MIN_SEPARATION_M)
+    if close.size:
+        k = int(close[0])
+        raise DataError(
+            f"{spec.name}: at frame {k} the boats are {geometry.range_m[k]:.2f} m apart "
+            f"(less than {MIN_SEPARATION_M} m); check their starts and speed profiles"
+        )
