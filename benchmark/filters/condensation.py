@@ -68,7 +68,7 @@ class LinearDriftDiffusion:
     def __post_init__(self) -> None:
         transition = np.asarray(self.transition, dtype=float)
         noise_std = np.asarray(self.noise_std, dtype=float)
-        if transition.ndim != 2 or transition.shape != (noise_std.size, noise_std.size):
+        if noise_std.ndim != 1 or transition.shape != (noise_std.size, noise_std.size):
             raise ValueError(f"transition {transition.shape} does not match noise_std {noise_std.shape}")
         if np.any(noise_std < 0) or not np.all(np.isfinite(noise_std)):
             raise ValueError(f"noise_std must be finite and non-negative, got {noise_std}")
@@ -76,6 +76,9 @@ class LinearDriftDiffusion:
         object.__setattr__(self, "noise_std", noise_std)
 
     def propagate(self, states: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+        states = np.asarray(states, dtype=float)
+        if states.ndim != 2 or states.shape[1] != self.noise_std.size:
+            raise ValueError(f"states must have shape (N, {self.noise_std.size}), got {states.shape}")
         drifted = states @ self.transition.T
         return drifted + rng.standard_normal(states.shape) * self.noise_std
 

@@ -38,10 +38,12 @@ def normalise_weights(raw: np.ndarray) -> np.ndarray:
     if not np.all(np.isfinite(weights)) or np.any(weights < 0):
         bad = int(np.flatnonzero(~np.isfinite(weights) | (weights < 0))[0])
         raise ValueError(f"weights must be finite and non-negative; weight {bad} is {weights[bad]}")
-    total = weights.sum()
-    if total <= 0 or not np.isfinite(total):
+    peak = weights.max()
+    if peak == 0:
         return np.full(weights.size, 1.0 / weights.size)
-    return weights / total
+    # Scaling by the largest weight first keeps the sum finite for huge weights.
+    scaled = weights / peak
+    return scaled / scaled.sum()
 
 
 def effective_sample_size(weights: np.ndarray) -> float:
@@ -82,6 +84,8 @@ class ParticleSet:
         weights = np.asarray(self.weights, dtype=float)
         if states.ndim != 2 or weights.shape != (states.shape[0],) or states.shape[0] == 0:
             raise ValueError(f"states (N, D) and weights (N,) do not match: {states.shape} and {weights.shape}")
+        if not np.all(np.isfinite(weights)) or np.any(weights < 0):
+            raise ValueError(f"particle weights must be finite and non-negative, got {weights}")
         object.__setattr__(self, "states", states)
         object.__setattr__(self, "weights", weights)
 

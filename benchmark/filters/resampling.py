@@ -3,10 +3,12 @@
 All four schemes return the indices of the chosen particles, so that the
 caller copies states however it stores them.  They share one primitive: the
 walk up the cumulative weights ``c_i = c_(i-1) + pi_i`` (seeds/000, eqs.
-3.8-3.9, Figs. 3.6-3.7) done by binary search (``numpy.searchsorted``), with
-the last cumulative weight clamped to exactly one so that round-off never
-yields an index past the end.  They differ in how the ``N`` points on
-``[0, 1)`` are drawn:
+3.8-3.9, Figs. 3.6-3.7) done by binary search (``numpy.searchsorted``).  The
+cumulative weights are divided by their last entry, so they never decrease
+and end at exactly one, and the points are kept below one: round-off then
+never yields an index past the end nor a particle of weight zero.  Weights
+need not sum to one, only be finite and non-negative with a positive sum.
+The schemes differ in how the ``N`` points on ``[0, 1)`` are drawn:
 
 * multinomial: ``N`` independent uniforms (the thesis' Fig. 3.6);
 * stratified: one uniform in each of the ``N`` strata ``[k/N, (k+1)/N)``;
@@ -21,21 +23,24 @@ from collections.abc import Callable
 
 import numpy as np
 
+from benchmark.filters.particles import normalise_weights
+
+_BELOW_ONE = np.nextafter(1.0, 0.0)
+
 Resampler = Callable[[np.ndarray, np.random.Generator], np.ndarray]
 """``(weights, rng) -> indices``: ``N`` indices into the particles."""
 
 
 def cumulative_weights(weights: np.ndarray) -> np.ndarray:
-    """Cumulative weights ``c_1..c_N`` with ``c_N`` clamped to 1 (seeds/000, eqs. 3.8-3.9)."""
-    cumulative = np.cumsum(np.asarray(weights, dtype=float))
-    cumulative[-1] = 1.0
-    return cumulative
+    """Cumulative weights ``c_1..c_N`` scaled so that ``c_N`` is exactly 1 (seeds/000, eqs. 3.8-3.9)."""
+    cumulative = np.cumsum(normalise_weights(weights))
+    return cumulative / cumulative[-1]
 
 
 def _walk(weights: np.ndarray, points: np.ndarray) -> np.ndarray:
     """For each point ``r`` in ``[0, 1)`` the first ``j`` with ``c_j > r`` (binary search)."""
-    indices = np.searchsorted(cumulative_weights(weights), points, side="right")
-    return np.minimum(indices, len(weights) - 1)
+    points = np.minimum(points, _BELOW_ONE)
+    return np.searchsorted(cumulative_weights(weights), points, side="right")
 
 
 def multinomial_resample(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
@@ -65,16 +70,18 @@ def systematic_resample(weights: np.ndarray, rng: np.random.Generator) -> np.nda
 
 def residual_resample(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     """``floor(N pi_i)`` copies of each particle, the remainder drawn multinomially."""
-    weights = np.asarray(weights, dtype=float)
+    weights = normalise_weights(weights)
     n = len(weights)
-    copies = np.floor(n * weights).astype(np.int64)
+    expected = n * weights
+    # The tolerance keeps e.g. 49 * (1/49) = 0.9999999999999999 at one copy.
+    copies = np.floor(expected * (1.0 + 1e-12)).astype(np.int64)
     indices = np.repeat(np.arange(n), copies)
     remaining = n - indices.size
     if remaining == 0:
         return indices
-    residual = n * weights - copies
-    residual_total = residual.sum()
-    residual = residual / residual_total if residual_total > 0 else np.full(n, 1.0 / n)
+    residual = np.maximum(expected - copies, 0.0)
+    if residual.sum() <= 0:
+        residual = weights
     return np.concatenate([indices, _walk(residual, rng.random(remaining))])
 
 
