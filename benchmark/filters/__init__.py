@@ -5,13 +5,16 @@
 * :mod:`~benchmark.filters.resampling`: multinomial (cumulative weights with
   binary search), systematic, stratified and residual resampling;
 * :mod:`~benchmark.filters.condensation`: one step of the condensation
-  algorithm from swappable movement and observation models.
+  algorithm from swappable movement and observation models;
+* :mod:`~benchmark.filters.kalman`: linear and extended Kalman filter
+  steps on a Gaussian belief.
 
 Every random draw comes from a ``numpy.random.Generator`` handed in by the
 caller, so a seed replays a filter bit for bit.
 """
 
 from benchmark.filters.condensation import Condensation, LinearDriftDiffusion, MovementModel, ObservationModel
+from benchmark.filters.kalman import Gaussian, predict, update
 from benchmark.filters.particles import ParticleSet, effective_sample_size, normalise_weights
 from benchmark.filters.resampling import (
     RESAMPLERS,
@@ -25,6 +28,7 @@ from benchmark.filters.resampling import (
 __all__ = [
     "RESAMPLERS",
     "Condensation",
+    "Gaussian",
     "LinearDriftDiffusion",
     "MovementModel",
     "ObservationModel",
@@ -33,7 +37,9 @@ __all__ = [
     "effective_sample_size",
     "multinomial_resample",
     "normalise_weights",
+    "predict",
     "residual_resample",
     "stratified_resample",
     "systematic_resample",
+    "update",
 ]

@@ -1,0 +1,421 @@
+"""Kalman filter steps: linear and extended, on a Gaussian belief.
+
+A belief is a mean and a covariance (:class:`Gaussian`).  The extended
+Kalman filter of seeds/002, Table 2 (after Thrun et al.) is two steps:
+
+* :func:`predict`: ``mu = g(mu)``, ``Sigma = G Sigma G^T + R`` (lines 2-3);
+* :func:`update`: ``K = Sigma H^T (H Sigma H^T + Q)^-1``,
+  ``mu = mu + K (z - h(mu))`` and the covariance (lines 4-6).
+
+seeds/004 writes the same filter with the other names (eqs. 15-16: ``Q``
+for the motion noise, ``R`` for the measurement noise); the functions here
+take the two covariances by role, ``process_noise`` and
+``measurement_noise``, so either paper's names map onto them directly.
+
+Models are given as a function and its Jacobian, each either an array
+(a linear model) or a callable evaluated at the current mean, so the linear
+filter is the same code with arrays.  A known input ``B u`` (seeds/002
+eq. 6, seeds/004 eq. 15a) is added to the predicted mean through
+``control``.  When a measurement is missing the filter only predicts
+(seeds/004, section V-D, eq. 17): :func:`update` with ``None`` returns the
+prediction unchanged.
+
+The covariance update uses the Joseph form ``(I - K H) Sigma (I - K H)^T +
+K Q K^T`` instead of Table 2's ``(I - K H) Sigma``: the two agree in exact
+arithmetic, but the Joseph form stays positive semi-definite under
+round-off.  Every covariance returned is symmetric bit for bit (each pair
+of mirrored entries is replaced by their mean), and the gain comes from a
+Cholesky factorisation of the innovation covariance rather than from an
+explicit inverse.
+
+The matrix algebra is compiled with numba (cached on disk after the first
+call): for the small systems of a tracker, a handful of states, the cost of
+a step is then that of the few Python calls around it rather than of many
+small numpy operations.  The public functions turn their inputs into
+contiguous float arrays; the kernels check every shape before they index
+(numba does not), and an input with the wrong number of dimensions is named
+once the kernel has refused its type.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+Model = np.ndarray | Callable[[np.ndarray], np.ndarray]
+"""A linear map as a matrix, or a function of the state."""
+
+
+@dataclass(frozen=True, slots=True)
+class Gaussian:
+    """A Gaussian belief.
+
+    Attributes
+    ----------
+    mean : numpy.ndarray
+        ``mu``, shape ``(n,)``; any array of ``n`` numbers is flattened.
+    covariance : numpy.ndarray
+        ``Sigma``, shape ``(n, n)``.
+
+    Both are stored as contiguous float arrays.
+
+    Raises
+    ------
+    ValueError
+        If the covariance is not ``(n, n)`` for a mean of size ``n``.
+    """
+
+    mean: np.ndarray
+    covariance: np.ndarray
+
+    def __post_init__(self) -> None:
+        mean = np.ascontiguousarray(self.mean, dtype=float).reshape(-1)
+        covariance = np.ascontiguousarray(self.covariance, dtype=float)
+        if covariance.shape != (mean.size, mean.size):
+            raise ValueError(f"covariance {covariance.shape} does not match mean of size {mean.size}")
+        object.__setattr__(self, "mean", mean)
+        object.__setattr__(self, "covariance", covariance)
+
+
+_set_mean = Gaussian.__dict__["mean"].__set__
+_set_covariance = Gaussian.__dict__["covariance"].__set__
+
+
+def _belief(mean: np.ndarray, covariance: np.ndarray) -> Gaussian:
+    """A Gaussian from arrays the kernels made: already checked, so skip ``__post_init__``."""
+    belief = object.__new__(Gaussian)
+    _set_mean(belief, mean)
+    _set_covariance(belief, covariance)
+    return belief
+
+
+# ---------------------------------------------------------------- compiled kernels
+
+
+@numba.njit(cache=True, nogil=True)
+def _mirror(C: np.ndarray, n: int) -> None:
+    """Make the leading ``n x n`` block of ``C`` symmetric: each mirrored pair becomes its mean."""
+    for i in range(n):
+        for j in range(i + 1, n):
+            c = 0.5 * (C[i, j] + C[j, i])
+            C[i, j] = c
+            C[j, i] = c
+
+
+@numba.njit(cache=True, nogil=True)
+def _sandwich_add(G: np.ndarray, P: np.ndarray, out: np.ndarray) -> None:
+    """Add ``G P G^T`` (``G`` is ``a x b``, ``P`` is ``b x b``) to the leading ``a x a`` block of ``out``."""
+    a, b = G.shape
+    GP = np.zeros((a, b))
+    for i in range(a):
+        for k in range(b):
+            g = G[i, k]
+            for j in range(b):
+                GP[i, j] += g * P[k, j]
+    for i in range(a):
+        for j in range(a):
+            s = 0.0
+            for k in range(b):
+                s += GP[i, k] * G[j, k]
+            out[i, j] += s
+
+
+@numba.njit(cache=True, nogil=True)
+def _predict(
+    G: np.ndarray, x: np.ndarray, P: np.ndarray, R: np.ndarray, predicted: np.ndarray, control: np.ndarray
+) -> np.ndarray:
+    """``G P G^T + R`` in rows ``0..n-1``, the predicted mean in row ``n`` (seeds/002 Table 2, lines 2-3).
+
+    The mean is ``predicted + control``, or ``G x + control`` when
+    ``predicted`` is empty (a linear model); an empty ``control`` adds
+    nothing.
+    """
+    n = x.shape[0]
+    if G.shape[0] != n or G.shape[1] != n:
+        raise ValueError("the transition matrix (or Jacobian) does not match the state size")
+    if R.shape[0] != n or R.shape[1] != n:
+        raise ValueError("process_noise does not match the state size")
+    out = np.empty((n + 1, n))
+    for i in range(n):
+        for j in range(n):
+            out[i, j] = R[i, j]
+    _sandwich_add(G, P, out)
+    _mirror(out, n)
+    if predicted.shape[0] == 0:
+        for i in range(n):
+            s = 0.0
+            for k in range(n):
+                s += G[i, k] * x[k]
+            out[n, i] = s
+    elif predicted.shape[0] == n:
+        for i in range(n):
+            out[n, i] = predicted[i]
+    else:
+        raise ValueError("the transition function does not return a state of the belief's size")
+    if control.shape[0] == n:
+        for i in range(n):
+            out[n, i] += control[i]
+    elif control.shape[0] != 0:
+        raise ValueError("control does not match the state size")
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _correct(
+    x: np.ndarray, P: np.ndarray, H: np.ndarray, Q: np.ndarray, z: np.ndarray, hx: np.ndarray
+) -> np.ndarray:
+    """Joseph-form covariance in rows ``0..n-1``, mean in row ``n`` (seeds/002 Table 2, lines 4-6).
+
+    ``hx`` is ``h(x)``, or empty for a linear model ``h(x) = H x``.
+    """
+    n = x.shape[0]
+    m = H.shape[0]
+    if H.shape[1] != n:
+        raise ValueError("the measurement matrix (or Jacobian) does not match the state size")
+    if Q.shape[0] != m or Q.shape[1] != m:
+        raise ValueError("measurement_noise does not match the measurement size")
+    if z.shape[0] != m:
+        raise ValueError("the measurement does not match the measurement model")
+    innovation = np.empty(m)
+    for i in range(m):
+        innovation[i] = z[i]
+        if hx.shape[0] == 0:
+            for k in range(n):
+                innovation[i] -= H[i, k] * x[k]
+        elif hx.shape[0] == m:
+            innovation[i] -= hx[i]
+        else:
+            raise ValueError("the predicted measurement h(mean) does not match the measurement Jacobian")
+
+    # S = H P H^T + Q = L L^T; K = P H^T S^-1, row by row: L y = (P H^T)[r], L^T K[r] = y.
+    S = np.empty((m, m))
+    for i in range(m):
+        for j in range(m):
+            S[i, j] = Q[i, j]
+    _sandwich_add(H, P, S)
+    _mirror(S, m)
+    L = np.zeros((m, m))
+    for j in range(m):
+        d = S[j, j]
+        for k in range(j):
+            d -= L[j, k] * L[j, k]
+        if not d > 0.0:
+            raise ValueError("the innovation covariance H P H^T + measurement_noise is not positive definite")
+        L[j, j] = np.sqrt(d)
+        for i in range(j + 1, m):
+            s = S[i, j]
+            for k in range(j):
+                s -= L[i, k] * L[j, k]
+            L[i, j] = s / L[j, j]
+    K = np.empty((n, m))
+    y = np.empty(m)
+    for r in range(n):
+        for i in range(m):
+            s = 0.0
+            for k in range(n):
+                s += P[r, k] * H[i, k]
+            for k in range(i):
+                s -= L[i, k] * y[k]
+            y[i] = s / L[i, i]
+        for i in range(m - 1, -1, -1):
+            s = y[i]
+            for k in range(i + 1, m):
+                s -= L[k, i] * K[r, k]
+            K[r, i] = s / L[i, i]
+
+    # Joseph form: (I - K H) P (I - K H)^T + K Q K^T.
+    I_KH = np.empty((n, n))
+    for i in range(n):
+        for j in range(n):
+            s = 1.0 if i == j else 0.0
+            for k in range(m):
+                s -= K[i, k] * H[k, j]
+            I_KH[i, j] = s
+    out = np.zeros((n + 1, n))
+    _sandwich_add(I_KH, P, out)
+    _sandwich_add(K, Q, out)
+    _mirror(out, n)
+    for i in range(n):
+        s = x[i]
+        for j in range(m):
+            s += K[i, j] * innovation[j]
+        out[n, i] = s
+    return out
+
+
+# ---------------------------------------------------------------- public steps
+
+
+_floats = np.ascontiguousarray
+_KernelTypingError = numba.core.errors.TypingError
+_NONE = np.zeros(0)
+"""An empty vector: no control input, or a linear model whose kernel applies the matrix itself."""
+
+
+def _name_bad_dimensions(*inputs: tuple[str, np.ndarray | None, int]) -> None:
+    """After a kernel failed to type its arguments, name the input of the wrong dimension."""
+    for name, array, ndim in inputs:
+        if array is not None and array.ndim != ndim:
+            raise ValueError(f"{name} must be {ndim}-dimensional, got shape {array.shape}")
+
+
+def _linear_map(matrix: np.ndarray, mean: np.ndarray, name: str) -> np.ndarray:
+    A = _floats(matrix, float)
+    if A.ndim != 2 or A.shape[1] != mean.size:
+        raise ValueError(f"{name} {A.shape} does not match the state size {mean.size}")
+    return A @ mean
+
+
+def predict(
+    belief: Gaussian,
+    transition: Model,
+    jacobian: Model | None,
+    process_noise: np.ndarray,
+    control: np.ndarray | None = None,
+) -> Gaussian:
+    """Propagate a belief one step through the motion model.
+
+    Parameters
+    ----------
+    belief : Gaussian
+        ``mu_(t-1)``, ``Sigma_(t-1)``.
+    transition : array or callable
+        ``g``: the ``(n, n)`` matrix ``A`` of a linear model, or a function
+        of the state (which may include a known input itself).
+    jacobian : array or callable or None
+        ``G``, the Jacobian of ``g`` (a function is evaluated at the
+        previous mean); None when ``transition`` is a matrix, which is
+        then its own Jacobian.
+    process_noise : numpy.ndarray
+        ``R`` of seeds/002 (``Q`` of seeds/004), the ``(n, n)`` covariance
+        of the motion noise.
+    control : numpy.ndarray, optional
+        The known input term ``B u``, shape ``(n,)``, added to the
+        predicted mean.
+
+    Returns
+    -------
+    Gaussian
+        ``mu_bar = g(mu) + B u``, ``Sigma_bar = G Sigma G^T + R``, the
+        covariance exactly symmetric.
+
+    Raises
+    ------
+    ValueError
+        If a shape does not match the state size, or a function model
+        comes without its Jacobian.
+
+    References
+    ----------
+    seeds/002, Table 2, lines 2-3; eqs. (5)-(6).  seeds/004, eqs. (15a)-(15b),
+    and eq. (17b) for the prediction after a missing measurement.
+    """
+    mean = belief.mean
+    noise = _floats(process_noise, float)
+    offset = _NONE if control is None else _floats(control, float)
+    if jacobian is None:
+        if callable(transition):
+            raise ValueError("a transition given as a function needs its Jacobian")
+        G = _floats(transition, float)
+        predicted = _NONE
+    else:
+        G = _floats(jacobian(mean) if callable(jacobian) else jacobian, float)
+        if callable(transition):
+            predicted = _floats(transition(mean), float)
+            if predicted.size == 0:
+                raise ValueError("the transition function returned an empty state")
+        else:
+            predicted = _linear_map(transition, mean, "the transition matrix")
+    try:
+        out = _predict(G, mean, belief.covariance, noise, predicted, offset)
+    except _KernelTypingError:
+        _name_bad_dimensions(
+            ("the transition matrix" if jacobian is None else "the transition Jacobian", G, 2),
+            ("the predicted mean g(mean)", predicted, 1),
+            ("process_noise", noise, 2),
+            ("control", offset, 1),
+        )
+        raise
+    n = mean.size
+    return _belief(out[n], out[:n])
+
+
+def update(
+    belief: Gaussian,
+    measurement: np.ndarray | None,
+    observe: Model,
+    jacobian: Model | None,
+    measurement_noise: np.ndarray,
+) -> Gaussian:
+    """Correct a predicted belief with a measurement.
+
+    Parameters
+    ----------
+    belief : Gaussian
+        The prediction ``mu_bar``, ``Sigma_bar``.
+    measurement : numpy.ndarray or None
+        ``z``, shape ``(m,)``; None when it is missing, and the prediction
+        stands as the estimate.
+    observe : array or callable
+        ``h``: the ``(m, n)`` matrix ``H`` of a linear model or a function
+        of the state.
+    jacobian : array or callable or None
+        ``H``, the Jacobian of ``h`` (a function is evaluated at the
+        predicted mean); None when ``observe`` is a matrix, which is then
+        its own Jacobian.
+    measurement_noise : numpy.ndarray
+        ``Q`` of seeds/002 (``R`` of seeds/004), the ``(m, m)`` covariance
+        of the measurement noise.
+
+    Returns
+    -------
+    Gaussian
+        ``mu = mu_bar + K (z - h(mu_bar))`` and the Joseph-form covariance
+        ``(I - K H) Sigma_bar (I - K H)^T + K Q K^T``, exactly symmetric;
+        ``belief`` itself when ``measurement`` is None.
+
+    Raises
+    ------
+    ValueError
+        If a shape does not match, a function model comes without its
+        Jacobian, or the innovation covariance ``H Sigma_bar H^T + Q`` is
+        not positive definite.
+
+    References
+    ----------
+    seeds/002, Table 2, lines 4-6.  seeds/004, eqs. (16a)-(16b), and
+    eq. (17a) for a missing measurement.
+    """
+    if measurement is None:
+        return belief
+    mean = belief.mean
+    z = _floats(measurement, float)
+    noise = _floats(measurement_noise, float)
+    if jacobian is None:
+        if callable(observe):
+            raise ValueError("a measurement model given as a function needs its Jacobian")
+        H = _floats(observe, float)
+        predicted = _NONE
+    else:
+        H = _floats(jacobian(mean) if callable(jacobian) else jacobian, float)
+        if callable(observe):
+            predicted = _floats(observe(mean), float)
+            if predicted.size == 0:
+                raise ValueError("the measurement function returned an empty measurement")
+        else:
+            predicted = _linear_map(observe, mean, "the measurement matrix")
+    try:
+        out = _correct(mean, belief.covariance, H, noise, z, predicted)
+    except _KernelTypingError:
+        _name_bad_dimensions(
+            ("the measurement matrix" if jacobian is None else "the measurement Jacobian", H, 2),
+            ("the predicted measurement h(mean)", predicted, 1),
+            ("measurement_noise", noise, 2),
+            ("the measurement", z, 1),
+        )
+        raise
+    n = mean.size
+    return _belief(out[n], out[:n])
