@@ -1,0 +1,22 @@
+"""trackbench_stereo_raw: the raw stereovision baseline of seeds/002.
+
+Positions straight from triangulation and the chase boat's navigation, and
+speed and heading from the moving average of their changes: the "Raw" rows
+of seeds/002, Tables 6-8, against which the ``stereo_ekf`` filter is
+measured.  Registered as ``stereo_raw`` through the ``trackbench``
+entry-point group::
+
+    [project.entry-points.trackbench]
+    stereo_raw = "trackbench_stereo_raw"
+"""
+
+from benchmark import Registry, hookimpl
+from trackbench_stereo_raw.tracker import StereoRawParams, StereoRawTracker
+
+__all__ = ["StereoRawParams", "StereoRawTracker", "trackbench_register_trackers"]
+
+
+@hookimpl
+def trackbench_register_trackers(registry: Registry) -> None:
+    """Register the raw baseline."""
+    registry.add_tracker(StereoRawTracker)
