@@ -1,0 +1,261 @@
+"""The condensation cable tracker of seeds/000, chapter 4.
+
+Each frame runs one step of the condensation algorithm (Fig. 4.10) with the
+core of :mod:`benchmark.filters`:
+
+1. resample when the effective sample size (eq. 3.10) is below ``N/2``;
+2. drift and diffuse every particle with eq. (4.9)
+   (:mod:`trackbench_condensation.movement`);
+3. weigh every particle by the grey-level changes across its two projected
+   borders, eq. (4.11) (:mod:`trackbench_condensation.observation`);
+4. report the minimum mean square error estimate, eq. (3.11), of
+   ``(d, alpha, w, beta)``, unless the lost-cable test
+   (:mod:`trackbench_condensation.lost`) says the cable is not in view.
+
+Before the step, when due, part of the particles is re-drawn around the
+candidate cables of a line scan (:mod:`trackbench_condensation.detect`):
+on every frame while the cable is reported lost, scanning all the angles of
+Table 5.2 and proposing the candidates whose evidence would pass the lost
+test; and every ``redetect_every`` frames while it is tracked, scanning the
+angles near the estimate and proposing only candidates whose evidence is
+``redetect_margin`` times that of the estimate, so that a faint cable (sand
+settling over it) is not traded for stronger clutter, but a wrong pair of
+edges the filter settled on is left for a clearly better one.
+
+The particles start at the first frame's ground truth when the run hands it
+over, and uniformly within the limits of Table 5.2 otherwise
+(:mod:`trackbench_condensation.prior`); ``reinit_every`` re-draws them
+uniformly every K frames, the experiment of Fig. 5.8.
+
+Resampling is systematic by default rather than the thesis' multinomial
+draw (Fig. 3.6).  Both walk up the cumulative weights by binary search and
+cost the same, but systematic resampling gives each particle
+``floor(N pi)`` or ``ceil(N pi)`` copies, so it adds the least sampling
+noise and loses the fewest distinct particles, the depletion the thesis
+warns of in section 3.4.1.  ``resampler="multinomial"`` restores Fig. 3.6.
+
+Every random number comes from the generator handed to :meth:`CondensationTracker.reset`,
+so a seed replays a run bit for bit.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from benchmark.errors import DataError, ParameterError
+from benchmark.filters import RESAMPLERS, Condensation, ParticleSet
+from benchmark.model import CableState, CameraTruth, Frame, SequenceInfo
+from benchmark.tracker import Tracker
+from trackbench_condensation.detect import LineScan, propose
+from trackbench_condensation.lost import LostCable
+from trackbench_condensation.movement import diffusion_std, movement_model
+from trackbench_condensation.observation import BorderObservation, as_grey_image
+from trackbench_condensation.params import CondensationParams
+from trackbench_condensation.prior import InitLimits, particles_at, uniform_particles
+
+
+def _check_count(name: str, value: object, minimum: int) -> None:
+    if not isinstance(value, int | np.integer) or isinstance(value, bool) or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+
+
+class CondensationTracker(Tracker):
+    """Particle filter over ``(d, alpha, w, beta, v_d, v_alpha)`` with border-gradient weights.
+
+    Attributes
+    ----------
+    particles : ParticleSet or None
+        The weighted particles after the last step (None before :meth:`reset`).
+    observation : BorderObservation
+        The observation model.
+    lost : LostCable
+        The lost-cable test, with the last score and its reference.
+
+    References
+    ----------
+    seeds/000, chapters 3-4 (Figs. 3.5, 4.10; eqs. 3.10, 3.11, 4.1, 4.9,
+    4.10, 4.11), Tables 5.1-5.2 and section 6.1.
+    """
+
+    name = "condensation"
+    version = "1.0"
+    modality = "camera"
+    Params = CondensationParams
+
+    def __init__(self, params: CondensationParams | None = None) -> None:
+        super().__init__(params)
+        p = self.params
+        try:
+            _check_count("n_particles", p.n_particles, 1)
+            _check_count("reinit_every", p.reinit_every, 0)
+            _check_count("redetect_every", p.redetect_every, 0)
+            _check_count("redetect_candidates", p.redetect_candidates, 1)
+            if p.resampler not in RESAMPLERS:
+                raise ValueError(f"resampler must be one of {sorted(RESAMPLERS)}, got {p.resampler!r}")
+            if not 0.0 <= p.ess_fraction <= 1.0:
+                raise ValueError(f"ess_fraction must be in [0, 1], got {p.ess_fraction}")
+            if not 0.0 <= p.redetect_fraction <= 1.0:
+                raise ValueError(f"redetect_fraction must be in [0, 1], got {p.redetect_fraction}")
+            if not p.redetect_margin >= 0:
+                raise ValueError(f"redetect_margin must be >= 0, got {p.redetect_margin}")
+            if not p.weight_exponent > 0:
+                raise ValueError(f"weight_exponent must be positive, got {p.weight_exponent}")
+            self.observation = BorderObservation(
+                filter_size_px=p.filter_size_px,
+                sample_distance_px=p.sample_distance_px,
+                epsilon=p.epsilon,
+                interpolation=p.interpolation,
+                centre_weight=p.centre_weight,
+                exponent=p.weight_exponent,
+            )
+            extra = (p.var_v_w_px2, p.var_v_beta_deg2) if p.width_skew_velocities else (None, None)
+            noise = diffusion_std(
+                p.var_d_px2, p.var_alpha_deg2, p.var_w_px2, p.var_beta_deg2, p.var_v_d_px2, p.var_v_alpha_deg2, *extra
+            )
+            self.limits = InitLimits(
+                p.init_d_px, p.init_alpha_deg, p.init_w_px, p.init_beta_deg, p.init_v_d_px, p.init_v_alpha_deg
+            )
+            self.lost = LostCable(p.lost_threshold, p.lost_decay)
+            self.scan = LineScan(alpha_range_deg=self.limits.alpha_deg, width_range_px=self.limits.w_px)
+        except (TypeError, ValueError) as exc:
+            raise ParameterError(f"tracker {self.name!r}: {exc}") from exc
+        self.filter = Condensation(
+            movement=movement_model(noise),
+            observation=self.observation,
+            resample=RESAMPLERS[p.resampler],
+            ess_fraction=p.ess_fraction,
+            carry_weights=p.carry_weights,
+        )
+        # Proposals scatter around a candidate by half the scan's grid step in
+        # d and alpha, a whole step in w, and a degree in beta (candidates are
+        # parallel pairs, beta = 0).
+        self._proposal_spread = np.array(
+            [
+                0.5 * self.scan.offset_step_px,
+                math.radians(0.5 * self.scan.angle_step_deg),
+                self.scan.offset_step_px,
+                math.radians(1.0),
+            ]
+        )
+        self.particles: ParticleSet | None = None
+        self._rng: np.random.Generator | None = None
+        self._steps = 0
+        self._lost = False
+
+    @property
+    def dims(self) -> int:
+        """Dimension of a particle: 6, or 8 with ``width_skew_velocities``."""
+        return 8 if self.params.width_skew_velocities else 6
+
+    @property
+    def steps(self) -> int:
+        """Frames processed since :meth:`reset`."""
+        return self._steps
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: object = None) -> None:
+        """Draw the initial particle set.
+
+        Parameters
+        ----------
+        info : SequenceInfo
+            Not used: the image size is read from each frame.
+        rng : numpy.random.Generator
+            The tracker's only source of randomness.
+        init : CameraTruth or CableState, optional
+            The first frame's truth: every particle starts at its cable state
+            with zero velocities (:func:`trackbench_condensation.prior.particles_at`).
+            Without it (or with an unknown state) the particles are uniform
+            within Table 5.2's limits (eq. 4.1), and the first frame is
+            searched for candidate cables as after a loss (unless
+            ``redetect_fraction`` is 0).
+
+        References
+        ----------
+        seeds/000, section 4.3, eq. (4.1), Table 5.2, Fig. 4.10 step 1.
+        """
+        self._rng = rng
+        self._steps = 0
+        self._lost = False
+        self.lost.reset()
+        cable = init.cable if isinstance(init, CameraTruth) else init
+        n = int(self.params.n_particles)
+        if isinstance(cable, CableState) and cable.is_known:
+            states = particles_at(cable, n, self.dims)
+        else:
+            states = uniform_particles(n, self.dims, self.limits, rng)
+            # Not knowing where the cable is, the tracker starts out lost:
+            # the first frame is searched like a frame after losing the cable.
+            self._lost = True
+        self.particles = ParticleSet.equally_weighted(states)
+
+    def step(self, frame: Frame) -> CableState | None:
+        """One condensation step on a frame and the estimate of the cable state.
+
+        Parameters
+        ----------
+        frame : Frame
+            Its observation is a grey image of shape ``(H, W)``.
+
+        Returns
+        -------
+        CableState or None
+            The MMSE estimate (eq. 3.11) of ``(d, alpha, w, beta)``; None when
+            the lost-cable test says the cable is not in view.
+
+        Raises
+        ------
+        DataError
+            If the observation is not a 2-D grey image.
+        RuntimeError
+            If called before :meth:`reset`.
+
+        References
+        ----------
+        seeds/000, Fig. 4.10 steps 2(a)-(d).
+        """
+        if self.particles is None or self._rng is None:
+            raise RuntimeError("condensation: step() called before reset()")
+        try:
+            image = as_grey_image(frame.observation)
+        except DataError as exc:
+            raise DataError(f"condensation: frame {frame.index}: {exc}") from exc
+        self._refresh(image)
+        self._steps += 1
+        self.particles = self.filter.step(self.particles, image, self._rng)
+        estimate = self.particles.mmse()[:4]
+        self._lost = self.lost.update(float(self.observation.score(estimate[None, :], image)[0]))
+        return None if self._lost else CableState.from_array(estimate)
+
+    def _refresh(self, image: np.ndarray) -> None:
+        """Re-initialise or re-detect before this frame's condensation step, when due."""
+        p = self.params
+        n = int(p.n_particles)
+        if p.reinit_every > 0 and self._steps > 0 and self._steps % p.reinit_every == 0:
+            self.particles = ParticleSet.equally_weighted(uniform_particles(n, self.dims, self.limits, self._rng))
+            return
+        count = int(round(p.redetect_fraction * n))
+        periodic = p.redetect_every > 0 and self._steps > 0 and self._steps % p.redetect_every == 0
+        if count == 0 or not (self._lost or periodic):
+            return
+        # While lost, every angle of Table 5.2; while tracking, those near the estimate.
+        around = None if self._lost else float(self.particles.mmse()[1])
+        candidates, values = self.scan.candidates(
+            image, self.observation.taps, p.sample_distance_px, p.redetect_candidates, around, p.redetect_window_deg
+        )
+        # Propose only candidates whose evidence would pass the lost test
+        # (while lost) or clearly beats the tracked cable's (while tracking).
+        if self._lost:
+            floor = self.lost.threshold * (self.lost.reference or 0.0)
+        else:
+            floor = p.redetect_margin * (self.lost.score or 0.0)
+        candidates = candidates[values >= floor]
+        if len(candidates) == 0:
+            return
+        # Resample first, so that the proposals join an equally weighted set
+        # and the condensation step does not resample them away on old weights.
+        states = self.particles.states[self.filter.resample(self.particles.weights, self._rng)]
+        slots = self._rng.choice(n, size=count, replace=False)
+        states[slots] = propose(candidates, count, self.dims, self._proposal_spread, self._rng)
+        self.particles = ParticleSet.equally_weighted(states)

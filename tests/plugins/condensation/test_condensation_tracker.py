@@ -1,0 +1,190 @@
+"""Tests of the condensation tracker on drawn cable sequences."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import trackbench_condensation.tracker as tracker_module
+from benchmark.errors import DataError, ParameterError
+from benchmark.geometry import cable_borders, score_line_pair
+from benchmark.model import CableState, CameraTruth, Frame, Outcome, SequenceInfo
+from trackbench_condensation import CondensationTracker
+
+SIZE = (320, 240)
+INFO = SequenceInfo("drawn", "camera", frame_size=SIZE)
+
+
+def moving_cable(frames: int) -> list[CableState]:
+    """A cable drifting right and turning, about 1.5 px and 0.3 deg per frame."""
+    return [
+        CableState(-25.0 + 1.5 * k, math.radians(-4.0 + 0.3 * k), 30.0 + 0.1 * k, math.radians(1.0))
+        for k in range(frames)
+    ]
+
+
+def make(**overrides) -> CondensationTracker:
+    return CondensationTracker(CondensationTracker.make_params(overrides))
+
+
+def run(tracker, images, seed=0, init=None):
+    tracker.reset(INFO, np.random.default_rng(seed), init=init)
+    return [tracker.step(Frame(k, image)) for k, image in enumerate(images)]
+
+
+def outcomes(estimates, states):
+    return [
+        score_line_pair(None if e is None else cable_borders(e), cable_borders(s), SIZE)
+        for e, s in zip(estimates, states, strict=True)
+    ]
+
+
+@pytest.fixture(scope="module")
+def sequence(scene):
+    states = moving_cable(30)
+    return states, [scene.draw_cable(state, contrast=-55.0, seed=k) for k, state in enumerate(states)]
+
+
+def test_follows_a_moving_cable_from_its_first_state(sequence):
+    states, images = sequence
+    estimates = run(make(), images, init=CameraTruth(states[0]))
+    assert outcomes(estimates, states).count(Outcome.CORRECT) == len(states)
+
+
+def test_estimate_is_the_weighted_mean_of_the_particles(sequence):
+    states, images = sequence
+    tracker = make()
+    estimate = run(tracker, images[:3], init=CameraTruth(states[0]))[-1]
+    np.testing.assert_allclose(estimate.as_array(), tracker.particles.weights @ tracker.particles.states[:, :4])
+
+
+def test_same_seed_replays_and_another_seed_differs(sequence):
+    states, images = sequence
+    first = run(make(), images[:12], seed=3, init=CameraTruth(states[0]))
+    again = run(make(), images[:12], seed=3, init=CameraTruth(states[0]))
+    other = run(make(), images[:12], seed=4, init=CameraTruth(states[0]))
+    assert [e.as_array().tolist() for e in first] == [e.as_array().tolist() for e in again]
+    assert [e.as_array().tolist() for e in first] != [e.as_array().tolist() for e in other]
+
+
+def test_uniform_initialisation_within_table_5_2(sequence):
+    _, images = sequence
+    tracker = make(n_particles=2000)
+    tracker.reset(INFO, np.random.default_rng(0), init=None)
+    states = tracker.particles.states
+    assert states.shape == (2000, 6)
+    low = np.array([-150, -math.radians(45), 5, 0, -1, -math.radians(0.1)])
+    high = np.array([150, math.radians(45), 100, math.radians(10), 1, math.radians(0.1)])
+    assert np.all(states >= low) and np.all(states <= high)
+    assert np.all(states.max(axis=0) - states.min(axis=0) > 0.9 * (high - low))
+    # An unknown first state counts as no initialisation.
+    tracker.reset(INFO, np.random.default_rng(0), init=CameraTruth(CableState(*(4 * [math.nan]))))
+    assert np.ptp(tracker.particles.states[:, 0]) > 200
+
+
+def test_without_initialisation_the_cable_is_found(sequence):
+    states, images = sequence
+    estimates = run(make(), images, seed=1, init=None)
+    assert outcomes(estimates, states)[-10:].count(Outcome.CORRECT) >= 8
+
+
+def test_truth_initialisation_puts_every_particle_at_the_truth(sequence):
+    states, _ = sequence
+    tracker = make(width_skew_velocities=True)
+    tracker.reset(INFO, np.random.default_rng(0), init=CameraTruth(states[0]))
+    expected = np.r_[states[0].as_array(), np.zeros(4)]
+    np.testing.assert_array_equal(tracker.particles.states, np.tile(expected, (500, 1)))
+
+
+def test_reinitialisation_every_k_frames(sequence, monkeypatch):
+    states, images = sequence
+    calls = []
+    original = tracker_module.uniform_particles
+
+    def counting(n, dims, limits, rng):
+        calls.append(n)
+        return original(n, dims, limits, rng)
+
+    monkeypatch.setattr(tracker_module, "uniform_particles", counting)
+    run(make(reinit_every=5, n_particles=100), images[:12], init=CameraTruth(states[0]))
+    assert calls == [100, 100]  # before frames 5 and 10
+    calls.clear()
+    run(make(n_particles=100), images[:12], init=CameraTruth(states[0]))
+    assert calls == []
+
+
+def test_reinitialised_particles_spread_over_the_limits(sequence):
+    states, images = sequence
+    tracker = make(reinit_every=4, redetect_fraction=0.0)
+    run(tracker, images[:4], init=CameraTruth(states[0]))
+    assert np.ptp(tracker.particles.states[:, 0]) < 50
+    tracker.step(Frame(4, images[4]))
+    assert np.ptp(tracker.particles.states[:, 0]) > 200
+
+
+def test_reports_no_cable_on_a_blank_image_after_tracking(sequence):
+    states, images = sequence
+    tracker = make()
+    estimates = run(tracker, images[:8], init=CameraTruth(states[0]))
+    assert all(e is not None for e in estimates)
+    blank = np.full((SIZE[1], SIZE[0]), 128, np.uint8)
+    assert tracker.step(Frame(8, blank)) is None
+    assert tracker.step(Frame(9, blank)) is None
+
+
+def test_finds_the_cable_again_after_it_was_hidden(sequence, scene):
+    states, images = sequence
+    tracker = make()
+    run(tracker, images[:5], init=CameraTruth(states[0]))
+    for k in range(5, 12):
+        tracker.step(Frame(k, scene.to_uint8(scene.background(seed=k))))
+    # The cable comes back 40 px to the right of where it was left.
+    moved = CableState(states[4].d + 40.0, states[4].alpha, states[4].w, states[4].beta)
+    found = [tracker.step(Frame(12 + k, scene.draw_cable(moved, contrast=-55.0, seed=50 + k))) for k in range(8)]
+    assert outcomes(found[-3:], [moved] * 3) == [Outcome.CORRECT] * 3
+
+
+@pytest.mark.parametrize(
+    "variant", [{"width_skew_velocities": True}, {"centre_weight": 1.0}, {"n_particles": 300, "filter_size_px": 5}]
+)
+def test_variants_follow_the_cable(sequence, variant):
+    states, images = sequence
+    estimates = run(make(**variant), images[:15], init=CameraTruth(states[0]))
+    assert outcomes(estimates, states[:15]).count(Outcome.CORRECT) >= 14
+
+
+def test_unknown_and_bad_parameters_are_parameter_errors():
+    with pytest.raises(ParameterError, match="no parameter 'particles'"):
+        CondensationTracker.make_params({"particles": 10})
+    for bad in (
+        {"filter_size_px": 4},
+        {"n_particles": 0},
+        {"resampler": "lottery"},
+        {"var_w_px2": -1.0},
+        {"init_w_px": (10.0, 1.0)},
+        {"lost_threshold": 2.0},
+        {"redetect_fraction": 1.5},
+        {"reinit_every": -1},
+    ):
+        with pytest.raises(ParameterError, match="condensation"):
+            make(**bad)
+
+
+def test_parameters_from_the_command_line_are_converted():
+    params = CondensationTracker.make_params({"n_particles": "300", "init_d_px": "[-100, 100]", "carry_weights": "yes"})
+    assert params.n_particles == 300 and params.init_d_px == (-100, 100) and params.carry_weights is True
+    assert make(n_particles="300").params.n_particles == 300
+
+
+def test_bad_frames_are_data_errors_naming_the_frame():
+    tracker = make()
+    tracker.reset(INFO, np.random.default_rng(0))
+    with pytest.raises(DataError, match="frame 7"):
+        tracker.step(Frame(7, np.zeros((4, 4, 3), np.uint8)))
+
+
+def test_step_before_reset_fails_clearly():
+    with pytest.raises(RuntimeError, match="reset"):
+        make().step(Frame(0, np.zeros((240, 320), np.uint8)))
