@@ -1,14 +1,21 @@
 """Simulators that render the shared synthetic datasets.
 
-The camera simulator follows the scene model of Foresti (seeds/004,
+Every simulated sequence is a :class:`~benchmark.scenes.scene.SimulatedScene`:
+a :class:`benchmark.model.Sequence` defined by a spec (frozen dataclasses
+built from plain data, so suites are TOML files), seed included, that
+computes what it needs on first use, draws every random number from
+independent streams of that seed, and renders any frame on its own.  The
+same spec gives bit-identical frames, and a pickled scene is only its spec.
+
+Three kinds of scene share that scaffolding.
+
+**Camera** (the ``camera`` suite).  The scene model of Foresti (seeds/004,
 section II): a pinhole camera on a vehicle that moves over a seabed plane,
 and a pipe or cable, a cylinder of known diameter, lying on it.  Every
 frame is ray-cast from that 3-D model, so its ground truth is exact: the
 camera pose, the vehicle speeds of eq. (7), the projected cable state
-``(d, alpha, w, beta)`` of the thesis (seeds/000, section 4.2) and the share
-of the cable that sand leaves visible.
-
-Modules, from the geometry up:
+``(d, alpha, w, beta)`` of the thesis (seeds/000, section 4.2) and the
+share of the cable that sand leaves visible.  Modules, from the geometry up:
 
 * :mod:`~benchmark.scenes.projection`: camera versors, the matrix ``T`` of
   eqs. (1)-(3), projection and per-pixel rays;
@@ -21,18 +28,59 @@ Modules, from the geometry up:
   against its sides, drawn over its borders;
 * :mod:`~benchmark.scenes.render`: the per-frame ray caster;
 * :mod:`~benchmark.scenes.spec`: sequence definitions as data;
-* :mod:`~benchmark.scenes.camera_scene`: :class:`CameraScene`, the
-  :class:`benchmark.model.Sequence` that ties them together.
+* :mod:`~benchmark.scenes.camera_scene`: :class:`CameraScene`.
+
+**Stereo** (the ``stereo`` suite).  The simulations of Sinisterra et al.
+(seeds/002, section 3): a chase boat (CH) with a stereo camera follows a
+target boat (TG); each frame holds what the stereo front end measures of
+TG (pixel coordinates with the noise of eq. 19, triangulated by eq. 15),
+CH's noisy GPS and compass, and TG's true position and velocity.  The
+camera geometry (eqs. 10-11 and 15) is :mod:`benchmark.stereo_geometry`,
+shared with the trackers.  Modules:
+
+* :mod:`~benchmark.scenes.stereo_spec`: sequence definitions as data
+  (paths, speed profiles, the camera of Tables 3-4, sensor errors);
+* :mod:`~benchmark.scenes.stereo_motion`: boat tracks and where TG is seen
+  from CH;
+* :mod:`~benchmark.scenes.stereo_projection`: the camera's field of view
+  and the depth accuracy of Table 3;
+* :mod:`~benchmark.scenes.stereo_sensors`: the simulated front end, GPS
+  and compass, with their errors and dropouts;
+* :mod:`~benchmark.scenes.stereo_scene`: :class:`StereoScene`.
+
+**Stereo images** (the ``stereo-images`` suite).  The same boats, with the
+same truth and navigation, seen by the camera instead of measured
+(seeds/002, section 4.1): each frame is a pair of BGR images in which a
+tracker has to find TG's yellow marker and its disparity.  Modules:
+
+* :mod:`~benchmark.scenes.stereo_image_spec`: a stereo spec plus the look
+  of the scene;
+* :mod:`~benchmark.scenes.stereo_world`: the sea's wave field and the
+  shoreline;
+* :mod:`~benchmark.scenes.stereo_boat`: TG's hull, cabin and marker, and
+  how they are drawn;
+* :mod:`~benchmark.scenes.stereo_render`: one image pair at a time;
+* :mod:`~benchmark.scenes.stereo_images`: :class:`StereoImageScene`.
 """
 
 from benchmark.scenes.camera_scene import CameraScene
 from benchmark.scenes.projection import camera_axes, project_points, projection_matrix
+from benchmark.scenes.scene import SimulatedScene
 from benchmark.scenes.silhouette import cable_truth, silhouette_borders
 from benchmark.scenes.spec import CameraSceneSpec
+from benchmark.scenes.stereo_image_spec import StereoImageSceneSpec
+from benchmark.scenes.stereo_images import StereoImageScene
+from benchmark.scenes.stereo_scene import StereoScene
+from benchmark.scenes.stereo_spec import StereoSceneSpec
 
 __all__ = [
     "CameraScene",
     "CameraSceneSpec",
+    "SimulatedScene",
+    "StereoImageScene",
+    "StereoImageSceneSpec",
+    "StereoScene",
+    "StereoSceneSpec",
     "cable_truth",
     "camera_axes",
     "project_points",

@@ -11,8 +11,8 @@ iteration yields).  The same spec therefore gives bit-identical frames.
 Nothing holds the rendered sequence: the object keeps only its spec, and
 lazily the small per-sequence arrays (trajectory, albedo maps, sand
 profile) in a cache that is dropped when the object is pickled, so worker
-processes rebuild it.  Frames are rendered one at a time as they are
-iterated.
+processes rebuild it (:class:`~benchmark.scenes.scene.SimulatedScene`).
+Frames are rendered one at a time as they are iterated.
 
 Each frame carries
 
@@ -27,26 +27,19 @@ Each frame carries
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from benchmark.errors import DataError
-from benchmark.model import (
-    CameraCalibration,
-    CameraTruth,
-    Frame,
-    Sequence,
-    SequenceInfo,
-    VehicleSpeeds,
-)
+from benchmark.model import CameraCalibration, CameraTruth, SequenceInfo, VehicleSpeeds
 from benchmark.scenes.burial import sand_level, visible_fraction
 from benchmark.scenes.motion import Trajectory, build_trajectory, vehicle_speeds
 from benchmark.scenes.overgrowth import overgrowth_layer
 from benchmark.scenes.projection import pixel_rays, pose_axes
 from benchmark.scenes.render import Renderer, SceneAssets, camera_rays, vignette_gain
+from benchmark.scenes.scene import SimulatedScene
 from benchmark.scenes.silhouette import cable_truth
 from benchmark.scenes.spec import CameraSceneSpec
 from benchmark.scenes.texture import TextureGrid, cable_map, coarse_level, lowpass_noise, seabed_map
@@ -75,7 +68,7 @@ class _Cache:
     renderer: Renderer | None = None
 
 
-class CameraScene(Sequence):
+class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
     """A rendered pipe-on-seabed camera sequence (seeds/004, section II).
 
     Parameters
@@ -96,19 +89,7 @@ class CameraScene(Sequence):
     [(240, 320), (240, 320), (240, 320)]
     """
 
-    def __init__(self, spec: CameraSceneSpec) -> None:
-        self._spec = spec
-        self._cache: _Cache | None = None
-
-    @classmethod
-    def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> CameraScene:
-        """A scene from a plain mapping; see :meth:`CameraSceneSpec.from_dict`."""
-        return cls(CameraSceneSpec.from_dict(data, source))
-
-    @property
-    def spec(self) -> CameraSceneSpec:
-        """The definition of this sequence."""
-        return self._spec
+    spec_type = CameraSceneSpec
 
     @property
     def info(self) -> SequenceInfo:
@@ -124,30 +105,17 @@ class CameraScene(Sequence):
             extra={"description": spec.description, "seed": spec.seed, "source": "rendered"},
         )
 
-    def __getstate__(self) -> dict[str, Any]:
-        return {"_spec": self._spec}
-
-    def __setstate__(self, state: dict[str, Any]) -> None:
-        self._spec = state["_spec"]
-        self._cache = None
-
-    def _stream(self, *key: int) -> np.random.Generator:
-        sequence = np.random.SeedSequence(self._spec.seed, spawn_key=key)
-        return np.random.Generator(np.random.PCG64(sequence))
-
-    def _state(self) -> _Cache:
-        if self._cache is None:
-            spec = self._spec
-            trajectory = build_trajectory(spec.motion, spec.n_frames, spec.frame_interval_s, self._stream(_TRAJECTORY))
-            _check_clearance(spec, trajectory)
-            true_speeds = vehicle_speeds(trajectory, spec.frame_interval_s, spec.nominal_tilt)
-            noise = self._stream(_NAVIGATION).standard_normal(true_speeds.shape)
-            speeds = true_speeds + spec.motion.speed_noise_mps * noise
-            grid = _seabed_grid(spec, trajectory)
-            sand_z = grid.z_coords()
-            sand_y = sand_level(spec.burial, spec.radius, sand_z, self._stream(_TEXTURE, 0))
-            self._cache = _Cache(trajectory, speeds, grid, sand_z, sand_y)
-        return self._cache
+    def _build_cache(self) -> _Cache:
+        spec = self._spec
+        trajectory = build_trajectory(spec.motion, spec.n_frames, spec.frame_interval_s, self._stream(_TRAJECTORY))
+        _check_clearance(spec, trajectory)
+        true_speeds = vehicle_speeds(trajectory, spec.frame_interval_s, spec.nominal_tilt)
+        noise = self._stream(_NAVIGATION).standard_normal(true_speeds.shape)
+        speeds = true_speeds + spec.motion.speed_noise_mps * noise
+        grid = _seabed_grid(spec, trajectory)
+        sand_z = grid.z_coords()
+        sand_y = sand_level(spec.burial, spec.radius, sand_z, self._stream(_TEXTURE, 0))
+        return _Cache(trajectory, speeds, grid, sand_z, sand_y)
 
     def _renderer(self) -> Renderer:
         state = self._state()
@@ -206,25 +174,9 @@ class CameraScene(Sequence):
         pose = self._state().trajectory.pose(self._check(index))
         return self._renderer().render(pose, self._stream(_FRAMES, index))
 
-    def frame(self, index: int) -> Frame:
-        """Frame ``index``, rendered on its own."""
-        return Frame(
-            index=index,
-            observation=self.render(index),
-            truth=self.truth(index),
-            navigation=self.navigation(index),
-            time_s=index * self._spec.frame_interval_s,
-        )
-
-    def frames(self) -> Iterator[Frame]:
-        """Render and yield the frames in order, one at a time."""
-        for index in range(self._spec.n_frames):
-            yield self.frame(index)
-
-    def _check(self, index: int) -> int:
-        if not 0 <= index < self._spec.n_frames:
-            raise IndexError(f"{self._spec.name}: frame {index} out of range 0..{self._spec.n_frames - 1}")
-        return index
+    def observation(self, index: int) -> np.ndarray:
+        """The grey image of frame ``index``: :meth:`render`."""
+        return self.render(index)
 
 
 def _check_clearance(spec: CameraSceneSpec, trajectory: Trajectory) -> None:

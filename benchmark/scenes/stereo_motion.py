@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from benchmark.scenes.stereo_spec import BoatSpec, PathSpec, SpeedKnots
+from benchmark.stereo_geometry import to_camera
 
 ARC_STEP_M = 0.02
 """Step of the along-track grid on which arc length is tabulated."""
@@ -283,10 +284,8 @@ def relative_geometry(chase: BoatTrack, target: BoatTrack) -> RelativeGeometry:
     ----------
     seeds/002, eqs. (10)-(11) and Fig. 3.
     """
-    delta = target.position_m - chase.position_m
-    cos_h, sin_h = np.cos(chase.heading), np.sin(chase.heading)
-    ahead = cos_h * delta[:, 0] + sin_h * delta[:, 1]
-    starboard = -sin_h * delta[:, 0] + cos_h * delta[:, 1]
+    north, east = target.position_m.T
+    ahead, starboard = to_camera(north, east, chase.position_m.T, chase.heading)
     aspect = np.mod(target.heading - chase.heading + math.pi, 2.0 * math.pi) - math.pi
     return RelativeGeometry(
         ahead_m=ahead,

@@ -16,7 +16,8 @@ alone and the same spec gives bit-identical frames.  The trajectories are
 deterministic.
 
 The object keeps only its spec; the per-frame arrays (a few kB) are built
-on first use and dropped when the scene is pickled.
+on first use and dropped when the scene is pickled
+(:class:`~benchmark.scenes.scene.SimulatedScene`).
 
 Each frame carries
 
@@ -31,22 +32,13 @@ Each frame carries
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from benchmark.errors import DataError
-from benchmark.model import (
-    ChaseNavigation,
-    Frame,
-    Sequence,
-    SequenceInfo,
-    StereoMeasurement,
-    StereoTruth,
-    TargetEstimate,
-)
+from benchmark.model import ChaseNavigation, SequenceInfo, StereoMeasurement, StereoTruth, TargetEstimate
+from benchmark.scenes.scene import SimulatedScene
 from benchmark.scenes.stereo_motion import BoatTrack, RelativeGeometry, boat_track, relative_geometry
 from benchmark.scenes.stereo_sensors import (
     Loss,
@@ -76,7 +68,7 @@ class _Cache:
     compass: np.ndarray
 
 
-class StereoScene(Sequence):
+class StereoScene(SimulatedScene[StereoSceneSpec, _Cache]):
     """A simulated chase-boat stereo sequence (seeds/002, section 3).
 
     Parameters
@@ -91,19 +83,7 @@ class StereoScene(Sequence):
     [8.0, 8.0, 8.0]
     """
 
-    def __init__(self, spec: StereoSceneSpec) -> None:
-        self._spec = spec
-        self._cache: _Cache | None = None
-
-    @classmethod
-    def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> StereoScene:
-        """A scene from a plain mapping; see :meth:`StereoSceneSpec.from_dict`."""
-        return cls(StereoSceneSpec.from_dict(data, source))
-
-    @property
-    def spec(self) -> StereoSceneSpec:
-        """The definition of this sequence."""
-        return self._spec
+    spec_type = StereoSceneSpec
 
     @property
     def info(self) -> SequenceInfo:
@@ -124,46 +104,29 @@ class StereoScene(Sequence):
             },
         )
 
-    def __getstate__(self) -> dict[str, Any]:
-        return {"_spec": self._spec}
-
-    def __setstate__(self, state: dict[str, Any]) -> None:
-        self._spec = state["_spec"]
-        self._cache = None
-
-    def _stream(self, key: int) -> np.random.Generator:
-        sequence = np.random.SeedSequence(self._spec.seed, spawn_key=(key,))
-        return np.random.Generator(np.random.PCG64(sequence))
-
-    def _state(self) -> _Cache:
-        if self._cache is None:
-            spec = self._spec
-            n, dt = spec.n_frames, spec.frame_interval_s
-            times = np.arange(n) * dt
-            chase = boat_track(spec.chase, times)
-            target = boat_track(spec.target, times)
-            geometry = relative_geometry(chase, target)
-            _check_separation(spec, geometry)
-            sensors = spec.sensors
-            pixel_noise = spec.camera.pixel_noise_px * self._stream(_PIXELS).standard_normal((n, 2))
-            dropped = burst_dropouts(
-                self._stream(_DROPOUTS), n, sensors.dropout_rate, sensors.dropout_burst_frames
-            )
-            measurements = stereo_measurements(
-                geometry.ahead_m,
-                geometry.starboard_m,
-                spec.camera.calibration(),
-                pixel_noise,
-                sensors.min_disparity_px,
-                dropped,
-            )
-            gps_error = correlated_noise(
-                self._stream(_GPS), (n, 2), sensors.gps_sigma_m, sensors.gps_correlation_s / dt
-            )
-            compass_error = math.radians(sensors.heading_sigma_deg) * self._stream(_COMPASS).standard_normal(n)
-            compass = np.mod(chase.heading + compass_error + math.pi, 2.0 * math.pi) - math.pi
-            self._cache = _Cache(chase, target, geometry, measurements, chase.position_m + gps_error, compass)
-        return self._cache
+    def _build_cache(self) -> _Cache:
+        spec = self._spec
+        n, dt = spec.n_frames, spec.frame_interval_s
+        times = np.arange(n) * dt
+        chase = boat_track(spec.chase, times)
+        target = boat_track(spec.target, times)
+        geometry = relative_geometry(chase, target)
+        _check_separation(spec, geometry)
+        sensors = spec.sensors
+        pixel_noise = spec.camera.pixel_noise_px * self._stream(_PIXELS).standard_normal((n, 2))
+        dropped = burst_dropouts(self._stream(_DROPOUTS), n, sensors.dropout_rate, sensors.dropout_burst_frames)
+        measurements = stereo_measurements(
+            geometry.ahead_m,
+            geometry.starboard_m,
+            spec.camera.calibration(),
+            pixel_noise,
+            sensors.min_disparity_px,
+            dropped,
+        )
+        gps_error = correlated_noise(self._stream(_GPS), (n, 2), sensors.gps_sigma_m, sensors.gps_correlation_s / dt)
+        compass_error = math.radians(sensors.heading_sigma_deg) * self._stream(_COMPASS).standard_normal(n)
+        compass = np.mod(chase.heading + compass_error + math.pi, 2.0 * math.pi) - math.pi
+        return _Cache(chase, target, geometry, measurements, chase.position_m + gps_error, compass)
 
     def tracks(self) -> tuple[BoatTrack, BoatTrack]:
         """True tracks ``(chase, target)`` at the frame times."""
@@ -209,25 +172,9 @@ class StereoScene(Sequence):
             relative_m=(float(m.ahead_m[k]), float(m.starboard_m[k])),
         )
 
-    def frame(self, index: int) -> Frame:
-        """Frame ``index`` on its own (identical to the one :meth:`frames` yields)."""
-        return Frame(
-            index=index,
-            observation=self.measurement(index),
-            truth=self.truth(index),
-            navigation=self.navigation(index),
-            time_s=index * self._spec.frame_interval_s,
-        )
-
-    def frames(self) -> Iterator[Frame]:
-        """Yield the frames in order, one at a time."""
-        for index in range(self._spec.n_frames):
-            yield self.frame(index)
-
-    def _check(self, index: int) -> int:
-        if not 0 <= index < self._spec.n_frames:
-            raise IndexError(f"{self._spec.name}: frame {index} out of range 0..{self._spec.n_frames - 1}")
-        return index
+    def observation(self, index: int) -> StereoMeasurement | None:
+        """The observation of frame ``index``: :meth:`measurement`."""
+        return self.measurement(index)
 
 
 def _pair(values: np.ndarray) -> tuple[float, float]:

@@ -29,7 +29,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from benchmark.model import StereoCalibration
-from benchmark.scenes.stereo_projection import in_view, project, triangulate
+from benchmark.scenes.stereo_projection import in_view
+from benchmark.stereo_geometry import project, triangulate
 
 
 class Loss(enum.IntEnum):

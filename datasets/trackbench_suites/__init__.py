@@ -16,13 +16,30 @@ hard, and the frame-to-frame variances of Tables 4.2 and 4.3), and
 
 The ``stereo`` suite (``stereo.toml``) holds nine simulated chase-boat
 sequences, ``stereo/case1-slow`` to ``stereo/case3-fast``: the three
-trajectory cases of seeds/002, section 3, each at three speeds.
+trajectory cases of seeds/002, section 3 (case 1 both boats straight,
+case 2 the target sinusoidal, case 3 both sinusoidal), each at three
+speeds (the target's top speed 3.6, 7 or 9 m/s).  A frame holds the stereo
+front end's measurement of the target boat, or None when it lost it
+(:class:`benchmark.scenes.StereoScene`).
+
+The ``stereo-images`` suite (``stereo_images.toml``) holds three rendered
+sequences, ``stereo-images/case1-medium`` to ``case3-medium``: each is
+``based_on`` the ``stereo`` sequence of the same name (same paths, speeds,
+seed, so the same truth and navigation errors), but a frame holds the
+camera's pair of BGR images instead of a measurement, in which a tracker
+finds the target's yellow marker and its disparity itself, as the field
+system of seeds/002, section 4.1 did (:class:`benchmark.scenes.StereoImageScene`).
+
+Each suite file names its scene kind (:data:`trackbench_suites.loader.SCENE_KINDS`:
+``camera``, ``stereo``, ``stereo-images``), and a sequence may start from a
+sequence of another shipped suite (``based_on``); see
+:mod:`trackbench_suites.loader`.
 """
 
 from benchmark import Registry, hookimpl
-from trackbench_suites.loader import SCENE_KINDS, load_suites, parse_suite
+from trackbench_suites.loader import SCENE_KINDS, load_suites, parse_suite, shipped_table
 
-__all__ = ["SCENE_KINDS", "load_suites", "parse_suite", "trackbench_register_datasets"]
+__all__ = ["SCENE_KINDS", "load_suites", "parse_suite", "shipped_table", "trackbench_register_datasets"]
 
 
 @hookimpl

@@ -20,6 +20,17 @@ The ``kind`` selects a factory in :data:`SCENE_KINDS` that turns one merged
 sequence table into a :class:`benchmark.model.Sequence`; a new modality
 adds its kind there and its suites as more TOML files.  Errors name the
 file and the sequence.
+
+A sequence may start from a sequence of another shipped suite, so that two
+suites can show the same scene to different sensors without repeating its
+definition::
+
+    [[sequence]]
+    name = "case1-medium"
+    based_on = "stereo/case1-medium"
+
+Its table is then the named sequence's merged table (its name dropped),
+under this file's ``[defaults]``, under the entry itself.
 """
 
 from __future__ import annotations
@@ -32,14 +43,23 @@ from typing import Any
 
 from benchmark.errors import DataError
 from benchmark.model import Sequence
-from benchmark.scenes import CameraScene
-from benchmark.scenes.stereo_scene import StereoScene
+from benchmark.scenes import CameraScene, StereoImageScene, StereoScene
 
 SceneFactory = Callable[[Mapping[str, Any], str], Sequence]
 """Builds a sequence from its merged table and a description of where it came from."""
 
-SCENE_KINDS: dict[str, SceneFactory] = {"camera": CameraScene.from_dict, "stereo": StereoScene.from_dict}
+SCENE_KINDS: dict[str, SceneFactory] = {
+    "camera": CameraScene.from_dict,
+    "stereo": StereoScene.from_dict,
+    "stereo-images": StereoImageScene.from_dict,
+}
 """Scene kinds a suite file may name, and the factory of each."""
+
+BASE_KEY = "based_on"
+"""Key of a sequence table that names the sequence, ``"<suite>/<sequence>"``, it starts from."""
+
+BaseResolver = Callable[[str, str], Mapping[str, Any]]
+"""Returns the merged table of the sequence a reference names; the second argument says where it was asked for."""
 
 
 def merge_tables(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[str, Any]:
@@ -53,7 +73,89 @@ def merge_tables(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[s
     return merged
 
 
-def parse_suite(text: str, source: str) -> tuple[str, list[Sequence]]:
+def _read(text: str, source: str) -> tuple[Mapping[str, Any], Mapping[str, Any], list[Any]]:
+    """The ``[suite]`` header, ``[defaults]`` and ``[[sequence]]`` entries of a TOML document, checked."""
+    try:
+        document = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DataError(f"{source}: not valid TOML: {exc}") from exc
+    unknown = sorted(set(document) - {"suite", "defaults", "sequence"})
+    if unknown:
+        raise DataError(f"{source}: unknown top-level key(s) {unknown}; expected suite, defaults, sequence")
+    header = document.get("suite")
+    if not isinstance(header, Mapping) or not isinstance(header.get("name"), str) or not header["name"]:
+        raise DataError(f"{source}: needs a [suite] table with a non-empty name")
+    defaults = document.get("defaults", {})
+    entries = document.get("sequence", [])
+    if not isinstance(defaults, Mapping) or not isinstance(entries, list) or not entries:
+        raise DataError(f"{source}: needs [defaults] as a table and at least one [[sequence]]")
+    return header, defaults, entries
+
+
+def _tables(
+    defaults: Mapping[str, Any], entries: list[Any], source: str, resolve: BaseResolver
+) -> Iterator[tuple[str, dict[str, Any]]]:
+    """``(name, merged table)`` of every entry, in file order, with ``based_on`` resolved and removed."""
+    seen: set[str] = set()
+    for position, entry in enumerate(entries, start=1):
+        short = entry.get("name") if isinstance(entry, Mapping) else None
+        if not isinstance(short, str) or not short:
+            raise DataError(f"{source}: [[sequence]] number {position} needs a non-empty name")
+        if short in seen:
+            raise DataError(f"{source}: sequence name {short!r} appears twice")
+        seen.add(short)
+        table = merge_tables(defaults, entry)
+        reference = table.pop(BASE_KEY, None)
+        if reference is not None:
+            where = f"{source} [sequence {short}]"
+            if not isinstance(reference, str):
+                raise DataError(f"{where}: {BASE_KEY} must be a string '<suite>/<sequence>', got {reference!r}")
+            base = dict(resolve(reference, where))
+            base.pop("name", None)
+            table = merge_tables(merge_tables(base, defaults), entry)
+            table.pop(BASE_KEY, None)
+        yield short, table
+
+
+def shipped_table(reference: str, where: str, _chain: tuple[str, ...] = ()) -> dict[str, Any]:
+    """The merged table of a sequence of a suite shipped in this package.
+
+    Parameters
+    ----------
+    reference : str
+        ``"<suite>/<sequence>"``, the suite by its ``[suite]`` name.
+    where : str
+        Where the reference was found, for error messages.
+
+    Returns
+    -------
+    dict
+        The sequence's ``[defaults]`` merged with its entry (and its own
+        ``based_on`` resolved), its short name under ``"name"``.
+
+    Raises
+    ------
+    DataError
+        When no shipped suite has that sequence, or references go round in a circle.
+    """
+    if reference in _chain:
+        raise DataError(f"{where}: {BASE_KEY} references go round in a circle: {' -> '.join((*_chain, reference))}")
+    suite, _, short = reference.partition("/")
+    for item in suite_files():
+        header, defaults, entries = _read(item.read_text(encoding="utf-8"), item.name)
+        if header["name"] != suite:
+            continue
+
+        def resolve(inner: str, inner_where: str) -> dict[str, Any]:
+            return shipped_table(inner, inner_where, (*_chain, reference))
+
+        for name, table in _tables(defaults, entries, item.name, resolve):
+            if name == short:
+                return table
+    raise DataError(f"{where}: {BASE_KEY} {reference!r} names no sequence of a shipped suite")
+
+
+def parse_suite(text: str, source: str, resolve: BaseResolver = shipped_table) -> tuple[str, list[Sequence]]:
     """The suite a TOML document defines.
 
     Parameters
@@ -62,6 +164,9 @@ def parse_suite(text: str, source: str) -> tuple[str, list[Sequence]]:
         The TOML document.
     source : str
         Its file name, for error messages.
+    resolve : callable, optional
+        Finds the table a ``based_on`` reference names; by default among
+        the suites shipped in this package (:func:`shipped_table`).
 
     Returns
     -------
@@ -74,19 +179,10 @@ def parse_suite(text: str, source: str) -> tuple[str, list[Sequence]]:
     ------
     DataError
         For invalid TOML, a missing or unknown ``[suite]`` key or ``kind``, a
-        sequence without a name, a repeated name, or an invalid sequence
-        definition.
+        sequence without a name, a repeated name, a ``based_on`` that names
+        nothing, or an invalid sequence definition.
     """
-    try:
-        document = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise DataError(f"{source}: not valid TOML: {exc}") from exc
-    unknown = sorted(set(document) - {"suite", "defaults", "sequence"})
-    if unknown:
-        raise DataError(f"{source}: unknown top-level key(s) {unknown}; expected suite, defaults, sequence")
-    header = document.get("suite")
-    if not isinstance(header, Mapping) or not isinstance(header.get("name"), str) or not header["name"]:
-        raise DataError(f"{source}: needs a [suite] table with a non-empty name")
+    header, defaults, entries = _read(text, source)
     suite = header["name"]
     kind = header.get("kind")
     if kind not in SCENE_KINDS:
@@ -94,21 +190,9 @@ def parse_suite(text: str, source: str) -> tuple[str, list[Sequence]]:
     extra = sorted(set(header) - {"name", "kind", "description"})
     if extra:
         raise DataError(f"{source}: unknown [suite] key(s) {extra}")
-    defaults = document.get("defaults", {})
-    entries = document.get("sequence", [])
-    if not isinstance(defaults, Mapping) or not isinstance(entries, list) or not entries:
-        raise DataError(f"{source}: needs [defaults] as a table and at least one [[sequence]]")
     factory = SCENE_KINDS[kind]
     sequences: list[Sequence] = []
-    seen: set[str] = set()
-    for position, entry in enumerate(entries, start=1):
-        short = entry.get("name") if isinstance(entry, Mapping) else None
-        if not isinstance(short, str) or not short:
-            raise DataError(f"{source}: [[sequence]] number {position} needs a non-empty name")
-        if short in seen:
-            raise DataError(f"{source}: sequence name {short!r} appears twice")
-        seen.add(short)
-        table = merge_tables(defaults, entry)
+    for short, table in _tables(defaults, entries, source, resolve):
         table["name"] = f"{suite}/{short}"
         sequences.append(factory(table, f"{source} [sequence {short}]"))
     return suite, sequences

@@ -6,7 +6,7 @@ carries them through the linearised triangulation (eq. 16)::
 
     Q_t = Q_f J J^T,
 
-``J`` being the Jacobian of eq. (17) (:mod:`trackbench_stereo_ekf.triangulation`).
+``J`` being the Jacobian of eq. (17) (:func:`benchmark.stereo_geometry.triangulation_jacobian`).
 Eq. (16) writes ``Q_f J N_t J^T`` after "factoring out" ``Q_f``, that is with
 ``N_t`` the identity; eq. (18) confirms one factor ``Q_f`` only.  With
 ``D = E^2`` the square of the triangulation denominator the entries are
@@ -37,7 +37,7 @@ from typing import Literal
 import numpy as np
 
 from benchmark.model import StereoCalibration
-from trackbench_stereo_ekf.triangulation import denominator, signed_baseline, triangulation_jacobian
+from benchmark.stereo_geometry import signed_baseline, triangulation_denominator, triangulation_jacobian
 
 CovarianceForm = Literal["eq18", "eq20"]
 COVARIANCE_FORMS: tuple[CovarianceForm, ...] = ("eq18", "eq20")
@@ -95,7 +95,7 @@ def modified_covariance(
     ----------
     seeds/002, section 3.1, eq. (20).
     """
-    D = denominator(left_px, right_px, calibration) ** 2
+    D = triangulation_denominator(left_px, right_px, calibration) ** 2
     x_variance = 2.0 * calibration.focal_px**2 * signed_baseline(calibration) ** 2 / D**2
     return pixel_variance * np.diag([x_variance, lateral_k])
 

@@ -12,6 +12,11 @@ Each frame runs the filter of seeds/002, Table 2:
    (:mod:`trackbench_stereo_ekf.measurement`) and the measurement noise
    ``Q_t`` of eq. (20) or eq. (18) (:mod:`trackbench_stereo_ekf.noise`).
 
+A frame's observation is a StereoMeasurement (or None), or an image pair
+that the front end of :mod:`trackbench_stereo_ekf.frontend` measures
+first (:func:`trackbench_stereo_ekf.observation.read_frame`); its settings
+are the ``frontend_*`` parameters.
+
 ``Q_t`` lives in the camera frame, which is the space of ``z`` and of
 ``h`` (eq. 11), so it enters the update without rotation.  Far targets
 weigh less because ``Q_t`` grows as the fourth power of the range: beyond
@@ -67,19 +72,24 @@ from benchmark.model import (
     StereoTruth,
     TargetEstimate,
 )
+from benchmark.stereo_geometry import in_front, project, rotation, to_north_east
 from benchmark.tracker import Tracker
-from trackbench_stereo_ekf.measurement import observation_jacobian, observe, rotation, to_north_east
+from trackbench_stereo_ekf.measurement import observation_jacobian, observe
 from trackbench_stereo_ekf.motion import process_noise, propagate, transition_matrix
 from trackbench_stereo_ekf.noise import COVARIANCE_FORMS, measurement_noise, navigation_noise
-from trackbench_stereo_ekf.triangulation import in_front, project
+from trackbench_stereo_ekf.observation import FrontEndSettings, front_end_params, read_frame
 
 NOISE_POINTS = ("prediction", "measurement")
 """Where ``Q_t`` may be evaluated: at the predicted or at the measured pixel coordinates."""
 
 
 @dataclass(frozen=True)
-class StereoEkfParams:
-    """Parameters of the stereo EKF; defaults are seeds/002, Table 5 and section 3.1 where it gives values."""
+class StereoEkfParams(FrontEndSettings):
+    """Parameters of the stereo EKF; defaults are seeds/002, Table 5 and section 3.1 where it gives values.
+
+    The ``frontend_*`` parameters (:class:`~trackbench_stereo_ekf.observation.FrontEndSettings`)
+    set the front end that measures image pairs.
+    """
 
     covariance: str = "eq20"
     """Measurement covariance: ``"eq20"`` (modified, section 3.1's choice) or ``"eq18"`` (full)."""
@@ -128,13 +138,14 @@ class StereoEkfTracker(Tracker):
     """
 
     name = "stereo_ekf"
-    version = "1.0"
+    version = "1.1"
     modality = "stereo"
     Params = StereoEkfParams
 
     def __init__(self, params: StereoEkfParams | None = None) -> None:
         super().__init__(params)
         _check(self.name, self.params)
+        self._front_end = front_end_params(self.params, self.name)
         self._info: SequenceInfo | None = None
         self._belief: Gaussian | None = None
         self._last_index: int | None = None
@@ -187,26 +198,26 @@ class StereoEkfTracker(Tracker):
         Raises
         ------
         DataError
-            If the observation is neither a StereoMeasurement nor None, a
-            measurement comes without CH's ChaseNavigation, or frames go
-            backwards.
+            If the observation is neither a StereoMeasurement, None nor an
+            image pair, a measurement comes without CH's ChaseNavigation, or
+            frames go backwards.
         """
         if self._info is None:
             raise RuntimeError("reset must be called before step")
         measurement = self._measurement(frame)
         if self._belief is None:
             if measurement is not None:
-                self._start_from(frame.index, frame.observation, *measurement)
+                self._start_from(frame.index, *measurement)
         else:
             self._predict_to(frame.index)
             if measurement is not None:
-                z, navigation = measurement
+                observation, z, navigation = measurement
                 self._belief = update(
                     self._belief,
                     z,
                     lambda x: observe(x, navigation),
                     observation_jacobian(navigation),
-                    self._measurement_noise(frame.observation, z, navigation),
+                    self._measurement_noise(observation, z, navigation),
                 )
                 self._moving = True
         if self._belief is None or not self._moving:
@@ -214,27 +225,16 @@ class StereoEkfTracker(Tracker):
         mean = self._belief.mean
         return TargetEstimate((float(mean[0]), float(mean[1])), (float(mean[2]), float(mean[3])))
 
-    def _measurement(self, frame: Frame) -> tuple[np.ndarray, ChaseNavigation] | None:
-        """``(z, navigation)`` of a frame with a usable measurement, else None."""
-        info = self._info
-        observation = frame.observation
-        if observation is None:
+    def _measurement(self, frame: Frame) -> tuple[StereoMeasurement, np.ndarray, ChaseNavigation] | None:
+        """``(measurement, z, navigation)`` of a frame with a usable measurement, else None."""
+        read = read_frame(frame, self._info, self._front_end)
+        if read is None:
             return None
-        if not isinstance(observation, StereoMeasurement):
-            raise DataError(
-                f"sequence {info.name!r}, frame {frame.index}: expected a StereoMeasurement or None, "
-                f"got {type(observation).__name__}"
-            )
-        navigation = frame.navigation
-        if not isinstance(navigation, ChaseNavigation):
-            raise DataError(
-                f"sequence {info.name!r}, frame {frame.index}: a measurement needs the chase boat's "
-                f"ChaseNavigation, got {type(navigation).__name__}"
-            )
+        observation, navigation = read
         z = np.asarray(observation.relative_m, dtype=float)
-        if not (np.all(np.isfinite(z)) and in_front(observation.left_px, observation.right_px, info.calibration)):
+        if not (np.all(np.isfinite(z)) and in_front(observation.left_px, observation.right_px, self._info.calibration)):
             return None
-        return z, navigation
+        return observation, z, navigation
 
     def _measurement_noise(
         self, observation: StereoMeasurement, z: np.ndarray, navigation: ChaseNavigation
@@ -246,7 +246,7 @@ class StereoEkfTracker(Tracker):
         if p.noise_at == "prediction" and self._belief is not None:
             predicted = observe(self._belief.mean, navigation)
             if predicted[0] > 0.0:
-                (left, right), relative = project(predicted, calibration), predicted
+                (left, right), relative = project(predicted[0], predicted[1], calibration), predicted
         noise = measurement_noise(left, right, calibration, p.pixel_variance_px2, p.covariance, p.lateral_k)
         noise = noise + navigation_noise(relative, p.gps_std_m, math.radians(p.compass_std_deg))
         if math.hypot(*z) > calibration.range_limit_m:
@@ -279,7 +279,8 @@ class StereoEkfTracker(Tracker):
         covariance = np.zeros((4, 4))
         covariance[:2, :2] = R @ self._measurement_noise(observation, z, navigation) @ R.T
         covariance[2:, 2:] = np.eye(2) * self.params.unknown_velocity_std_mps**2
-        self._belief = Gaussian(np.concatenate([to_north_east(z, navigation), [0.0, 0.0]]), covariance)
+        north, east = to_north_east(z[0], z[1], navigation.position_m, navigation.heading)
+        self._belief = Gaussian(np.array([north, east, 0.0, 0.0]), covariance)
         self._last_index = index
 
 

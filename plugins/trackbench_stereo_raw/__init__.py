@@ -3,8 +3,12 @@
 Positions straight from triangulation and the chase boat's navigation, and
 speed and heading from the moving average of their changes: the "Raw" rows
 of seeds/002, Tables 6-8, against which the ``stereo_ekf`` filter is
-measured.  Registered as ``stereo_raw`` through the ``trackbench``
-entry-point group::
+measured.  It reads the ``stereo`` suite's measurements and the
+``stereo-images`` suite's image pairs alike, measuring a pair with the
+front end of ``trackbench_stereo_ekf`` (its public modules ``frontend`` and
+``observation``: this plugin depends on that package as on a third-party
+one).  Registered as ``stereo_raw`` through the ``trackbench`` entry-point
+group::
 
     [project.entry-points.trackbench]
     stereo_raw = "trackbench_stereo_raw"

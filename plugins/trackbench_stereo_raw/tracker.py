@@ -10,6 +10,14 @@ section 4).  Each frame with a measurement reports
 * the velocity of :class:`trackbench_stereo_raw.smoothing.VelocitySmoother`,
   from which the leaderboard takes speed and heading.
 
+A frame's observation is a StereoMeasurement (or None), or an image pair
+that the front end of the ``trackbench_stereo_ekf`` plugin measures first
+(:func:`trackbench_stereo_ekf.observation.read_frame`, settings in the
+``frontend_*`` parameters).  The baseline uses that package's public front
+end and observation modules the way a third-party plugin would, so that
+both trackers see the same measurements; it depends on nothing of the
+filter itself.  The geometry of eq. (10) is :mod:`benchmark.stereo_geometry`.
+
 A frame without a measurement, or whose measurement is not a finite point
 ahead of the camera (disparity not positive), reports nothing: the raw
 baseline has no model to bridge the gap.  The first measurement of a
@@ -27,39 +35,16 @@ from typing import Any
 import numpy as np
 
 from benchmark.errors import DataError, ParameterError
-from benchmark.model import ChaseNavigation, Frame, SequenceInfo, StereoMeasurement, TargetEstimate
+from benchmark.model import Frame, SequenceInfo, TargetEstimate
+from benchmark.stereo_geometry import to_north_east
 from benchmark.tracker import Tracker
+from trackbench_stereo_ekf.observation import FrontEndSettings, front_end_params, read_frame
 from trackbench_stereo_raw.smoothing import VelocitySmoother
 
 
-def to_north_east(relative_m: np.ndarray, navigation: ChaseNavigation) -> np.ndarray:
-    """The target's North-East position from its position relative to CH, eq. (10).
-
-    Parameters
-    ----------
-    relative_m : array_like
-        ``(x_v, y_v)``: ahead and to starboard of CH, m.
-    navigation : ChaseNavigation
-        CH's GPS position and heading (clockwise from north).
-
-    Returns
-    -------
-    numpy.ndarray
-        ``[X, Y]``, m.
-
-    References
-    ----------
-    seeds/002, eq. (10).
-    """
-    x_v, y_v = np.asarray(relative_m, dtype=float)
-    c, s = math.cos(navigation.heading), math.sin(navigation.heading)
-    north, east = navigation.position_m
-    return np.array([c * x_v - s * y_v + north, s * x_v + c * y_v + east])
-
-
 @dataclass(frozen=True)
-class StereoRawParams:
-    """Parameters of the raw baseline (seeds/002, section 4)."""
+class StereoRawParams(FrontEndSettings):
+    """Parameters of the raw baseline (seeds/002, section 4); ``frontend_*`` set the front end for image pairs."""
 
     window: int = 15
     """Samples of the moving average smoothing speed and heading (seeds/002, section 4, Figs. 14-15)."""
@@ -74,7 +59,7 @@ class StereoRawTracker(Tracker):
     """
 
     name = "stereo_raw"
-    version = "1.0"
+    version = "1.1"
     modality = "stereo"
     Params = StereoRawParams
 
@@ -84,6 +69,7 @@ class StereoRawTracker(Tracker):
             raise ParameterError(
                 f"tracker {self.name!r}: parameter 'window' must be at least 1, not {self.params.window}"
             )
+        self._front_end = front_end_params(self.params, self.name)
         self._info: SequenceInfo | None = None
         self._smoother = VelocitySmoother(self.params.window)
 
@@ -101,27 +87,25 @@ class StereoRawTracker(Tracker):
         self._smoother = VelocitySmoother(self.params.window)
 
     def step(self, frame: Frame) -> TargetEstimate | None:
-        """The raw position and the smoothed velocity, or None without a usable measurement."""
+        """The raw position and the smoothed velocity, or None without a usable measurement.
+
+        Raises
+        ------
+        DataError
+            If the observation is neither a StereoMeasurement, None nor an
+            image pair, or a measurement comes without CH's ChaseNavigation.
+        """
         info = self._info
         if info is None:
             raise RuntimeError("reset must be called before step")
-        observation = frame.observation
-        if observation is None:
+        read = read_frame(frame, info, self._front_end)
+        if read is None:
             return None
-        if not isinstance(observation, StereoMeasurement):
-            raise DataError(
-                f"sequence {info.name!r}, frame {frame.index}: expected a StereoMeasurement or None, "
-                f"got {type(observation).__name__}"
-            )
-        if not isinstance(frame.navigation, ChaseNavigation):
-            raise DataError(
-                f"sequence {info.name!r}, frame {frame.index}: a measurement needs the chase boat's "
-                f"ChaseNavigation, got {type(frame.navigation).__name__}"
-            )
-        relative = np.asarray(observation.relative_m, dtype=float)
-        if not (np.all(np.isfinite(relative)) and relative[0] > 0.0):
+        observation, navigation = read
+        ahead, starboard = observation.relative_m
+        if not (math.isfinite(ahead) and math.isfinite(starboard) and ahead > 0.0):
             return None
-        position = to_north_east(relative, frame.navigation)
+        position = np.array(to_north_east(ahead, starboard, navigation.position_m, navigation.heading))
         velocity = self._smoother.add(frame.index * info.frame_interval_s, position)
         if velocity is None:
             return None

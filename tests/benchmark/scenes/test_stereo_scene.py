@@ -12,7 +12,7 @@ import pytest
 
 from benchmark.errors import DataError
 from benchmark.model import ChaseNavigation, Sequence, StereoCalibration, StereoMeasurement, StereoTruth
-from benchmark.scenes.stereo_projection import project
+from benchmark.stereo_geometry import project
 from benchmark.scenes.stereo_scene import StereoScene
 from benchmark.scenes.stereo_sensors import Loss
 

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from benchmark.scenes.stereo_projection import project
+from benchmark.stereo_geometry import project
 from benchmark.scenes.stereo_sensors import Loss, burst_dropouts, correlated_noise, stereo_measurements
 from benchmark.scenes.stereo_spec import StereoCameraSpec
 

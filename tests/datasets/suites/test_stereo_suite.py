@@ -10,7 +10,7 @@ import pytest
 
 from benchmark.model import StereoTruth
 from benchmark.plugins import load_registry
-from benchmark.scenes.stereo_projection import project
+from benchmark.stereo_geometry import project
 from benchmark.scenes.stereo_scene import StereoScene
 from benchmark.scenes.stereo_sensors import Loss
 from trackbench_suites.loader import load_suites

@@ -8,9 +8,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from benchmark.model import ChaseNavigation
+from benchmark.stereo_geometry import triangulate
 from trackbench_stereo_ekf.measurement import observe
 from trackbench_stereo_ekf.noise import full_covariance, measurement_noise, modified_covariance, navigation_noise
-from trackbench_stereo_ekf.triangulation import triangulate
 
 left_px = st.floats(0.0, 319.0)
 disparity_px = st.floats(0.3, 80.0)

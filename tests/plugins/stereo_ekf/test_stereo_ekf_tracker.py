@@ -3,15 +3,15 @@
 from __future__ import annotations
 
 import dataclasses
-import math
 
 import numpy as np
 import pytest
 
 from benchmark.errors import DataError, ParameterError
 from benchmark.model import ChaseNavigation, Frame, SequenceInfo, StereoMeasurement, StereoTruth, TargetEstimate
+from benchmark.runner import Cell, run_cell
+from benchmark.stereo_geometry import to_north_east
 from trackbench_stereo_ekf import PAPER, StereoEkfParams, StereoEkfTracker
-from trackbench_stereo_ekf.measurement import to_north_east
 from trackbench_stereo_ekf.motion import propagate
 from trackbench_stereo_raw import StereoRawTracker
 
@@ -73,7 +73,10 @@ def test_without_init_the_first_measurement_starts_the_filter(scene):
             first = tracker.belief.mean
     # nothing before the first measurement, nor until a second one shows a velocity
     assert estimates[:5] == [None] * 5
-    np.testing.assert_allclose(first[:2], to_north_east(frames[3].observation.relative_m, frames[3].navigation))
+    navigation = frames[3].navigation
+    np.testing.assert_allclose(
+        first[:2], to_north_east(*frames[3].observation.relative_m, navigation.position_m, navigation.heading)
+    )
     assert np.all(first[2:] == 0.0)
     assert all(estimate is not None for estimate in estimates[5:])
 
@@ -182,3 +185,23 @@ def test_bad_inputs_name_the_sequence_and_frame(scene):
         tracker.step(dataclasses.replace(frames[0], observation=np.zeros((4, 4))))
     with pytest.raises(DataError, match="frame 1.*ChaseNavigation"):
         tracker.step(dataclasses.replace(frames[1], navigation=None))
+
+
+@pytest.mark.parametrize("name", ["stereo_ekf", "stereo_ekf-paper", "stereo_ekf-eq18"])
+def test_every_variant_tracks_the_target_in_rendered_image_pairs(name, plugin_registry, stereo_clip):
+    result = run_cell(Cell(plugin_registry.trackers[name], stereo_clip, seed=0, init="none"))
+    assert result.status == "ok", result.message
+    errors = result.frames["err_position_m"].to_numpy()
+    # started from the first measurement, the filter reports once a second one has shown a velocity
+    assert np.isnan(errors[0]) and np.all(errors[1:] < 2.0)
+
+
+def test_an_image_pair_is_read_as_the_front_ends_measurement(stereo_clip, stereo_clip_measured):
+    frames = list(stereo_clip.frames())
+    runs = []
+    for sequence in (frames, stereo_clip_measured):
+        tracker = StereoEkfTracker()
+        tracker.reset(stereo_clip.info, np.random.default_rng(0), init=frames[0].truth)
+        runs.append([tracker.step(frame) for frame in sequence])
+    assert runs[0] == runs[1]
+    assert all(estimate is not None for estimate in runs[0])

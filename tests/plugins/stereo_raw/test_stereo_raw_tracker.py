@@ -9,6 +9,7 @@ import pytest
 
 from benchmark.errors import DataError, ParameterError
 from benchmark.model import ChaseNavigation, Frame, SequenceInfo, StereoCalibration, StereoMeasurement
+from benchmark.runner import Cell, run_cell
 from trackbench_stereo_raw import StereoRawParams, StereoRawTracker
 
 CALIBRATION = StereoCalibration(140.8, 0.12, 159.5, 159.5, 320, 16.0, 0.11)
@@ -89,3 +90,21 @@ def test_bad_window_and_bad_inputs_are_refused():
         tracker.step(Frame(4, "not a measurement", None, None, 0.8))
     with pytest.raises(DataError, match="frame 5.*ChaseNavigation"):
         tracker.step(Frame(5, _measurement(10.0, 0.0), None, None, 1.0))
+
+
+def test_rendered_image_pairs_give_the_positions_and_velocities_of_their_measurements(
+    plugin_registry, stereo_clip, stereo_clip_measured
+):
+    result = run_cell(Cell(plugin_registry.trackers["stereo_raw"], stereo_clip, seed=0, init="none"))
+    assert result.status == "ok", result.message
+    errors = result.frames["err_position_m"].to_numpy()
+    assert np.isnan(errors[0]) and np.all(errors[1:] < 2.0)
+    pairs = _run_on(list(stereo_clip.frames()), stereo_clip.info)
+    assert pairs == _run_on(stereo_clip_measured, stereo_clip.info)
+    assert pairs[0] is None and None not in pairs[1:]
+
+
+def _run_on(frames: list[Frame], info: SequenceInfo) -> list:
+    tracker = StereoRawTracker()
+    tracker.reset(info, np.random.default_rng(0))
+    return [tracker.step(frame) for frame in frames]
