@@ -419,3 +419,14 @@ def update(
         raise
     n = mean.size
     return _belief(out[n], out[:n])
+
+
+def compile_kernels() -> None:
+    """Compile (or load from numba's cache) the kernels of :func:`predict` and :func:`update` now.
+
+    Trackers call this before their first timed step, so that frames per
+    second measure the filter rather than the compiler.
+    """
+    belief = Gaussian(np.zeros(2), np.eye(2))
+    belief = predict(belief, np.eye(2), None, np.eye(2))
+    update(belief, np.zeros(1), np.ones((1, 2)), None, np.eye(1))

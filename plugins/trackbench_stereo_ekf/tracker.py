@@ -62,7 +62,7 @@ from typing import Any
 import numpy as np
 
 from benchmark.errors import DataError, ParameterError
-from benchmark.filters.kalman import Gaussian, predict, update
+from benchmark.filters.kalman import Gaussian, compile_kernels, predict, update
 from benchmark.model import (
     ChaseNavigation,
     Frame,
@@ -175,6 +175,7 @@ class StereoEkfTracker(Tracker):
             If the sequence lacks its stereo calibration or frame interval,
             or ``init`` is not a StereoTruth.
         """
+        compile_kernels()
         if not isinstance(info.calibration, StereoCalibration):
             raise DataError(f"sequence {info.name!r}: a stereo tracker needs a StereoCalibration")
         if info.frame_interval_s is None or not info.frame_interval_s > 0.0:
