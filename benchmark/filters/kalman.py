@@ -269,6 +269,27 @@ def _linear_map(matrix: np.ndarray, mean: np.ndarray, name: str) -> np.ndarray:
     return A @ mean
 
 
+def _linearise(
+    model: Model, jacobian: Model | None, mean: np.ndarray, kind: str, output: str
+) -> tuple[np.ndarray, np.ndarray]:
+    """The model's matrix (or Jacobian at ``mean``) and, for a function, its value at ``mean``.
+
+    A linear model returns ``_NONE`` as its value: the kernels then apply the
+    matrix themselves.  ``kind`` and ``output`` name the model in errors.
+    """
+    if jacobian is None:
+        if callable(model):
+            raise ValueError(f"a {kind} model given as a function needs its Jacobian")
+        return _floats(model, float), _NONE
+    matrix = _floats(jacobian(mean) if callable(jacobian) else jacobian, float)
+    if not callable(model):
+        return matrix, _linear_map(model, mean, f"the {kind} matrix")
+    value = _floats(model(mean), float)
+    if value.size == 0:
+        raise ValueError(f"the {kind} function returned an empty {output}")
+    return matrix, value
+
+
 def predict(
     belief: Gaussian,
     transition: Model,
@@ -316,19 +337,7 @@ def predict(
     mean = belief.mean
     noise = _floats(process_noise, float)
     offset = _NONE if control is None else _floats(control, float)
-    if jacobian is None:
-        if callable(transition):
-            raise ValueError("a transition given as a function needs its Jacobian")
-        G = _floats(transition, float)
-        predicted = _NONE
-    else:
-        G = _floats(jacobian(mean) if callable(jacobian) else jacobian, float)
-        if callable(transition):
-            predicted = _floats(transition(mean), float)
-            if predicted.size == 0:
-                raise ValueError("the transition function returned an empty state")
-        else:
-            predicted = _linear_map(transition, mean, "the transition matrix")
+    G, predicted = _linearise(transition, jacobian, mean, "transition", "state")
     try:
         out = _predict(G, mean, belief.covariance, noise, predicted, offset)
     except _KernelTypingError:
@@ -394,19 +403,7 @@ def update(
     mean = belief.mean
     z = _floats(measurement, float)
     noise = _floats(measurement_noise, float)
-    if jacobian is None:
-        if callable(observe):
-            raise ValueError("a measurement model given as a function needs its Jacobian")
-        H = _floats(observe, float)
-        predicted = _NONE
-    else:
-        H = _floats(jacobian(mean) if callable(jacobian) else jacobian, float)
-        if callable(observe):
-            predicted = _floats(observe(mean), float)
-            if predicted.size == 0:
-                raise ValueError("the measurement function returned an empty measurement")
-        else:
-            predicted = _linear_map(observe, mean, "the measurement matrix")
+    H, predicted = _linearise(observe, jacobian, mean, "measurement", "measurement")
     try:
         out = _correct(mean, belief.covariance, H, noise, z, predicted)
     except _KernelTypingError:
