@@ -56,6 +56,17 @@ _PARALLEL_EPS = 1e-12
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
+def _finite_state(states: np.ndarray, i: int) -> bool:
+    """Whether the cable part ``(d, alpha, w, beta)`` of particle ``i`` is finite."""
+    return (
+        math.isfinite(states[i, 0])
+        and math.isfinite(states[i, 1])
+        and math.isfinite(states[i, 2])
+        and math.isfinite(states[i, 3])
+    )
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
 def _sample_range(
     u0: float, v0: float, du: float, dv: float, lo: float, hi_u: float, hi_v: float, spacing: float
 ) -> tuple[int, int]:
@@ -230,12 +241,9 @@ def border_scores(
         half[x] = taps[radius - x]
     bases = _bases(width, height, spacing)
     for i in range(n):
-        d = states[i, 0]
-        alpha = states[i, 1]
-        w = states[i, 2]
-        beta = states[i, 3]
-        if not (math.isfinite(d) and math.isfinite(alpha) and math.isfinite(w) and math.isfinite(beta)):
+        if not _finite_state(states, i):
             continue
+        d, alpha, w, beta = states[i, 0], states[i, 1], states[i, 2], states[i, 3]
         nx = math.cos(alpha)
         ny = math.sin(alpha)
         cb = math.cos(beta)
@@ -359,12 +367,9 @@ def centre_contrast(states: np.ndarray, image: np.ndarray, spacing: float, bilin
     hi_v = height - 1.0
     out = np.zeros(n)
     for i in range(n):
-        d = states[i, 0]
-        alpha = states[i, 1]
-        w = states[i, 2]
-        beta = states[i, 3]
-        if not (math.isfinite(d) and math.isfinite(alpha) and math.isfinite(w) and math.isfinite(beta)):
+        if not _finite_state(states, i):
             continue
+        d, alpha, w, beta = states[i, 0], states[i, 1], states[i, 2], states[i, 3]
         nx = math.cos(alpha)
         ny = math.sin(alpha)
         # Centreline in pixels: foot point, direction t and normal n, y flipped.
