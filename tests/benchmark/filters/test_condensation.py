@@ -50,6 +50,8 @@ def particle_sets(draw: st.DrawFn, max_size: int = 200, dim: int = 2) -> Particl
     if draw(st.booleans()):
         raw[:] = 0.0
         raw[draw(st.integers(0, n - 1))] = 1.0
+    if raw.sum() == 0.0:  # a high power of few uniforms can underflow to all zeros
+        raw[0] = 1.0
     return ParticleSet(states, raw / raw.sum())
 
 
