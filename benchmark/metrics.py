@@ -21,7 +21,16 @@ import numpy as np
 import pandas as pd
 
 from benchmark.geometry import DetectionRule, cable_borders, score_line_pair, state_errors
-from benchmark.model import CableState, CameraTruth, Outcome, SequenceInfo, StereoTruth, TargetEstimate
+from benchmark.model import (
+    CableState,
+    CameraTruth,
+    Outcome,
+    PipeEstimate,
+    SequenceInfo,
+    SonarTruth,
+    StereoTruth,
+    TargetEstimate,
+)
 
 
 class EstimateError(TypeError):
@@ -151,8 +160,52 @@ class StereoScorer:
         return outcome, (position, estimate.speed_mps - true.speed_mps, math.degrees(heading))
 
 
-SCORERS: dict[str, Scorer] = {"camera": CameraScorer(), "stereo": StereoScorer()}
-"""The scorer of each modality; sonar and stereo add theirs here."""
+@dataclass(frozen=True)
+class SonarScorer:
+    """Scores across-track pipe positions against the sonar's resolution.
+
+    A ping is correct when the estimate is within ``tolerance_beams`` times
+    the truth's ``resolution_m`` (the across-track distance between
+    neighbouring beams at the pipe) of the pipe's axis, false when it is
+    farther, missed when the tracker reported nothing.  The paper counts a
+    detection as a match "with the accuracy set by the sensor's
+    resolution" (seeds/003, section 4.1); one beam spacing is that reading.
+
+    Parameters
+    ----------
+    tolerance_beams : float
+        Largest error of a correct ping, in beam spacings at the pipe.
+
+    References
+    ----------
+    seeds/003, sections 4.1-4.2.
+    """
+
+    tolerance_beams: float = 1.0
+    error_columns: tuple[str, ...] = ("err_across_m",)
+
+    def check(self, estimate: Any) -> None:
+        if estimate is None:
+            return
+        if not isinstance(estimate, PipeEstimate):
+            raise EstimateError(f"expected a PipeEstimate or None, got {type(estimate).__name__}: {estimate!r}")
+        if not math.isfinite(estimate.across_m):
+            raise EstimateError(f"estimate has a non-finite position: {estimate}")
+
+    def score(
+        self, estimate: PipeEstimate | None, truth: SonarTruth | None, info: SequenceInfo
+    ) -> tuple[Outcome | None, tuple[float, ...]]:
+        if truth is None or not math.isfinite(truth.across_m):
+            return None, (math.nan,)
+        if estimate is None:
+            return Outcome.MISSED, (math.nan,)
+        error = estimate.across_m - truth.across_m
+        correct = abs(error) <= self.tolerance_beams * truth.resolution_m
+        return (Outcome.CORRECT if correct else Outcome.FALSE), (error,)
+
+
+SCORERS: dict[str, Scorer] = {"camera": CameraScorer(), "sonar": SonarScorer(), "stereo": StereoScorer()}
+"""The scorer of each modality."""
 
 
 def scorer_for(modality: str) -> Scorer:

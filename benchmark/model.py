@@ -10,6 +10,13 @@ section 4.2, Table 4.1) in the coordinates fixed by ``conventions.md``
 section 1: a :class:`CableState` ``(d, alpha, w, beta)``.  A camera tracker's
 estimate is also a :class:`CableState`.
 
+Sonar frames are pings of a multibeam echo sounder looking down at a pipe
+(seeds/003): the observation is a :class:`Swath` (where each beam met the
+bottom), the truth a :class:`SonarTruth`, and an estimate a
+:class:`PipeEstimate`, the pipe's across-track position in the swath.
+Across-track positions are in m from the sonar's nadir, starboard
+positive; depths are in m below the transducer.
+
 Stereo frames follow a chase boat (CH) that tracks a target boat (TG) with a
 stereo camera (seeds/002): the observation is a :class:`StereoMeasurement`,
 the navigation CH's :class:`ChaseNavigation`, the truth a
@@ -164,6 +171,108 @@ class CameraTruth:
 
 
 @dataclass(frozen=True, slots=True)
+class SonarCalibration:
+    """The multibeam echo sounder and the pipe of a sonar sequence (seeds/003, section 4).
+
+    Attributes
+    ----------
+    n_beams : int
+        Beams per ping.
+    swath_angle : float
+        Full across-track opening of the fan, rad; the beams are equiangular
+        within it.
+    range_sigma_m : float
+        Standard deviation of a beam's range measurement.
+    pipe_diameter_m : float
+        Outer diameter of the pipe the sequence follows (its coating included).
+    """
+
+    n_beams: int
+    swath_angle: float
+    range_sigma_m: float
+    pipe_diameter_m: float
+
+    @property
+    def beam_spacing(self) -> float:
+        """Angle between neighbouring beams, rad."""
+        return self.swath_angle / max(self.n_beams - 1, 1)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Swath:
+    """One ping of a multibeam echo sounder: where each beam met the bottom.
+
+    Beams are in port-to-starboard order.  A beam without a return is
+    ``nan`` in both arrays.  Because the beams are equiangular, the
+    across-track spacing of the returns grows away from nadir (seeds/003,
+    section 2: the reason the detector resamples the scan).
+
+    Attributes
+    ----------
+    across_m : numpy.ndarray
+        Across-track position of each return, shape ``(n_beams,)``.
+    depth_m : numpy.ndarray
+        Depth of each return below the transducer, shape ``(n_beams,)``.
+
+    Raises
+    ------
+    ValueError
+        If the arrays are not one-dimensional float arrays of one length.
+    """
+
+    across_m: np.ndarray
+    depth_m: np.ndarray
+
+    def __post_init__(self) -> None:
+        for label in ("across_m", "depth_m"):
+            values = np.asarray(getattr(self, label), dtype=float)
+            if values.ndim != 1:
+                raise ValueError(f"swath {label} must be one-dimensional, got shape {values.shape}")
+            object.__setattr__(self, label, values)
+        if self.across_m.shape != self.depth_m.shape:
+            raise ValueError(
+                f"swath across_m and depth_m differ in shape: {self.across_m.shape} vs {self.depth_m.shape}"
+            )
+
+    @property
+    def valid(self) -> np.ndarray:
+        """Mask of the beams with a finite return."""
+        return np.isfinite(self.across_m) & np.isfinite(self.depth_m)
+
+
+@dataclass(frozen=True, slots=True)
+class SonarTruth:
+    """Ground truth of one ping.
+
+    Attributes
+    ----------
+    across_m : float
+        Across-track position of the pipe's axis.
+    depth_m : float
+        Depth of the pipe's axis below the transducer.
+    burial : float
+        Share of the pipe's diameter below the surrounding seabed: 0 proud,
+        1 fully buried.
+    resolution_m : float
+        Across-track distance between neighbouring beams at the pipe: the
+        sonar's resolution there, and the default tolerance of a correct
+        detection (seeds/003, section 4.1).
+    """
+
+    across_m: float
+    depth_m: float
+    burial: float
+    resolution_m: float
+
+
+@dataclass(frozen=True, slots=True)
+class PipeEstimate:
+    """A sonar tracker's estimate: the pipe's across-track position in the swath, m (seeds/003, eq. 5)."""
+
+    across_m: float
+
+
+@dataclass(frozen=True, slots=True)
 class StereoCalibration:
     """The stereo camera of a stereo sequence (seeds/002, Table 4 and eq. 15).
 
@@ -271,12 +380,13 @@ class Frame:
     index : int
         Position in the sequence, from 0.
     observation : Any
-        Camera: a ``uint8`` grey image of shape ``(H, W)``.  Stereo: a
+        Camera: a ``uint8`` grey image of shape ``(H, W)``.  Sonar: a
+        :class:`Swath`.  Stereo: a
         :class:`StereoMeasurement`, None when the front end lost the target,
         or (image suites) a pair of images ``(left, right)``.
     truth : Any
         Ground truth for the modality (camera: :class:`CameraTruth`,
-        stereo: :class:`StereoTruth`), or None.
+        sonar: :class:`SonarTruth`, stereo: :class:`StereoTruth`), or None.
     navigation : Any
         Navigation data where the platform has it (camera:
         :class:`VehicleSpeeds`, stereo: :class:`ChaseNavigation`).
@@ -309,7 +419,7 @@ class SequenceInfo:
         Time between frames.
     calibration : Any
         Camera: a :class:`CameraCalibration` where the data set knows it;
-        stereo: a :class:`StereoCalibration`.
+        sonar: a :class:`SonarCalibration`; stereo: a :class:`StereoCalibration`.
     extra : Mapping
         Anything else a data set wants to tell (description, source).
     """

@@ -89,3 +89,37 @@ def test_stereo_scorer_position_speed_and_heading_errors():
         stereo.check(TargetEstimate((math.nan, 0.0), (0.0, 0.0)))
     with pytest.raises(EstimateError):
         stereo.check(CableState(0, 0, 1, 0))
+
+
+SONAR_INFO = SequenceInfo("sonar/as-laid", "sonar", 1)
+
+
+@given(
+    truth_m=st.floats(-40.0, 40.0),
+    error_m=st.floats(-5.0, 5.0),
+    resolution_m=st.floats(0.01, 1.0),
+)
+def test_sonar_scorer_counts_a_ping_correct_within_one_beam_spacing(truth_m, error_m, resolution_m):
+    from benchmark.model import PipeEstimate, SonarTruth
+
+    sonar = scorer_for("sonar")
+    truth = SonarTruth(across_m=truth_m, depth_m=20.0, burial=0.0, resolution_m=resolution_m)
+    outcome, (error,) = sonar.score(PipeEstimate(truth_m + error_m), truth, SONAR_INFO)
+    assert error == pytest.approx(error_m, abs=1e-9)
+    assert (outcome is Outcome.CORRECT) == (abs(error) <= resolution_m)
+    assert outcome in (Outcome.CORRECT, Outcome.FALSE)
+
+
+def test_sonar_scorer_misses_unscored_and_garbage():
+    from benchmark.model import PipeEstimate, SonarTruth
+
+    sonar = scorer_for("sonar")
+    truth = SonarTruth(across_m=1.0, depth_m=20.0, burial=1.0, resolution_m=0.2)
+    outcome, errors = sonar.score(None, truth, SONAR_INFO)
+    assert outcome is Outcome.MISSED and math.isnan(errors[0])
+    assert sonar.score(PipeEstimate(1.0), None, SONAR_INFO)[0] is None
+    for garbage in (1.0, PipeEstimate(math.nan), TRUTH):
+        with pytest.raises(EstimateError):
+            sonar.check(garbage)
+    summary = summarise(frame_table([FrameScore(0, Outcome.CORRECT, {"err_across_m": 0.3}, 0.01)]), sonar.error_columns)
+    assert summary["rmse_across_m"] == pytest.approx(0.3)
