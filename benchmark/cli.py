@@ -8,7 +8,7 @@
     datasets      suites and their sequences
     run           run cells, store them and publish the leaderboard
     leaderboard   re-publish the leaderboard of an existing results database
-    make-dataset  write a suite's sequences as PNG frames plus sequence files
+    make-dataset  write a suite's sequences to disk (PNG frames plus sequence files, or swath files)
 
 ``run`` forms a cell for every selected tracker, sequence and seed whose
 modalities match, runs the cells (in a process pool unless ``--jobs 0``),
@@ -314,7 +314,7 @@ def tables_command(session: Session, suite: str, out: Path, metrics: tuple[str, 
 )
 @click.pass_obj
 def make_dataset(session: Session, suite: str, out: Path) -> None:
-    """Write every sequence of SUITE as PNG frames plus an image sequence file."""
+    """Write every sequence of SUITE to disk: camera as PNG frames plus a sequence file, sonar as a swath file."""
     from benchmark.io import export_sequence
     from benchmark.selection import SelectionError
 

@@ -1,4 +1,4 @@
-"""Readers and writers for camera data.
+"""Readers and writers for camera and sonar data.
 
 Researchers bring their own labelled sequences in the thesis' image sequence
 file format (seeds/000, section 4.7.3; ``conventions.md`` section 2): a text
@@ -9,13 +9,16 @@ into a lazy, picklable :class:`~benchmark.model.Sequence`:
 
 * :class:`ImageSequenceFile` -- an image sequence file, with ground truth;
 * :class:`ImageFolder` -- every image in a folder, in natural order;
-* :class:`VideoFile` -- the frames of a video OpenCV decodes.
+* :class:`VideoFile` -- the frames of a video OpenCV decodes;
+* :class:`SwathFile` -- multibeam sonar pings with ground truth, one per
+  line (seeds/003; :mod:`benchmark.io.swath_file`).
 
 :func:`open_sequence` picks the right one for a path, which is how
 ``trackbench run --dataset PATH`` reads a dataset made anywhere else.  In
 the other direction, :func:`write_sequence_file` writes the format and
 :func:`export_sequence` writes any camera sequence (a rendered scene, say)
-as PNG images plus a sequence file, so that it can be used elsewhere.
+as PNG images plus a sequence file (any sonar sequence as a swath file),
+so that it can be used elsewhere.
 
 Frames are decoded one at a time while a sequence is iterated.  A missing,
 corrupt or malformed input raises :class:`~benchmark.errors.DataError`
@@ -38,18 +41,20 @@ from benchmark.io.sequence_file import (
     read_sequence_file,
     write_sequence_file,
 )
+from benchmark.io.swath_file import SWATH_SUFFIX, SwathFile, write_swath_file
 from benchmark.io.video import VIDEO_EXTENSIONS, VideoFile
 from benchmark.model import Sequence
 
 
 def open_sequence(path: str | os.PathLike[str]) -> Sequence:
-    """Open a camera dataset by its path.
+    """Open a camera or sonar dataset by its path.
 
     Parameters
     ----------
     path : str or path-like
         A folder of images (:class:`ImageFolder`), a video whose name ends
-        in one of :data:`VIDEO_EXTENSIONS` (:class:`VideoFile`), or else an
+        in one of :data:`VIDEO_EXTENSIONS` (:class:`VideoFile`), a swath
+        file whose name ends in :data:`SWATH_SUFFIX` (:class:`SwathFile`), or else an
         image sequence file of any name (:class:`ImageSequenceFile`; the
         thesis' files end in ``.txt``, ``.seq`` and more).
 
@@ -71,9 +76,13 @@ def open_sequence(path: str | os.PathLike[str]) -> Sequence:
     if target.is_dir():
         return ImageFolder(path)
     if not target.exists():
-        raise DataError(f"{target}: no such dataset (expected an image sequence file, an image folder or a video)")
+        raise DataError(
+            f"{target}: no such dataset (expected an image sequence file, an image folder, a video or a swath file)"
+        )
     if target.suffix.lower() in VIDEO_EXTENSIONS:
         return VideoFile(path)
+    if target.suffix.lower() == SWATH_SUFFIX:
+        return SwathFile(path)
     return ImageSequenceFile(path)
 
 
@@ -83,10 +92,13 @@ __all__ = [
     "VIDEO_EXTENSIONS",
     "ImageFolder",
     "ImageSequenceFile",
+    "SWATH_SUFFIX",
     "SequenceRow",
+    "SwathFile",
     "VideoFile",
     "export_sequence",
     "open_sequence",
     "read_sequence_file",
     "write_sequence_file",
+    "write_swath_file",
 ]

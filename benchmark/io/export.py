@@ -1,4 +1,4 @@
-"""Export a camera sequence as PNG images and an image sequence file.
+"""Export a sequence in its on-disk form: images plus a sequence file, or a swath file.
 
 :func:`export_sequence` turns any camera :class:`~benchmark.model.Sequence`
 (a rendered synthetic scene, a video, another sequence file) into the
@@ -15,7 +15,9 @@ writes::
 
 with the image paths in the sequence file relative to ``out_dir``.  Frames
 are written as they are produced, one in memory at a time; the sequence
-file appears only once every image is written.
+file appears only once every image is written.  A sonar sequence becomes
+one swath file, ``out_dir/<stem>.swaths``
+(:mod:`benchmark.io.swath_file`).
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ from pathlib import Path
 from benchmark.errors import DataError
 from benchmark.io.images import size_of, write_png
 from benchmark.io.sequence_file import write_sequence_file
+from benchmark.io.swath_file import SWATH_SUFFIX, write_swath_file
 from benchmark.model import UNKNOWN_CABLE, CableState, CameraTruth, Sequence
 
 _SEPARATORS = re.compile(r"[/\\]")
@@ -54,13 +57,14 @@ def _truth_cable(truth: object, where: str) -> CableState:
 
 
 def export_sequence(sequence: Sequence, out_dir: str | os.PathLike[str], *, stem: str | None = None) -> Path:
-    """Write a camera sequence as PNG frames plus an image sequence file.
+    """Write a camera sequence as PNG frames plus an image sequence file, a sonar sequence as a swath file.
 
     Parameters
     ----------
     sequence : Sequence
         A camera sequence whose frames carry ``uint8`` grey images of one
-        size and a :class:`~benchmark.model.CameraTruth` (or None).
+        size and a :class:`~benchmark.model.CameraTruth` (or None), or a
+        sonar sequence (:func:`benchmark.io.swath_file.write_swath_file`).
     out_dir : str or path-like
         Folder to write into; created if missing.
     stem : str, optional
@@ -70,12 +74,12 @@ def export_sequence(sequence: Sequence, out_dir: str | os.PathLike[str], *, stem
     Returns
     -------
     pathlib.Path
-        The sequence file ``out_dir/<stem>.txt``.
+        The sequence file ``out_dir/<stem>.txt`` or swath file ``out_dir/<stem>.swaths``.
 
     Raises
     ------
     DataError
-        If the sequence is not a camera sequence, a frame is not a grey
+        If the sequence is neither a camera nor a sonar sequence, a frame is not a grey
         ``uint8`` image or differs in size from the first, a truth is not a
         camera truth, or a file cannot be written.  Errors from reading the
         sequence itself pass through.
@@ -87,12 +91,12 @@ def export_sequence(sequence: Sequence, out_dir: str | os.PathLike[str], *, stem
     seeds/000, section 4.7.3; ``conventions.md`` section 2.
     """
     info = sequence.info
-    if info.modality != "camera":
-        raise DataError(
-            f"{info.name}: only camera sequences can be exported as image sequence files, not {info.modality}"
-        )
     stem = _check_stem(stem) if stem is not None else default_stem(info.name)
     out = Path(out_dir)
+    if info.modality == "sonar":
+        return write_swath_file(sequence, out / f"{stem}{SWATH_SUFFIX}")
+    if info.modality != "camera":
+        raise DataError(f"{info.name}: only camera and sonar sequences can be exported, not {info.modality}")
     image_dir = out / stem
     try:
         image_dir.mkdir(parents=True, exist_ok=True)

@@ -97,6 +97,6 @@ def test_png_write_failure_is_a_data_error_and_leaves_no_sequence_file(tmp_path)
     assert not (tmp_path / "S1.txt").exists()
 
 
-def test_non_camera_sequences_are_refused(tmp_path):
+def test_sequences_of_other_modalities_are_refused(tmp_path):
     with pytest.raises(DataError, match="tiny/one.*camera"):
-        export_sequence(TinySequence(modality="sonar"), tmp_path)
+        export_sequence(TinySequence(modality="stereo"), tmp_path)
