@@ -25,7 +25,7 @@ def truths(camera):
 
 def test_lengths_follow_the_thesis_and_foresti(camera) -> None:
     assert {name: seq.spec.n_frames for name, seq in camera.items()} == {
-        "S1": 248, "S2": 499, "S3": 409, "S4": 172, "S5": 171, "S6": 129, "S7": 150,
+        "S1": 248, "S1b": 248, "S1c": 248, "S2": 499, "S3": 409, "S4": 172, "S5": 171, "S6": 129, "S7": 150,
     }
 
 
@@ -102,3 +102,13 @@ def test_s1_clutter_over_the_cable_is_dense_early_and_light_late(camera) -> None
     dense = cover[(z > early.min()) & (z < early.max())].mean()
     light = cover[(z > late.min()) & (z < late.max())].mean()
     assert dense > 0.15 and light < 0.3 * dense
+
+
+def test_the_extra_clutter_draws_differ_from_s1_only_in_their_seed(camera) -> None:
+    import dataclasses
+
+    for name in ("S1b", "S1c"):
+        spec = camera[name].spec
+        assert spec.seed != camera["S1"].spec.seed
+        same = dataclasses.replace(spec, seed=camera["S1"].spec.seed, name=camera["S1"].spec.name, description=camera["S1"].spec.description)
+        assert same == camera["S1"].spec

@@ -12,7 +12,7 @@ from benchmark.plugins import load_registry
 from benchmark.registry import Registry
 from benchmark.scenes import CameraScene
 
-CAMERA_FRAMES = {"S1": 248, "S2": 499, "S3": 409, "S4": 172, "S5": 171, "S6": 129, "S7": 150}
+CAMERA_FRAMES = {"S1": 248, "S1b": 248, "S1c": 248, "S2": 499, "S3": 409, "S4": 172, "S5": 171, "S6": 129, "S7": 150}
 
 
 def test_entry_point_registers_the_camera_suite() -> None:
