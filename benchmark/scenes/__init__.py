@@ -7,7 +7,7 @@ computes what it needs on first use, draws every random number from
 independent streams of that seed, and renders any frame on its own.  The
 same spec gives bit-identical frames, and a pickled scene is only its spec.
 
-Three kinds of scene share that scaffolding.
+Four kinds of scene share that scaffolding.
 
 **Camera** (the ``camera`` suite).  The scene model of Foresti (seeds/004,
 section II): a pinhole camera on a vehicle that moves over a seabed plane,
@@ -61,12 +61,33 @@ tracker has to find TG's yellow marker and its disparity.  Modules:
   how they are drawn;
 * :mod:`~benchmark.scenes.stereo_render`: one image pair at a time;
 * :mod:`~benchmark.scenes.stereo_images`: :class:`StereoImageScene`.
+
+**Sonar** (the ``sonar`` suite).  The multibeam echo-sounder data of Tena
+Ruiz et al. (seeds/003, section 4): a vehicle runs along a pipe and its
+sonar measures one swath of equiangular beams across the track per ping.
+Each frame holds the swath (across-track positions and depths of the
+returns, with range noise, spikes and missing beams) and the first pipe's
+axis position, depth, burial and the beam spacing there.  The seabed has
+slope, roughness correlated from ping to ping, ripples, trenches with spoil
+heaps and boulders; a second pipe may lie nearby.  Modules:
+
+* :mod:`~benchmark.scenes.sonar_spec`: sequence definitions as data (the
+  sonar, the vehicle, the seabed, the pipes);
+* :mod:`~benchmark.scenes.sonar_seabed`: the seabed as a grid of depths
+  over (ping, across-track position);
+* :mod:`~benchmark.scenes.sonar_pipes`: where each pipe lies, how deep and
+  how buried;
+* :mod:`~benchmark.scenes.sonar_swath`: beams cast on seabed and pipes,
+  and the sonar's errors;
+* :mod:`~benchmark.scenes.sonar_scene`: :class:`SonarScene`.
 """
 
 from benchmark.scenes.camera_scene import CameraScene
 from benchmark.scenes.projection import camera_axes, project_points, projection_matrix
 from benchmark.scenes.scene import SimulatedScene
 from benchmark.scenes.silhouette import cable_truth, silhouette_borders
+from benchmark.scenes.sonar_scene import SonarScene
+from benchmark.scenes.sonar_spec import SonarSceneSpec
 from benchmark.scenes.spec import CameraSceneSpec
 from benchmark.scenes.stereo_image_spec import StereoImageSceneSpec
 from benchmark.scenes.stereo_images import StereoImageScene
@@ -77,6 +98,8 @@ __all__ = [
     "CameraScene",
     "CameraSceneSpec",
     "SimulatedScene",
+    "SonarScene",
+    "SonarSceneSpec",
     "StereoImageScene",
     "StereoImageSceneSpec",
     "StereoScene",

@@ -8,11 +8,13 @@ the same ``trackbench`` entry-point group every third-party plugin uses::
     [project.entry-points.trackbench]
     suites = "trackbench_suites"
 
-The ``camera`` suite holds seven rendered sequences.  ``camera/S1`` to
+The ``camera`` suite holds nine rendered sequences.  ``camera/S1`` to
 ``camera/S6`` are modelled on the thesis' test sequences (seeds/000,
 section 5.2.3 and appendix A: their lengths, the motion that makes each
-hard, and the frame-to-frame variances of Tables 4.2 and 4.3), and
-``camera/S7`` on Foresti's pipeline under sand (seeds/004, Fig. 14).
+hard, and the frame-to-frame variances of Tables 4.2 and 4.3),
+``camera/S1b`` and ``camera/S1c`` are S1 with other draws of its clutter,
+and ``camera/S7`` is modelled on Foresti's pipeline under sand (seeds/004,
+Fig. 14).
 
 The ``stereo`` suite (``stereo.toml``) holds nine simulated chase-boat
 sequences, ``stereo/case1-slow`` to ``stereo/case3-fast``: the three
@@ -30,8 +32,16 @@ camera's pair of BGR images instead of a measurement, in which a tracker
 finds the target's yellow marker and its disparity itself, as the field
 system of seeds/002, section 4.1 did (:class:`benchmark.scenes.StereoImageScene`).
 
+The ``sonar`` suite (``sonar.toml``) holds four simulated multibeam
+echo-sounder sequences modelled on the data of seeds/003, section 4:
+``sonar/autotracker`` (an EM2000-like sonar over a 0.9 m pipe),
+``sonar/as-laid`` and ``sonar/concrete`` (RESON 8125-like, a pipe as laid
+and a concrete-coated section), and ``sonar/second-pipe``, with a second
+pipe laid nearby to tempt a tracker away.  A frame holds one swath
+(:class:`benchmark.scenes.SonarScene`).
+
 Each suite file names its scene kind (:data:`trackbench_suites.loader.SCENE_KINDS`:
-``camera``, ``stereo``, ``stereo-images``), and a sequence may start from a
+``camera``, ``sonar``, ``stereo``, ``stereo-images``), and a sequence may start from a
 sequence of another shipped suite (``based_on``); see
 :mod:`trackbench_suites.loader`.
 """

@@ -43,13 +43,14 @@ from typing import Any
 
 from benchmark.errors import DataError
 from benchmark.model import Sequence
-from benchmark.scenes import CameraScene, StereoImageScene, StereoScene
+from benchmark.scenes import CameraScene, SonarScene, StereoImageScene, StereoScene
 
 SceneFactory = Callable[[Mapping[str, Any], str], Sequence]
 """Builds a sequence from its merged table and a description of where it came from."""
 
 SCENE_KINDS: dict[str, SceneFactory] = {
     "camera": CameraScene.from_dict,
+    "sonar": SonarScene.from_dict,
     "stereo": StereoScene.from_dict,
     "stereo-images": StereoImageScene.from_dict,
 }

@@ -53,7 +53,7 @@ def test_sequences_get_the_defaults_and_the_suite_prefix() -> None:
         ("[suite\n", r"bad\.toml: not valid TOML"),
         (
             GOOD.replace('kind = "camera"', 'kind = "lidar"'),
-            r"kind 'lidar' is not one of \['camera', 'stereo', 'stereo-images'\]",
+            r"kind 'lidar' is not one of \['camera', 'sonar', 'stereo', 'stereo-images'\]",
         ),
         (GOOD.replace('name = "B"', 'name = "A"'), r"sequence name 'A' appears twice"),
         (GOOD.replace('name = "B"\n', ""), r"\[\[sequence\]\] number 2 needs a non-empty name"),
