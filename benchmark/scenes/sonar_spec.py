@@ -301,6 +301,12 @@ class TrenchSpec:
             raise ValueError("need berm_ratio >= 0 and berm_width_m > 0")
 
 
+def _check_diameter(diameter_m: float) -> None:
+    """ValueError unless a pipe diameter is between 5 cm and 5 m."""
+    if not (math.isfinite(diameter_m) and 0.05 <= diameter_m <= 5):
+        raise ValueError(f"diameter_m must be in [0.05, 5], got {diameter_m}")
+
+
 @dataclass(frozen=True)
 class PipeSpec:
     """The tracked pipe.
@@ -325,8 +331,7 @@ class PipeSpec:
     trench: TrenchSpec = TrenchSpec()
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.diameter_m) and 0.05 <= self.diameter_m <= 5):
-            raise ValueError(f"diameter_m must be in [0.05, 5], got {self.diameter_m}")
+        _check_diameter(self.diameter_m)
 
 
 @dataclass(frozen=True)
@@ -349,8 +354,7 @@ class SecondPipeSpec:
     trench: TrenchSpec = TrenchSpec()
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.diameter_m) and 0.05 <= self.diameter_m <= 5):
-            raise ValueError(f"diameter_m must be in [0.05, 5], got {self.diameter_m}")
+        _check_diameter(self.diameter_m)
 
 
 @dataclass(frozen=True)
