@@ -31,14 +31,11 @@ pings (frames) unless a name says otherwise.
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
 
 from benchmark.model import SonarCalibration
-from benchmark.scenes.spec import Signal, build_dataclass
+from benchmark.scenes.spec import Signal, TableSpec
 
 
 def _finite(*values: float) -> bool:
@@ -358,7 +355,7 @@ class SecondPipeSpec:
 
 
 @dataclass(frozen=True)
-class SonarSceneSpec:
+class SonarSceneSpec(TableSpec):
     """Everything that defines one simulated sonar sequence (seeds/003, section 4).
 
     Attributes
@@ -413,31 +410,3 @@ class SonarSceneSpec:
             range_sigma_m=self.sonar.range_sigma_m,
             pipe_diameter_m=self.pipe.diameter_m,
         )
-
-    @classmethod
-    def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> SonarSceneSpec:
-        """Build a spec from a plain mapping (e.g. a parsed TOML table).
-
-        Parameters
-        ----------
-        data : Mapping
-            Keys are the field names of this class and of the nested
-            classes; nested specs are nested tables, tuples are lists.
-        source : str
-            Where the data came from, used in error messages.
-
-        Returns
-        -------
-        SonarSceneSpec
-
-        Raises
-        ------
-        DataError
-            Naming ``source`` and the key at fault, for an unknown key, a
-            missing required key, a value of the wrong type or out of range.
-        """
-        return build_dataclass(cls, data, source)
-
-    def to_dict(self) -> dict[str, Any]:
-        """The spec as plain data; :meth:`from_dict` gives back an equal spec."""
-        return dataclasses.asdict(self)

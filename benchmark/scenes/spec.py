@@ -31,7 +31,7 @@ import types
 import typing
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Self
 
 from benchmark.errors import DataError
 
@@ -462,8 +462,38 @@ class OpticsSpec:
             raise ValueError("daylight and auto_gain must be in [0, 1]")
 
 
+class TableSpec:
+    """A spec that is built from plain data (a TOML table) and turned back into it."""
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> Self:
+        """Build a spec from a plain mapping (e.g. a parsed TOML table).
+
+        Parameters
+        ----------
+        data : Mapping
+            Keys are the field names of this class and of the nested classes;
+            nested specs are nested tables, tuples are lists.
+        source : str
+            Where the data came from, used in error messages (e.g.
+            ``"camera.toml [S1]"``).
+
+        Raises
+        ------
+        DataError
+            Naming ``source`` and the key at fault, for an unknown key, a
+            missing required key, a value of the wrong type or a value out of
+            range.
+        """
+        return build_dataclass(cls, data, source)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The spec as plain data; :meth:`from_dict` gives back an equal spec."""
+        return dataclasses.asdict(self)  # type: ignore[call-overload]
+
+
 @dataclass(frozen=True)
-class CameraSceneSpec:
+class CameraSceneSpec(TableSpec):
     """Everything that defines one synthetic camera sequence.
 
     Attributes
@@ -525,32 +555,6 @@ class CameraSceneSpec:
         """The mounting tilt ``phi_0`` in rad."""
         tilt = self.motion.phi_deg.mean if self.nominal_tilt_deg is None else self.nominal_tilt_deg
         return math.radians(tilt)
-
-    @classmethod
-    def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> CameraSceneSpec:
-        """Build a spec from a plain mapping (e.g. a parsed TOML table).
-
-        Parameters
-        ----------
-        data : Mapping
-            Keys are the field names of this class and of the nested classes;
-            nested specs are nested tables, tuples are lists.
-        source : str
-            Where the data came from, used in error messages (e.g.
-            ``"camera.toml [S1]"``).
-
-        Raises
-        ------
-        DataError
-            Naming ``source`` and the key at fault, for an unknown key, a
-            missing required key, a value of the wrong type or a value out of
-            range.
-        """
-        return build_dataclass(cls, data, source)
-
-    def to_dict(self) -> dict[str, Any]:
-        """The spec as plain data; :meth:`from_dict` gives back an equal spec."""
-        return dataclasses.asdict(self)
 
 
 def build_dataclass(cls: type, data: Any, where: str) -> Any:

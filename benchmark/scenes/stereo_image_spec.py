@@ -20,11 +20,8 @@ found.  Lengths are in m, angles in degrees clockwise from north, colours
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
 
-from benchmark.scenes.spec import build_dataclass
 from benchmark.scenes.stereo_spec import StereoSceneSpec
 
 Colour = tuple[float, float, float]
@@ -155,26 +152,3 @@ class StereoImageSceneSpec(StereoSceneSpec):
     def frame_size(self) -> tuple[int, int]:
         """``(W, H)`` of each image, px."""
         return self.camera.width_px, self.render.height_px
-
-    @classmethod
-    def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> StereoImageSceneSpec:
-        """Build a spec from a plain mapping (e.g. a parsed TOML table).
-
-        Parameters
-        ----------
-        data : Mapping
-            The keys of :meth:`StereoSceneSpec.from_dict` and a ``render``
-            table of :class:`StereoRenderSpec` fields.
-        source : str
-            Where the data came from, used in error messages.
-
-        Returns
-        -------
-        StereoImageSceneSpec
-
-        Raises
-        ------
-        DataError
-            Naming ``source`` and the key at fault.
-        """
-        return build_dataclass(cls, data, source)

@@ -27,14 +27,11 @@ degrees here and clockwise from north; times are in s.
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
 
 from benchmark.model import StereoCalibration
-from benchmark.scenes.spec import build_dataclass
+from benchmark.scenes.spec import TableSpec
 
 SPEED_CLASSES = ("slow", "medium", "fast", "custom")
 """Speed classes of seeds/002, section 3.5 (TG top speed 3.6, 7 and 9 m/s), and one for anything else."""
@@ -241,7 +238,7 @@ class StereoSensorSpec:
 
 
 @dataclass(frozen=True)
-class StereoSceneSpec:
+class StereoSceneSpec(TableSpec):
     """Everything that defines one simulated stereo sequence (seeds/002, section 3).
 
     Attributes
@@ -296,31 +293,3 @@ class StereoSceneSpec:
     def duration_s(self) -> float:
         """Time of the last frame."""
         return (self.n_frames - 1) * self.frame_interval_s
-
-    @classmethod
-    def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> StereoSceneSpec:
-        """Build a spec from a plain mapping (e.g. a parsed TOML table).
-
-        Parameters
-        ----------
-        data : Mapping
-            Keys are the field names of this class and of the nested
-            classes; nested specs are nested tables, tuples are lists.
-        source : str
-            Where the data came from, used in error messages.
-
-        Returns
-        -------
-        StereoSceneSpec
-
-        Raises
-        ------
-        DataError
-            Naming ``source`` and the key at fault, for an unknown key, a
-            missing required key, a value of the wrong type or out of range.
-        """
-        return build_dataclass(cls, data, source)
-
-    def to_dict(self) -> dict[str, Any]:
-        """The spec as plain data; :meth:`from_dict` gives back an equal spec."""
-        return dataclasses.asdict(self)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import copy
 import math
 import pickle
 from typing import Any
@@ -15,6 +14,7 @@ from hypothesis import strategies as st
 from benchmark.errors import DataError
 from benchmark.model import Sequence, SonarCalibration, SonarTruth, Swath
 from benchmark.scenes import SonarScene
+from trackbench_suites.loader import merge_tables
 
 BUSY: dict[str, Any] = {
     "name": "sonar/busy",
@@ -59,22 +59,12 @@ QUIET: dict[str, Any] = {
 """A level, smooth seabed 10 m down, a 0.6 m pipe 1.5 m to starboard, a sonar without errors."""
 
 
-def _merge(base: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
-    merged = copy.deepcopy(base)
-    for key, value in changes.items():
-        if isinstance(value, dict) and isinstance(merged.get(key), dict):
-            merged[key] = _merge(merged[key], value)
-        else:
-            merged[key] = copy.deepcopy(value)
-    return merged
-
-
 def _busy(**changes: Any) -> SonarScene:
-    return SonarScene.from_dict(_merge(BUSY, changes))
+    return SonarScene.from_dict(merge_tables(BUSY, changes))
 
 
 def _quiet(**changes: Any) -> SonarScene:
-    return SonarScene.from_dict(_merge(QUIET, changes))
+    return SonarScene.from_dict(merge_tables(QUIET, changes))
 
 
 def _same_swath(a: Swath, b: Swath) -> bool:

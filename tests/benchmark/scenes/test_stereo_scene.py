@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import copy
 import math
 import pickle
 from typing import Any
@@ -15,6 +14,7 @@ from benchmark.model import ChaseNavigation, Sequence, StereoCalibration, Stereo
 from benchmark.stereo_geometry import project
 from benchmark.scenes.stereo_scene import StereoScene
 from benchmark.scenes.stereo_sensors import Loss
+from trackbench_suites.loader import merge_tables
 
 WEAVING: dict[str, Any] = {
     "name": "stereo/weave",
@@ -40,19 +40,9 @@ QUIET = {
 }
 
 
-def _merge(base: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
-    merged = copy.deepcopy(base)
-    for key, value in changes.items():
-        if isinstance(value, dict) and isinstance(merged.get(key), dict):
-            merged[key] = _merge(merged[key], value)
-        else:
-            merged[key] = copy.deepcopy(value)
-    return merged
-
-
 def _scene(**changes: Any) -> StereoScene:
     """The weaving scene with nested keys replaced by ``changes``."""
-    return StereoScene.from_dict(_merge(WEAVING, changes))
+    return StereoScene.from_dict(merge_tables(WEAVING, changes))
 
 
 def test_info_describes_the_sequence() -> None:

@@ -1,0 +1,246 @@
+"""From a ping to its likelihood scan: the detector of seeds/003, section 2.
+
+A :class:`SwathDetector` is set up once per sequence from the trackers'
+parameters and the sequence's :class:`~benchmark.model.SonarCalibration`
+(the pipe's diameter, the sonar's range noise), and then turns each frame's
+:class:`~benchmark.model.Swath` into a resampled profile
+(:mod:`trackbench_sonar.profile`) and the likelihood of eq. (1) over it
+(:mod:`trackbench_sonar.likelihood`).  Both trackers of the plugin share it,
+so that ``sonar_pf`` observes exactly what ``sonar_detector`` reports;
+:class:`ScanTracker` is the part of a tracker both build on.
+
+Bad input is a :class:`~benchmark.errors.DataError` that names the tracker
+and the frame (an observation that is not a swath) or the tracker and the
+sequence (a calibration that does not describe the pipe); a swath without
+enough returns is not an error but an empty scan.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from benchmark.errors import DataError, ParameterError
+from benchmark.model import Frame, SequenceInfo, SonarCalibration, Swath
+from benchmark.tracker import Tracker
+from trackbench_sonar.cross_section import CrossSection
+from trackbench_sonar.likelihood import LikelihoodScan, PipeLikelihood
+from trackbench_sonar.params import DetectorParams
+from trackbench_sonar.profile import Profile, resample_swath
+
+
+def check_detector_params(params: DetectorParams, tracker: str) -> None:
+    """Reject detector parameters no sequence could use.
+
+    Raises
+    ------
+    ParameterError
+        Naming the tracker and the parameter.
+    """
+    def fail(name: str, rule: str) -> ParameterError:
+        return ParameterError(f"tracker {tracker!r}: parameter {name!r} {rule}, got {getattr(params, name)!r}")
+
+    rules = {
+        "grid_m": (lambda v: 0.0 < v < math.inf, "must be positive"),
+        "flank_widths": (lambda v: 0.0 < v < math.inf, "must be positive"),
+        "fit_span": (lambda v: 0.0 < v <= 1.0, "must be in (0, 1]"),
+    }
+    for name in ("spike_heights", "major_axis_m", "minor_axis_m", "model_sigma_m", "proud_weight", "min_pipe_returns"):
+        rules[name] = (lambda v: 0.0 <= v < math.inf, "must be finite and non-negative")
+    for name, (valid, rule) in rules.items():
+        value = getattr(params, name)
+        if isinstance(value, bool) or not isinstance(value, int | float) or not valid(value):
+            raise fail(name, rule)
+    for name in ("spike_window", "min_beams"):
+        value = getattr(params, name)
+        if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+            raise fail(name, "must be a non-negative integer")
+
+
+@dataclass(frozen=True)
+class SwathDetector:
+    """Resample a swath and compute its pipe likelihood scan.
+
+    Attributes
+    ----------
+    likelihood : PipeLikelihood
+        Eq. (1) for the sequence's pipe.
+    grid_m : float
+        Spacing of the resampled profile.
+    spike_window : int
+        Returns in the running median of the spike test.
+    spike_m : float
+        Spike threshold in m (``inf``: no test).
+    min_beams : int
+        Fewest returns for a scan.
+    tracker : str
+        Name used in error messages.
+
+    References
+    ----------
+    seeds/003, section 2, eq. (1) and Fig. 2.
+    """
+
+    likelihood: PipeLikelihood
+    grid_m: float
+    spike_window: int
+    spike_m: float
+    min_beams: int
+    tracker: str
+
+    @classmethod
+    def for_sequence(cls, params: DetectorParams, info: SequenceInfo, tracker: str) -> SwathDetector:
+        """Set the detector up for a sequence.
+
+        Parameters
+        ----------
+        params : DetectorParams
+            The tracker's parameters.
+        info : SequenceInfo
+            Its ``calibration`` should be a SonarCalibration: the pipe's
+            diameter gives the axes left at 0 and its range sigma joins
+            ``model_sigma_m`` in L1's scale.
+        tracker : str
+            Tracker name for error messages.
+
+        Raises
+        ------
+        DataError
+            If an axis is left at 0 and the sequence has no SonarCalibration
+            with a positive pipe diameter.
+        """
+        calibration = info.calibration if isinstance(info.calibration, SonarCalibration) else None
+        diameter = float(calibration.pipe_diameter_m) if calibration is not None else math.nan
+        major = params.major_axis_m or diameter
+        minor = params.minor_axis_m or diameter
+        if not (0.0 < major < math.inf and 0.0 < minor < math.inf):
+            raise DataError(
+                f"{tracker}: sequence {info.name!r} has no SonarCalibration with a positive pipe diameter "
+                f"(calibration {info.calibration!r}); set the parameters major_axis_m and minor_axis_m"
+            )
+        range_sigma = float(calibration.range_sigma_m) if calibration is not None else 0.0
+        if not 0.0 <= range_sigma < math.inf:
+            raise DataError(f"{tracker}: sequence {info.name!r} has an invalid range_sigma_m {range_sigma!r}")
+        sigma = math.hypot(range_sigma, params.model_sigma_m)
+        if not sigma > 0.0:
+            raise DataError(
+                f"{tracker}: sequence {info.name!r}: range_sigma_m and model_sigma_m are both 0; L1 needs a scale"
+            )
+        section = CrossSection(major, minor)
+        beam_angle = float(calibration.beam_spacing) if calibration is not None else 0.0
+        likelihood = PipeLikelihood(
+            section,
+            sigma,
+            float(params.proud_weight),
+            params.flank_widths * major,
+            float(params.fit_span),
+            beam_angle if 0.0 < beam_angle < math.pi else 0.0,
+            float(params.min_pipe_returns),
+        )
+        spike_m = params.spike_heights * minor if params.spike_heights > 0 else math.inf
+        return cls(likelihood, float(params.grid_m), params.spike_window, spike_m, params.min_beams, tracker)
+
+    def read(self, frame: Frame) -> Swath:
+        """The frame's swath.
+
+        Raises
+        ------
+        DataError
+            If the observation is not a Swath; the message names the tracker
+            and the frame.
+        """
+        swath = frame.observation
+        if not isinstance(swath, Swath):
+            raise DataError(
+                f"{self.tracker}: frame {frame.index}: observation is a {type(swath).__name__}, expected a Swath"
+            )
+        return swath
+
+    def profile(self, swath: Swath, index: int) -> Profile:
+        """The swath cleaned and resampled (:func:`trackbench_sonar.profile.resample_swath`).
+
+        Raises
+        ------
+        DataError
+            If the returns span an impossible across-track extent; names the
+            tracker and the frame ``index``.
+        """
+        try:
+            return resample_swath(
+                swath, self.grid_m, spike_window=self.spike_window, spike_m=self.spike_m, min_beams=self.min_beams
+            )
+        except DataError as exc:
+            raise DataError(f"{self.tracker}: frame {index}: {exc}") from exc
+
+    def scan(self, frame: Frame) -> tuple[Profile, LikelihoodScan]:
+        """The frame's resampled profile and its likelihood scan (empty without enough returns).
+
+        Raises
+        ------
+        DataError
+            For an observation that is not a usable Swath, naming the frame.
+        """
+        profile = self.profile(self.read(frame), frame.index)
+        return profile, self.likelihood.scan(profile)
+
+
+class ScanTracker(Tracker):
+    """A sonar tracker that sees each ping through its likelihood scan.
+
+    Subclasses set ``name``, ``version`` and ``Params`` (a subclass of
+    :class:`DetectorParams`) and call :meth:`scan` in their ``step``.
+
+    Attributes
+    ----------
+    last_scan : LikelihoodScan or None
+        The likelihood scan of the last ping.
+    """
+
+    modality = "sonar"
+
+    def __init__(self, params: DetectorParams | None = None) -> None:
+        super().__init__(params)
+        check_detector_params(self.params, self.name)
+        self._detector: SwathDetector | None = None
+        self.last_scan: LikelihoodScan | None = None
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        """Set the detector up for the sequence's pipe and sonar.
+
+        Raises
+        ------
+        DataError
+            If the pipe's dimensions are neither in the calibration nor in
+            the parameters.
+        """
+        self._detector = SwathDetector.for_sequence(self.params, info, self.name)
+        self.last_scan = None
+
+    @property
+    def detector(self) -> SwathDetector:
+        """The detector set up by :meth:`reset`.
+
+        Raises
+        ------
+        RuntimeError
+            Before :meth:`reset`.
+        """
+        if self._detector is None:
+            raise RuntimeError(f"{self.name}: step() called before reset()")
+        return self._detector
+
+    def scan(self, frame: Frame) -> tuple[Profile, LikelihoodScan]:
+        """The frame's resampled profile and likelihood scan, kept as :attr:`last_scan`.
+
+        Raises
+        ------
+        DataError
+            If the observation is not a Swath (the message names the frame).
+        RuntimeError
+            Before :meth:`reset`.
+        """
+        profile, self.last_scan = self.detector.scan(frame)
+        return profile, self.last_scan

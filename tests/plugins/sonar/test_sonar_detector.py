@@ -1,0 +1,123 @@
+"""The ``sonar_detector`` baseline and the detection set-up it shares with ``sonar_pf`` (seeds/003, section 2)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from benchmark.errors import DataError, ParameterError
+from benchmark.model import Frame, PipeEstimate, SequenceInfo, Swath
+from trackbench_sonar import SonarDetector
+from trackbench_sonar.detection import SwathDetector
+from trackbench_sonar.params import DetectorParams
+
+
+def detector(swaths, **overrides) -> SonarDetector:
+    tracker = SonarDetector(SonarDetector.make_params(overrides))
+    tracker.reset(swaths.info(), np.random.default_rng(0))
+    return tracker
+
+
+@pytest.mark.parametrize("x", [-9.0, -2.5, 0.0, 4.0, 11.0])
+def test_reports_the_pipe_of_each_ping(swaths, x):
+    tracker = detector(swaths)
+    estimate = tracker.step(Frame(0, swaths.make(x, noise=0.01, slope=0.05, missing=0.02, spikes=2, seed=7)))
+    assert isinstance(estimate, PipeEstimate)
+    assert abs(estimate.across_m - x) <= swaths.spacing_at(x, 10.0)
+    assert tracker.last_scan.peak() == estimate.across_m
+
+
+def test_each_ping_on_its_own(swaths):
+    tracker = detector(swaths)
+    first = tracker.step(Frame(0, swaths.make(-6.0, seed=1)))
+    second = tracker.step(Frame(1, swaths.make(5.0, seed=2)))
+    assert first.across_m == pytest.approx(-6.0, abs=0.15)
+    assert second.across_m == pytest.approx(5.0, abs=0.15)
+
+
+def test_a_ping_without_returns_is_a_missed_detection(swaths):
+    tracker = detector(swaths)
+    nothing = Swath(np.full(240, np.nan), np.full(240, np.nan))
+    assert tracker.step(Frame(3, nothing)) is None
+    few = Swath(np.array([0.0, 0.1, np.nan]), np.array([10.0, 10.0, np.nan]))
+    assert tracker.step(Frame(4, few)) is None
+
+
+@pytest.mark.parametrize(
+    "observation",
+    [np.zeros((240, 2)), None, (np.zeros(240), np.zeros(240)), "swath"],
+    ids=["array", "none", "tuple", "str"],
+)
+def test_an_observation_that_is_not_a_swath_is_a_data_error_naming_the_frame(swaths, observation):
+    tracker = detector(swaths)
+    with pytest.raises(DataError, match=r"sonar_detector: frame 12: observation is a \w+, expected a Swath"):
+        tracker.step(Frame(12, observation))
+
+
+def test_a_swath_spanning_kilometres_is_a_data_error_naming_the_frame(swaths):
+    tracker = detector(swaths)
+    with pytest.raises(DataError, match="sonar_detector: frame 5: .*across track"):
+        tracker.step(Frame(5, Swath(np.linspace(-5e4, 5e4, 240), np.full(240, 10.0))))
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    st.lists(st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.just(math.nan)), min_size=0, max_size=40),
+    st.lists(st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.just(math.nan)), min_size=40, max_size=40),
+)
+def test_any_swath_gives_an_estimate_none_or_a_data_error(swaths, across, depth):
+    tracker = detector(swaths)
+    try:
+        estimate = tracker.step(Frame(0, Swath(np.array(across, dtype=float), np.array(depth[: len(across)]))))
+    except DataError as exc:
+        assert "frame 0" in str(exc)
+        return
+    assert estimate is None or math.isfinite(estimate.across_m)
+
+
+def test_the_calibration_supplies_the_pipe_and_the_parameters_may_override_it(swaths):
+    info = swaths.info(diameter=0.9, noise=0.05)
+    default = SwathDetector.for_sequence(DetectorParams(), info, "t")
+    assert default.likelihood.section.major_m == 0.9 and default.likelihood.section.minor_m == 0.9
+    assert default.likelihood.sigma_m == pytest.approx(math.hypot(0.05, 0.01))
+    assert default.likelihood.beam_angle == pytest.approx(info.calibration.beam_spacing)
+    assert default.spike_m == pytest.approx(0.45)
+    oblique = SwathDetector.for_sequence(DetectorParams(major_axis_m=1.3), info, "t")
+    assert oblique.likelihood.section.major_m == 1.3 and oblique.likelihood.section.minor_m == 0.9
+    assert oblique.likelihood.flank_m == pytest.approx(1.3)
+
+
+def test_a_sequence_without_a_pipe_diameter_is_a_data_error_unless_the_axes_are_given():
+    info = SequenceInfo("sonar/bare", "sonar", 10, None, 0.3, None)
+    with pytest.raises(DataError, match="sonar_detector: sequence 'sonar/bare'.*major_axis_m"):
+        SonarDetector().reset(info, np.random.default_rng(0))
+    tracker = SonarDetector(SonarDetector.make_params({"major_axis_m": "0.6", "minor_axis_m": "0.6"}))
+    tracker.reset(info, np.random.default_rng(0))
+    assert tracker._detector.likelihood.min_pipe_returns == 2.0 and tracker._detector.likelihood.beam_angle == 0.0
+
+
+@pytest.mark.parametrize(
+    ("name", "value"),
+    [
+        ("grid_m", 0.0),
+        ("grid_m", -1.0),
+        ("fit_span", 1.5),
+        ("proud_weight", -1.0),
+        ("min_beams", -1),
+        ("spike_window", 2.5),
+        ("flank_widths", math.inf),
+    ],
+)
+def test_bad_parameters_name_the_tracker_and_the_parameter(name, value):
+    with pytest.raises(ParameterError, match=rf"tracker 'sonar_detector'.*'{name}'"):
+        SonarDetector(dataclasses.replace(DetectorParams(), **{name: value}))
+
+
+def test_step_before_reset_is_an_error(swaths):
+    with pytest.raises(RuntimeError, match="reset"):
+        SonarDetector().step(Frame(0, swaths.make(0.0)))
