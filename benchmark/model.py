@@ -198,6 +198,37 @@ class SonarCalibration:
         return self.swath_angle / max(self.n_beams - 1, 1)
 
 
+def beam_footprint(across_m: np.ndarray, depth_m: np.ndarray, beam_spacing: float) -> np.ndarray:
+    """Across-track distance between neighbouring beams at points of the swath plane.
+
+    A beam at angle ``theta`` from the vertical meets a level bottom at
+    ``x = z tan(theta)``, so beams ``d theta`` apart land ``z d theta /
+    cos^2(theta) = (x^2 + z^2) d theta / z`` apart: the sonar's across-track
+    resolution there, which :attr:`SonarTruth.resolution_m` gives at the pipe.
+
+    Parameters
+    ----------
+    across_m, depth_m : numpy.ndarray
+        Points, depth positive.
+    beam_spacing : float
+        ``d theta``, rad (:attr:`SonarCalibration.beam_spacing`).
+
+    Returns
+    -------
+    numpy.ndarray
+        The spacing, m; ``inf`` at or above the transducer.
+
+    References
+    ----------
+    seeds/003, section 4.1: the accuracy "set by the sensor's resolution".
+    """
+    x = np.asarray(across_m, dtype=float)
+    z = np.asarray(depth_m, dtype=float)
+    safe = np.where(z > 0.0, z, 1.0)
+    with np.errstate(over="ignore"):
+        return np.where(z > 0.0, (x * x + z * z) * beam_spacing / safe, np.inf)
+
+
 @dataclass(frozen=True, slots=True, eq=False)
 class Swath:
     """One ping of a multibeam echo sounder: where each beam met the bottom.

@@ -45,7 +45,7 @@ from typing import NamedTuple
 import numpy as np
 
 from benchmark.errors import DataError
-from benchmark.model import SequenceInfo, SonarTruth, Swath
+from benchmark.model import SequenceInfo, SonarTruth, Swath, beam_footprint
 from benchmark.scenes.motion import evaluate_signal
 from benchmark.scenes.scene import SimulatedScene
 from benchmark.scenes.sonar_pipes import PipeTrack, pipe_track
@@ -61,7 +61,6 @@ from benchmark.scenes.sonar_spec import SonarSceneSpec, TrenchSpec
 from benchmark.scenes.spec import Signal
 from benchmark.scenes.sonar_swath import (
     Ellipse,
-    across_resolution,
     beam_angles,
     beam_ranges,
     degrade_ranges,
@@ -299,7 +298,7 @@ class SonarScene(SimulatedScene[SonarSceneSpec, _Cache]):
         k = self._check(index)
         pipe = self._state().pipes[0]
         across, depth = float(pipe.across_m[k]), float(pipe.axis_depth_m[k])
-        resolution = across_resolution(across, depth - pipe.radius_m, self._spec.calibration().beam_spacing)
+        resolution = float(beam_footprint(across, depth - pipe.radius_m, self._spec.calibration().beam_spacing))
         return SonarTruth(across_m=across, depth_m=depth, burial=float(pipe.burial[k]), resolution_m=resolution)
 
     def navigation(self, index: int) -> None:

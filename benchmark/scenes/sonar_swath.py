@@ -26,8 +26,7 @@ ping is simulated in three moves:
    a return, more of them where the echo is weak.
 
 :func:`swath_from_ranges` turns the ranges into a
-:class:`benchmark.model.Swath`; :func:`across_resolution` is the spacing of
-neighbouring beams at a given point, the sonar's resolution there.
+:class:`benchmark.model.Swath`.
 """
 
 from __future__ import annotations
@@ -344,29 +343,3 @@ def swath_from_ranges(ranges: np.ndarray, axes: np.ndarray) -> Swath:
         ``nan`` in both arrays where a beam has no return.
     """
     return Swath(across_m=ranges * np.sin(axes), depth_m=ranges * np.cos(axes))
-
-
-def across_resolution(across_m: float, depth_m: float, beam_spacing: float) -> float:
-    """Across-track distance between neighbouring beams at a point.
-
-    A beam at ``theta`` from the vertical meets a level surface at depth
-    ``z`` at ``x = z tan(theta)``, so neighbouring beams are
-    ``z d_theta / cos^2(theta)`` apart there.
-
-    Parameters
-    ----------
-    across_m, depth_m : float
-        The point (e.g. the top of the pipe).
-    beam_spacing : float
-        Angle between neighbouring beams, rad.
-
-    Returns
-    -------
-    float
-
-    References
-    ----------
-    seeds/003, section 4.1: the accuracy "set by the sensor's resolution".
-    """
-    theta = math.atan2(across_m, depth_m)
-    return depth_m * beam_spacing / math.cos(theta) ** 2

@@ -49,7 +49,7 @@ A candidate is scored only when its whole span lies inside the profile (at
 the swath's ends the arc could otherwise be judged on its two defining
 points alone) and where the sonar resolves the pipe: its beams must land
 close enough at the candidate's centre for ``min_pipe_returns`` intervals
-between them to cross the pipe (:func:`beam_footprint`, the sonar's own
+between them to cross the pipe (:func:`benchmark.model.beam_footprint`, the sonar's own
 spacing; the gap between returns would not do, as a lost beam or the
 pipe's own shadow widens it without making the sonar any coarser).  Far
 from nadir the beams spread until a pipe falls between two of them; there
@@ -72,6 +72,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from benchmark.model import beam_footprint
 from trackbench_sonar.cross_section import CrossSection
 from trackbench_sonar.profile import Profile
 
@@ -291,33 +292,6 @@ class PipeLikelihood:
             bins = np.rint((found.across_m[scored] - profile.across_m[0]) / profile.spacing_m).astype(np.int64)
             np.maximum.at(values, np.clip(bins, 0, profile.size - 1), found.value[scored])
         return LikelihoodScan(profile.across_m, values)
-
-
-def beam_footprint(across_m: np.ndarray, depth_m: np.ndarray, beam_angle: float) -> np.ndarray:
-    """Across-track distance between neighbouring beams at points of the swath plane.
-
-    A beam at angle ``theta`` from the vertical meets a level bottom at
-    ``x = z tan(theta)``, so beams ``d theta`` apart land ``z d theta /
-    cos^2(theta) = (x^2 + z^2) d theta / z`` apart: the sonar's across-track
-    resolution there (``SonarTruth.resolution_m`` at the pipe).
-
-    Parameters
-    ----------
-    across_m, depth_m : numpy.ndarray
-        Points, depth positive.
-    beam_angle : float
-        ``d theta``, rad.
-
-    Returns
-    -------
-    numpy.ndarray
-        The spacing, m; ``inf`` at or above the transducer.
-    """
-    x = np.asarray(across_m, dtype=float)
-    z = np.asarray(depth_m, dtype=float)
-    safe = np.where(z > 0.0, z, 1.0)
-    with np.errstate(over="ignore"):
-        return np.where(z > 0.0, (x * x + z * z) * beam_angle / safe, np.inf)
 
 
 def _window(

@@ -40,6 +40,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import pandas as pd
 
 from benchmark.errors import DataError
 from benchmark.model import Swath
@@ -104,18 +105,7 @@ def running_median(values: np.ndarray, window: int) -> np.ndarray:
         Shape ``(n,)``; near the ends the window is cut to the values that
         exist, which keeps it centred where it can.
     """
-    n = values.size
-    half = window // 2
-    offsets = np.arange(-half, half + 1)
-    index = np.arange(n)[:, None] + offsets[None, :]
-    inside = (index >= 0) & (index < n)
-    stacked = np.where(inside, values[np.clip(index, 0, n - 1)], np.nan)
-    # Sorting puts the nan of the cut ends last; the median is then taken
-    # among the first ``count`` entries of each row.
-    stacked.sort(axis=1)
-    count = inside.sum(axis=1)
-    rows = np.arange(n)
-    return 0.5 * (stacked[rows, (count - 1) // 2] + stacked[rows, count // 2])
+    return pd.Series(values).rolling(window, center=True, min_periods=1).median().to_numpy()
 
 
 def spike_mask(across_m: np.ndarray, depth_m: np.ndarray, window: int, spike_m: float) -> np.ndarray:

@@ -13,7 +13,6 @@ from benchmark.scenes.sonar_seabed import across_grid
 from benchmark.scenes.sonar_spec import SonarSpec
 from benchmark.scenes.sonar_swath import (
     Ellipse,
-    across_resolution,
     beam_angles,
     beam_ranges,
     degrade_ranges,
@@ -155,11 +154,3 @@ def test_spikes_quantisation_and_generators() -> None:
     assert np.allclose(reported / 0.01, np.round(reported / 0.01))
     assert np.array_equal(_degrade(ranges, np.zeros(5000), sonar, seed=0), reported)
     assert not np.array_equal(_degrade(ranges, np.zeros(5000), sonar, seed=1), reported)
-
-
-@given(st.floats(-0.9, 0.9), st.floats(3.0, 30.0))
-def test_resolution_is_the_spacing_of_neighbouring_beams_on_a_level_seabed(theta: float, depth: float) -> None:
-    spacing = math.radians(0.5)
-    x = depth * math.tan(theta)
-    gap = depth * (math.tan(theta + spacing / 2) - math.tan(theta - spacing / 2))
-    assert across_resolution(x, depth, spacing) == pytest.approx(gap, rel=1e-3)

@@ -10,9 +10,9 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from benchmark.model import Swath
 from trackbench_sonar.cross_section import CrossSection
-from trackbench_sonar.likelihood import LikelihoodScan, PipeLikelihood, beam_footprint
+from benchmark.model import Swath, beam_footprint
+from trackbench_sonar.likelihood import LikelihoodScan, PipeLikelihood
 from trackbench_sonar.profile import resample_swath
 
 BEAM_240 = math.radians(120.0) / 239
@@ -111,15 +111,6 @@ def test_both_terms_are_in_the_unit_interval_and_the_proud_pipe_reaches_two(swat
     assert found.across_m[best] == pytest.approx(-3.0, abs=0.05)
     assert found.depth_m[best] == pytest.approx(10.0 - 0.3, abs=0.05)
     assert scored.sum() < found.value.size  # candidates whose span leaves the profile are not scored
-
-
-def test_the_beam_footprint_is_the_spacing_of_neighbouring_beams_on_a_level_bottom(swaths):
-    assert beam_footprint(np.array([0.0]), np.array([10.0]), 0.01)[0] == pytest.approx(0.1)
-    for x in (0.0, 5.0, 12.0):
-        assert beam_footprint(np.array([x]), np.array([10.0]), BEAM_240)[0] == pytest.approx(
-            swaths.spacing_at(x, 10.0), rel=1e-9
-        )
-    assert np.isinf(beam_footprint(np.array([1.0]), np.array([0.0]), 0.01)[0])
 
 
 def test_no_candidate_is_scored_where_the_beams_are_too_sparse_for_the_pipe(swaths):
