@@ -25,10 +25,11 @@ of the swath it injects over, so the filter makes one for each ping.
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+
+from benchmark.filters.condensation import LinearDriftDiffusion
 
 
 def uniform_positions(count: int, extent: tuple[float, float], rng: np.random.Generator) -> np.ndarray:
@@ -50,7 +51,8 @@ class RandomWalkInjection:
     Parameters
     ----------
     walk_sigma_m : float
-        Standard deviation of the walk per ping, m.
+        Standard deviation of the walk per ping, m, finite and non-negative
+        (the diffusion of :class:`benchmark.filters.condensation.LinearDriftDiffusion`).
     inject_fraction : float
         ``J`` in ``[0, 1]``.
     extent : tuple of float or None
@@ -66,11 +68,12 @@ class RandomWalkInjection:
     inject_fraction: float
     extent: tuple[float, float] | None = None
 
+    _walk: LinearDriftDiffusion = field(init=False, repr=False, compare=False)
+
     def __post_init__(self) -> None:
-        if not 0.0 <= self.walk_sigma_m < math.inf:
-            raise ValueError(f"walk_sigma_m must be finite and non-negative, got {self.walk_sigma_m!r}")
         if not 0.0 <= self.inject_fraction <= 1.0:
             raise ValueError(f"inject_fraction must be in [0, 1], got {self.inject_fraction!r}")
+        object.__setattr__(self, "_walk", LinearDriftDiffusion(np.eye(1), np.array([self.walk_sigma_m])))
 
     def injected_count(self, n: int) -> int:
         """Particles re-drawn among ``n``: ``round(J n)``, at least one when ``J > 0``."""
@@ -79,9 +82,14 @@ class RandomWalkInjection:
         return min(n, max(1, round(self.inject_fraction * n)))
 
     def walk(self, states: np.ndarray, rng: np.random.Generator) -> np.ndarray:
-        """Move every particle by the random walk alone (the transition prior)."""
-        states = np.asarray(states, dtype=float)
-        return states + self.walk_sigma_m * rng.standard_normal(states.shape)
+        """Move every particle by the random walk alone (the transition prior).
+
+        Raises
+        ------
+        ValueError
+            If ``states`` is not ``(N, 1)``.
+        """
+        return self._walk.propagate(states, rng)
 
     def propagate(self, states: np.ndarray, rng: np.random.Generator) -> np.ndarray:
         """Draw ``x_k^i ~ q(. | x_(k-1)^i)`` (eq. 3) and inject ``J N`` new samples (section 3.4).
