@@ -210,18 +210,17 @@ class SonarParticleFilter(ScanTracker):
             raise RuntimeError(f"{self.name}: step() called before reset()")
         p = self.params
         profile, scan = self.scan(frame)
+        extent = None if profile.is_empty else (float(profile.across_m[0]), float(profile.across_m[-1]))
         if self.particles is None:
-            if profile.is_empty:
+            if extent is None:
                 return None
-            extent = (float(profile.across_m[0]), float(profile.across_m[-1]))
             self.particles = ParticleSet.equally_weighted(uniform_positions(int(p.n_particles), extent, self._rng))
+        movement = RandomWalkInjection(self._walk_sigma, p.inject_fraction, extent)
         if scan.is_empty:
-            walk = RandomWalkInjection(self._walk_sigma, 0.0)
-            self.particles = ParticleSet(walk.walk(self.particles.states, self._rng), self.particles.weights)
+            self.particles = ParticleSet(movement.walk(self.particles.states, self._rng), self.particles.weights)
         else:
-            extent = (float(profile.across_m[0]), float(profile.across_m[-1]))
             update = Condensation(
-                movement=RandomWalkInjection(self._walk_sigma, p.inject_fraction, extent),
+                movement=movement,
                 observation=self._observation,
                 resample=RESAMPLERS[p.resampler],
                 ess_fraction=math.inf,
