@@ -90,21 +90,17 @@ def test_weights_stay_normalised_under_eq_4(swaths, pipe_at, noise, missing, n_p
         assert estimate is not None and math.isfinite(estimate.across_m)
 
 
+def _frozen(**changes) -> ParticleFilterParams:
+    """Parameters without a walk or a spread at the start, and a sharp scan."""
+    still = {"walk_sigma_m": 0.0, "walk_speed_mps": 0.0, "init_sigma_m": 0.0, "weight_exponent": 50.0}
+    return dataclasses.replace(ParticleFilterParams(), **still, **changes)
+
+
 @settings(max_examples=20, deadline=None)
 @given(fraction=st.floats(0.001, 0.5), n_particles=st.integers(2, 300), seed=st.integers(0, 2**16))
 def test_with_injection_the_particles_never_collapse_onto_one_value(swaths, fraction, n_particles, seed):
     # No walk and a sharp scan: without injection resampling would leave copies of one particle.
-    params = dataclasses.replace(
-        ParticleFilterParams(),
-        n_particles=n_particles,
-        inject_fraction=fraction,
-        walk_sigma_m=0.0,
-        walk_speed_mps=0.0,
-        init_sigma_m=0.0,
-        weight_exponent=50.0,
-        weight_floor=0.0,
-    )
-    tracker = SonarParticleFilter(params)
+    tracker = SonarParticleFilter(_frozen(n_particles=n_particles, inject_fraction=fraction, weight_floor=0.0))
     tracker.reset(swaths.info(), np.random.default_rng(seed), PipeEstimate(1.0))
     for k in range(6):
         tracker.step(Frame(k, swaths.make(1.0, noise=0.01, seed=k)))
@@ -112,15 +108,7 @@ def test_with_injection_the_particles_never_collapse_onto_one_value(swaths, frac
 
 
 def test_without_injection_or_walk_the_particles_do_collapse(swaths):
-    params = dataclasses.replace(
-        ParticleFilterParams(),
-        inject_fraction=0.0,
-        walk_sigma_m=0.0,
-        walk_speed_mps=0.0,
-        init_sigma_m=0.0,
-        weight_exponent=50.0,
-    )
-    tracker = SonarParticleFilter(params)
+    tracker = SonarParticleFilter(_frozen(inject_fraction=0.0))
     tracker.reset(swaths.info(), np.random.default_rng(0), PipeEstimate(1.0))  # all particles start at 1.0
     tracker.step(Frame(0, swaths.make(1.0, seed=0)))
     assert np.unique(tracker.particles.states).size == 1
