@@ -208,6 +208,9 @@ class SonarScene(SimulatedScene[SonarSceneSpec, _Cache]):
             self._check_range(f"pipe {number} across-track position", pipe.across_m, -reach_m, reach_m, "m")
             base += trench_relief(pipe.trench, pipe.trench_depth_m, pipe.across_m, across)
         pipes = tuple(pipe_track(p.across_m, p.burial, p.radius_m, spacing, base, across) for p in layout)
+        for number, pipe in enumerate(pipes, start=1):
+            top = pipe.axis_depth_m - pipe.radius_m
+            self._check_range(f"pipe {number} top depth below the sonar", top, 0.5, math.inf, "m")
 
         caps = np.zeros_like(base)
         centres = np.array([p.across_m for p in pipes])

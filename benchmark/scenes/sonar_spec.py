@@ -126,7 +126,7 @@ class VehicleSpec:
     altitude_m : Signal
         Height of the transducer above the mean seabed below it.
     roll_deg : Signal
-        Roll, starboard down positive: it turns the fan, whose returns are
+        Roll, port down positive (it adds to the beam angles): it turns the fan, whose returns are
         given in the level frame.
     speed_mps : float
         Forward speed; the pings are ``speed_mps * frame_interval_s`` apart.

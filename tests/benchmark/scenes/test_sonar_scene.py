@@ -273,6 +273,10 @@ def test_random_specs_give_finite_truth_and_full_swaths() -> None:
         ({"vehicle": {"roll_deg": {"mean": 40.0}}}, r"sonar/busy: roll at frame 0"),
         ({"pipe": {"across_m": {"mean": 60.0}}}, r"sonar/busy: pipe 1 across-track position at frame 0"),
         ({"second_pipe": {"offset_m": {"mean": 80.0}}}, r"sonar/busy: pipe 2 across-track position at frame 0"),
+        (
+            {"vehicle": {"altitude_m": {"mean": 2.5}}, "pipe": {"diameter_m": 4.0}},
+            r"sonar/busy: pipe 1 top depth below the sonar at frame 0",
+        ),
     ],
 )
 def test_impossible_geometry_is_a_data_error_naming_sequence_and_frame(changes, message) -> None:
