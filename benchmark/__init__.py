@@ -1,7 +1,7 @@
 """trackbench: a benchmark for subsea cable and pipeline trackers.
 
-Trackers and datasets arrive as pluggy plugins (entry-point group
-``trackbench``).  A plugin module marks its hook implementations with
+Modalities, trackers and datasets arrive as pluggy plugins (entry-point
+group ``trackbench``).  A plugin module marks its hook implementations with
 :data:`hookimpl`::
 
     from benchmark import Tracker, hookimpl
@@ -13,42 +13,43 @@ Trackers and datasets arrive as pluggy plugins (entry-point group
     @hookimpl
     def trackbench_register_trackers(registry):
         registry.add_tracker(MyTracker)
+
+The camera's data model is re-exported here for the plugins that were
+written against it; every modality's own types live in
+:mod:`benchmark.modalities`.
 """
 
-import pluggy
-
 from benchmark.errors import DataError, ParameterError, PluginError, TrackbenchError
-from benchmark.hookspecs import PROJECT_NAME
-from benchmark.model import (
+from benchmark.hookspecs import hookimpl
+from benchmark.modalities.camera.model import (
     CableState,
     CameraCalibration,
+    CameraFrame,
     CameraPose,
     CameraTruth,
-    Frame,
-    Outcome,
-    Sequence,
-    SequenceInfo,
     VehicleSpeeds,
 )
+from benchmark.modality import Modality, Reader
+from benchmark.model import Frame, Outcome, Sequence, SequenceInfo
 from benchmark.registry import Registry
 from benchmark.tracker import NoParams, Tracker
 
 __version__ = "0.1.0"
 
-hookimpl = pluggy.HookimplMarker(PROJECT_NAME)
-"""Marker for hook implementations in trackbench plugins."""
-
 __all__ = [
     "CableState",
     "CameraCalibration",
+    "CameraFrame",
     "CameraPose",
     "CameraTruth",
     "DataError",
     "Frame",
+    "Modality",
     "NoParams",
     "Outcome",
     "ParameterError",
     "PluginError",
+    "Reader",
     "Registry",
     "Sequence",
     "SequenceInfo",

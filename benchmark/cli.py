@@ -34,9 +34,10 @@ import click
 from benchmark import plugins
 from benchmark.errors import TrackbenchError
 from benchmark.registry import Registry
-from benchmark.runner import DEFAULT_TIMEOUT_S, CellResult, run_cells
+from benchmark.runner import DEFAULT_TIMEOUT_S
 
 if TYPE_CHECKING:
+    from benchmark.harness import Publication
     from benchmark.store import ResultStore
 
 DEFAULT_OUT = Path("reports") / "latest"
@@ -124,29 +125,11 @@ def list_datasets(session: Session) -> None:
             click.echo(f"{line}  {description}" if description else line)
 
 
-def _progress(result: CellResult) -> str:
-    summary = result.summary()
-    correct = summary.get("correct_pct", float("nan"))
-    fps = summary.get("fps", float("nan"))
-    line = (
-        f"{result.tracker}  {result.dataset}  seed {result.seed}  {result.status}  "
-        f"correct {correct:.1f}%  {fps:.0f} fps  ({len(result.scores)} frames, {result.elapsed_s:.1f} s)"
-    )
-    if result.message:
-        line += f"  {result.message}"
-    return line
+def _show(publication: Publication) -> None:
+    from benchmark.report import to_text
 
-
-def _publish(store: ResultStore, out: Path, run_id: int | None, all_runs: bool = False) -> None:
-    from benchmark import leaderboard
-
-    run_id = store.latest_run() if run_id is None and not all_runs else run_id
-    boards = leaderboard.load_leaderboards(store, run_id, all_runs=all_runs)
-    caption = (
-        f"All runs of {store.path}." if all_runs else f"Run {run_id} of {store.path}." if run_id else "No runs."
-    )
-    click.echo(leaderboard.to_text(boards))
-    for path in leaderboard.write_leaderboards(boards, out, caption):
+    click.echo(to_text(publication.boards))
+    for path in publication.files:
         click.echo(f"wrote {path}", err=True)
 
 
@@ -206,30 +189,25 @@ def run(
     params: tuple[str, ...],
 ) -> None:
     """Run trackers on datasets, store the cells and publish the leaderboard."""
-    from benchmark import selection
-    from benchmark.store import DATABASE_NAME, ResultStore
+    from benchmark.harness import run_benchmark
+    from benchmark.selection import Selection, select_cells
 
     session: Session = ctx.obj
     registry = session.registry
-    overrides = selection.parse_param_overrides(params)
-    entries = selection.apply_param_overrides(selection.select_trackers(registry, trackers), overrides)
-    sequences = selection.select_sequences(registry, suites, datasets)
-    cells = selection.make_cells(entries, sequences, range(seeds), init)
-
-    out.mkdir(parents=True, exist_ok=True)
-    with ResultStore(out / DATABASE_NAME) as store:
-        options = {key: list(value) if isinstance(value, tuple) else value for key, value in ctx.params.items()}
-        run_id = store.start_run(sys.argv, {**options, "out": str(out), "disable": list(session.disable)})
-        if resume:
-            done = store.find_ok_cells(cell.key for cell in cells)
-            store.reuse_cells(run_id, done.values())
-            cells = [cell for cell in cells if cell.key not in done]
-            click.echo(f"resume: {len(done)} cells already finished, {len(cells)} to run", err=True)
-        for result in run_cells(cells, jobs=jobs, timeout_s=timeout):
-            store.add_cell(run_id, result)
-            click.echo(_progress(result), err=True)
-        store.finish_run(run_id)
-        _publish(store, out, run_id)
+    cells = select_cells(registry, Selection(trackers, suites, datasets, params, seeds, init))
+    options = {key: list(value) if isinstance(value, tuple) else value for key, value in ctx.params.items()}
+    publication = run_benchmark(
+        cells,
+        registry.modalities,
+        out,
+        jobs=jobs,
+        timeout_s=timeout,
+        resume=resume,
+        argv=sys.argv,
+        options={**options, "out": str(out), "disable": list(session.disable)},
+        log=lambda line: click.echo(line, err=True),
+    )
+    _show(publication)
 
 
 def _results_store(out: Path) -> ResultStore:
@@ -259,14 +237,17 @@ OUT_OPTION = click.option(
 @main.command("leaderboard")
 @OUT_OPTION
 @click.option("--all-runs", is_flag=True, help="Take the latest cell of every run, not only the latest run.")
-def leaderboard_command(out: Path, all_runs: bool) -> None:
+@click.pass_obj
+def leaderboard_command(session: Session, out: Path, all_runs: bool) -> None:
     """Print and export the leaderboard of an existing results database.
 
     The leaderboard of a run holds the cells it ran and those it resumed;
     for each tracker, dataset, seed and initialisation the latest cell.
     """
+    from benchmark.harness import publish
+
     with _results_store(out) as store:
-        _publish(store, out, None, all_runs)
+        _show(publish(store, session.registry.modalities, out, all_runs=all_runs))
 
 
 @main.command("tables")
@@ -282,7 +263,7 @@ def tables_command(session: Session, suite: str, out: Path, metrics: tuple[str, 
     as in Tables 6-8 of Sinisterra et al.  Also written to
     OUT/tables_SUITE.md.
     """
-    from benchmark import leaderboard
+    from benchmark.leaderboard import load_leaderboards
     from benchmark.report.grid import grid_markdown, grid_tables
     from benchmark.selection import SelectionError
 
@@ -291,7 +272,7 @@ def tables_command(session: Session, suite: str, out: Path, metrics: tuple[str, 
         raise SelectionError(f"unknown suite {suite!r} (known: {', '.join(sorted(suites)) or 'none'})")
     order = [sequence.info.name for sequence in suites[suite].sequences]
     with _results_store(out) as store:
-        boards = leaderboard.load_leaderboards(store, store.latest_run())
+        boards = load_leaderboards(store, session.registry.modalities, store.latest_run())
     rows = [board[board["dataset"].isin(order)] for board in boards.values()]
     board = next((part for part in rows if not part.empty), None)
     if board is None:
@@ -314,12 +295,16 @@ def tables_command(session: Session, suite: str, out: Path, metrics: tuple[str, 
 )
 @click.pass_obj
 def make_dataset(session: Session, suite: str, out: Path) -> None:
-    """Write every sequence of SUITE to disk: camera as PNG frames plus a sequence file, sonar as a swath file."""
+    """Write every sequence of SUITE to disk in its modality's form.
+
+    Camera sequences become PNG frames plus an image sequence file, sonar
+    sequences a swath file.
+    """
     from benchmark.io import export_sequence
     from benchmark.selection import SelectionError
 
-    suites = session.registry.suites
-    if suite not in suites:
-        raise SelectionError(f"unknown suite {suite!r} (known: {', '.join(sorted(suites)) or 'none'})")
-    for sequence in suites[suite].sequences:
-        click.echo(export_sequence(sequence, out))
+    registry = session.registry
+    if suite not in registry.suites:
+        raise SelectionError(f"unknown suite {suite!r} (known: {', '.join(sorted(registry.suites)) or 'none'})")
+    for sequence in registry.suites[suite].sequences:
+        click.echo(export_sequence(sequence, out, registry.modalities))

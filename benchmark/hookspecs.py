@@ -2,7 +2,7 @@
 
 A plugin is a module (or object) registered under the entry-point group
 ``trackbench`` that implements any of these hooks, marked with
-:data:`benchmark.hookimpl`::
+:data:`hookimpl` (re-exported as :data:`benchmark.hookimpl`)::
 
     from benchmark import hookimpl
 
@@ -10,7 +10,12 @@ A plugin is a module (or object) registered under the entry-point group
     def trackbench_register_trackers(registry):
         registry.add_tracker(MyTracker)
 
-The first-party trackers and suites are plugins of exactly this kind.
+The harness calls the hooks through pluggy, in this order: modalities,
+then trackers (each names a modality), then datasets (whose scene kinds
+belong to modalities).  Pluggy's ``tryfirst``, ``trylast`` and wrappers
+order and wrap the implementations of one hook.  The built-in modalities,
+the first-party trackers and the shared suites are plugins of exactly this
+kind.
 """
 
 from __future__ import annotations
@@ -25,6 +30,25 @@ if TYPE_CHECKING:
 PROJECT_NAME = "trackbench"
 
 hookspec = pluggy.HookspecMarker(PROJECT_NAME)
+"""Marker of the hook specifications below."""
+
+hookimpl = pluggy.HookimplMarker(PROJECT_NAME)
+"""Marker for hook implementations in trackbench plugins."""
+
+
+@hookspec
+def trackbench_register_modalities(registry: Registry) -> None:
+    """Add modalities, kinds of sensor data, to the registry.
+
+    Call :meth:`Registry.add_modality` with a :class:`benchmark.modality.Modality`:
+    its frame and estimate types, scorer, file readers, exporter and scene
+    kinds.  Trackers and sequences name a modality by its ``name``.
+
+    Parameters
+    ----------
+    registry : Registry
+        The registry of this session; errors raised here name the plugin.
+    """
 
 
 @hookspec

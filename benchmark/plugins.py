@@ -1,22 +1,39 @@
-"""The plugin manager: every tracker and suite comes through entry points.
+"""The plugin manager: every modality, tracker and suite comes through entry points.
 
 Plugins are modules named in the entry-point group ``trackbench`` of any
-installed distribution; trackbench's own trackers and suites are listed in
-its own ``pyproject.toml`` and loaded by the same loop, so there is one path
-for everybody.  After loading, ``check_pending()`` makes a misspelt hook
-fail loudly.
+installed distribution; trackbench's own modalities, trackers and suites
+are listed in its own ``pyproject.toml`` and loaded the same way, so there
+is one path for everybody.  Loading and calling go through pluggy itself:
+:meth:`pluggy.PluginManager.load_setuptools_entrypoints` imports and
+registers each plugin, ``check_pending()`` makes a misspelt hook fail
+loudly, and each ``trackbench_register_*`` hook is one pluggy hook call, so
+``tryfirst``, ``trylast``, wrappers and pluggy's tracing work as they do
+for pytest's plugins.
 
-A plugin is blocked with ``--disable NAME`` or by listing it, comma
-separated, in the environment variable ``TRACKBENCH_DISABLE_PLUGINS``.
+Two distributions that offer an entry point of the same name are an error
+naming both: one would otherwise silently shadow the other.  A plugin is
+blocked with ``--disable NAME`` or by listing it, comma separated, in the
+environment variable ``TRACKBENCH_DISABLE_PLUGINS``.
+
+Every error names the plugin at fault.  While a hook runs, the registry
+attributes each addition to the plugin whose hook implementation is on the
+call stack (:func:`calling_plugin`); an exception escaping a hook is
+attributed to the innermost implementation in its traceback.  Where one
+function serves several plugins, closures are told apart by what they
+captured, and a plain shared function is attributed to all its plugins.
 """
 
 from __future__ import annotations
 
 import importlib.metadata
+import inspect
 import os
-from collections.abc import Iterable
+import traceback
+from collections.abc import Iterable, Mapping, Sequence
+from types import CodeType, FrameType
 
 import pluggy
+from pluggy import HookImpl
 
 from benchmark import hookspecs
 from benchmark.errors import PluginError
@@ -24,12 +41,32 @@ from benchmark.registry import Origin, Registry
 
 ENTRY_POINT_GROUP = "trackbench"
 DISABLE_ENV = "TRACKBENCH_DISABLE_PLUGINS"
-REGISTER_HOOKS = ("trackbench_register_trackers", "trackbench_register_datasets")
+REGISTER_HOOKS = ("trackbench_register_modalities", "trackbench_register_trackers", "trackbench_register_datasets")
+"""The hooks that fill a registry, in the order they are called."""
 
 
 def disabled_from_environment() -> set[str]:
     """Plugin names listed in ``TRACKBENCH_DISABLE_PLUGINS``."""
     return {name.strip() for name in os.environ.get(DISABLE_ENV, "").split(",") if name.strip()}
+
+
+def entry_points() -> dict[str, dict[str, importlib.metadata.EntryPoint]]:
+    """The group's entry points by name, each with the distributions (``"name version"``) offering it.
+
+    A distribution found twice on the path (an editable install seen from
+    its own folder, say) counts once.
+    """
+    found: dict[str, dict[str, importlib.metadata.EntryPoint]] = {}
+    seen: set[str] = set()
+    for dist in importlib.metadata.distributions():
+        name = dist.metadata["name"]
+        if name in seen:
+            continue
+        seen.add(name)
+        for ep in dist.entry_points:
+            if ep.group == ENTRY_POINT_GROUP:
+                found.setdefault(ep.name, {})[f"{name} {dist.version}"] = ep
+    return found
 
 
 def make_plugin_manager(disable: Iterable[str] = ()) -> tuple[pluggy.PluginManager, dict[str, Origin]]:
@@ -45,37 +82,39 @@ def make_plugin_manager(disable: Iterable[str] = ()) -> tuple[pluggy.PluginManag
     manager : pluggy.PluginManager
         With the hook specifications added and the plugins registered.
     origins : dict
-        For each registered plugin name, the distribution it came from.
+        For each registered plugin name, where it came from.
 
     Raises
     ------
     PluginError
-        If a plugin fails to import, does not validate against the hook
-        specifications, or implements a hook that does not exist.
+        If two distributions offer the same entry-point name, a plugin fails
+        to import, does not validate against the hook specifications, or
+        implements a hook that does not exist.
     """
     manager = pluggy.PluginManager(hookspecs.PROJECT_NAME)
     manager.add_hookspecs(hookspecs)
     for name in set(disable) | disabled_from_environment():
         manager.set_blocked(name)
     origins: dict[str, Origin] = {}
-    for dist in importlib.metadata.distributions():
-        for ep in dist.entry_points:
-            if ep.group != ENTRY_POINT_GROUP or manager.is_blocked(ep.name) or manager.get_plugin(ep.name):
-                continue
-            origin = Origin(ep.name, f"{dist.metadata['name']} {dist.version}")
-            try:
-                plugin = ep.load()
-            except Exception as exc:
-                raise PluginError(
-                    f"plugin {ep.name!r} ({origin.distribution}) failed to import {ep.value!r}: "
-                    f"{type(exc).__name__}: {exc}. Disable it with --disable {ep.name} "
-                    f"or {DISABLE_ENV}={ep.name}"
-                ) from exc
-            try:
-                manager.register(plugin, name=ep.name)
-            except pluggy.PluginValidationError as exc:
-                raise PluginError(f"plugin {ep.name!r} ({origin.distribution}): {exc}") from exc
-            origins[ep.name] = origin
+    for name, offers in entry_points().items():
+        if manager.is_blocked(name):
+            continue
+        if len(offers) > 1:
+            raise PluginError(
+                f"plugin name {name!r} of the {ENTRY_POINT_GROUP!r} entry-point group is taken twice, by "
+                f"{' and '.join(sorted(offers))}; uninstall one, or disable the name with --disable {name}"
+            )
+        ((distribution, ep),) = offers.items()
+        try:
+            manager.load_setuptools_entrypoints(ENTRY_POINT_GROUP, name=name)
+        except pluggy.PluginValidationError as exc:
+            raise PluginError(f"plugin {name!r} ({distribution}): {exc}") from exc
+        except Exception as exc:
+            raise PluginError(
+                f"plugin {name!r} ({distribution}) failed to import {ep.value!r}: "
+                f"{type(exc).__name__}: {exc}. Disable it with --disable {name} or {DISABLE_ENV}={name}"
+            ) from exc
+        origins[name] = Origin(name, distribution)
     try:
         manager.check_pending()
     except pluggy.PluginValidationError as exc:
@@ -83,27 +122,84 @@ def make_plugin_manager(disable: Iterable[str] = ()) -> tuple[pluggy.PluginManag
     return manager, origins
 
 
-def fill_registry(manager: pluggy.PluginManager, origins: dict[str, Origin]) -> Registry:
-    """Call every plugin's register hooks, attributing each addition to it.
+Implementations = Mapping[CodeType, Sequence[tuple[HookImpl, Origin]]]
+"""The code of the register hook implementations, each with the implementations (and plugins) running it."""
 
-    Each implementation is called on its own so that an error, raised by the
-    plugin or by the registry's checks, names the plugin responsible.
-    """
-    registry = Registry()
+
+def _implementations(manager: pluggy.PluginManager, origins: Mapping[str, Origin]) -> Implementations:
+    found: dict[CodeType, list[tuple[HookImpl, Origin]]] = {}
     for hook_name in REGISTER_HOOKS:
-        # get_hookimpls() lists implementations in load order (pluggy calls them reversed).
         for impl in getattr(manager.hook, hook_name).get_hookimpls():
             origin = origins.get(impl.plugin_name, Origin(impl.plugin_name))
-            with registry.acting_for(origin):
-                try:
-                    impl.function(*(dict(registry=registry)[arg] for arg in impl.argnames))
-                except PluginError:
-                    raise
-                except Exception as exc:
-                    raise PluginError(
-                        f"plugin {origin.plugin!r} ({origin.distribution}) raised in {hook_name}: "
-                        f"{type(exc).__name__}: {exc}"
-                    ) from exc
+            found.setdefault(impl.function.__code__, []).append((impl, origin))
+    return found
+
+
+def _runs_in(impl: HookImpl, frame: FrameType) -> bool:
+    """Whether ``frame`` runs ``impl`` rather than another implementation of the same code.
+
+    Closures of one factory differ by what they captured, methods of one
+    class by the object they are bound to; plain functions cannot be told apart.
+    """
+    function = impl.function
+    if inspect.ismethod(function):
+        return frame.f_locals.get(frame.f_code.co_varnames[0]) is function.__self__
+    cells = function.__closure__ or ()
+    return bool(cells) and all(
+        frame.f_locals.get(name) is cell.cell_contents for name, cell in zip(frame.f_code.co_freevars, cells)
+    )
+
+
+def _frame_origin(frame: FrameType, candidates: Sequence[tuple[HookImpl, Origin]]) -> Origin:
+    """The plugin whose implementation runs in ``frame``; all of them where that stays ambiguous."""
+    if len(candidates) > 1:
+        candidates = [(impl, origin) for impl, origin in candidates if _runs_in(impl, frame)] or candidates
+    plugins = list(dict.fromkeys(origin for _, origin in candidates))
+    if len(plugins) == 1:
+        return plugins[0]
+    return Origin(" or ".join(o.plugin for o in plugins), " or ".join(o.distribution for o in plugins))
+
+
+def calling_plugin(implementations: Implementations, frame: FrameType | None) -> Origin:
+    """The plugin whose hook implementation is nearest ``frame`` on the call stack."""
+    while frame is not None:
+        if frame.f_code in implementations:
+            return _frame_origin(frame, implementations[frame.f_code])
+        frame = frame.f_back
+    return Origin()
+
+
+def _raising_plugin(exc: BaseException, implementations: Implementations) -> Origin:
+    """The plugin of the innermost hook implementation in ``exc``'s traceback."""
+    frames = [frame for frame, _ in traceback.walk_tb(exc.__traceback__) if frame.f_code in implementations]
+    return _frame_origin(frames[-1], implementations[frames[-1].f_code]) if frames else Origin()
+
+
+def fill_registry(manager: pluggy.PluginManager, origins: Mapping[str, Origin]) -> Registry:
+    """Call the register hooks through pluggy, attributing every addition to its plugin.
+
+    Raises
+    ------
+    PluginError
+        For a bad addition or an exception raised by a hook, naming the plugin.
+    """
+    registry = Registry()
+    implementations = _implementations(manager, origins)
+    registry.attribute_with(lambda: calling_plugin(implementations, inspect.currentframe()))
+    try:
+        for hook_name in REGISTER_HOOKS:
+            try:
+                getattr(manager.hook, hook_name)(registry=registry)
+            except PluginError:
+                raise
+            except Exception as exc:
+                origin = _raising_plugin(exc, implementations)
+                raise PluginError(
+                    f"plugin {origin.plugin!r} ({origin.distribution}) raised in {hook_name}: "
+                    f"{type(exc).__name__}: {exc}"
+                ) from exc
+    finally:
+        registry.attribute_with(None)
     return registry
 
 

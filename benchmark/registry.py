@@ -1,22 +1,28 @@
-"""The registry that plugins fill with trackers and suites.
+"""The registry that plugins fill with modalities, trackers and suites.
 
 Plugins receive a :class:`Registry` in their ``trackbench_register_*`` hooks
 (the pattern of tox's ``tox_register_tox_env``).  The registry checks every
-addition and names the plugin that made a bad one.
+addition against what is already there (a tracker's modality must be
+registered, a file suffix read by one modality only) and names the plugin
+that made a bad one.  Which plugin is adding something is told by
+:meth:`Registry.acting_for`, or found by the function the plugin manager
+hands to :meth:`Registry.attribute_with` while pluggy calls the hooks.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import inspect
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
 from benchmark.errors import ParameterError, PluginError
-from benchmark.model import MODALITIES, Sequence
-from benchmark.tracker import Tracker, params_key
+from benchmark.modality import Modality, SceneFactory
+from benchmark.model import Sequence
+from benchmark.parameters import params_key
+from benchmark.tracker import Tracker
 
 
 @dataclass(frozen=True)
@@ -46,7 +52,7 @@ class TrackerEntry:
 
     @property
     def cache_key(self) -> str:
-        """Hash of name, version and parameters (see :func:`benchmark.tracker.params_key`)."""
+        """Hash of name, version and parameters (see :func:`benchmark.parameters.params_key`)."""
         return params_key(self.name, self.version, self.params)
 
     def create(self) -> Tracker:
@@ -70,19 +76,22 @@ class SuiteEntry:
 
 
 class Registry:
-    """Trackers and suites contributed by plugins.
+    """Modalities, trackers and suites contributed by plugins.
 
     Examples
     --------
     >>> registry = Registry()
+    >>> registry.add_modality(CAMERA)                                    # doctest: +SKIP
     >>> registry.add_tracker(MyTracker)                                  # doctest: +SKIP
     >>> registry.add_tracker(MyTracker, name="mine-fast", params={"n": 10})  # doctest: +SKIP
     """
 
     def __init__(self) -> None:
+        self.modalities: dict[str, Modality] = {}
         self.trackers: dict[str, TrackerEntry] = {}
         self.suites: dict[str, SuiteEntry] = {}
-        self._origin = Origin()
+        self._origin: Origin | None = None
+        self._find_origin: Callable[[], Origin] | None = None
 
     @contextmanager
     def acting_for(self, origin: Origin) -> Iterator[None]:
@@ -93,8 +102,58 @@ class Registry:
         finally:
             self._origin = previous
 
+    def attribute_with(self, find_origin: Callable[[], Origin] | None) -> None:
+        """Ask ``find_origin()`` who makes each addition outside :meth:`acting_for` (None: nobody to ask)."""
+        self._find_origin = find_origin
+
+    @property
+    def origin(self) -> Origin:
+        """The plugin that is adding something now."""
+        if self._origin is not None:
+            return self._origin
+        return self._find_origin() if self._find_origin is not None else Origin()
+
     def _fail(self, message: str) -> PluginError:
-        return PluginError(f"plugin {self._origin.plugin!r} ({self._origin.distribution}): {message}")
+        origin = self.origin
+        return PluginError(f"plugin {origin.plugin!r} ({origin.distribution}): {message}")
+
+    def add_modality(self, modality: Modality) -> Modality:
+        """Register a modality: a kind of sensor data, its types, scorer, readers and scene kinds.
+
+        Raises
+        ------
+        PluginError
+            If ``modality`` is not a :class:`~benchmark.modality.Modality`,
+            its name is taken, its error columns are not named ``err_*``, or
+            one of its file suffixes, its folder reader or one of its scene
+            kinds is already another modality's.
+        """
+        if not isinstance(modality, Modality):
+            raise self._fail(f"{modality!r} is not a benchmark.modality.Modality")
+        if not isinstance(modality.name, str) or not modality.name:
+            raise self._fail(f"a modality needs a non-empty str name, not {modality.name!r}")
+        if modality.name in self.modalities:
+            raise self._fail(f"modality {modality.name!r} is already registered")
+        columns = modality.error_columns
+        if not all(isinstance(column, str) and column.startswith("err_") for column in columns):
+            raise self._fail(f"modality {modality.name!r}: error columns must be named err_<what>_<unit>: {columns}")
+        readers_of = {claim: name for name, known in self.modalities.items() for claim in known.claims}
+        for claim in modality.claims:
+            if claim in readers_of:
+                other = readers_of[claim]
+                raise self._fail(f"modality {modality.name!r}: {claim} is already read by modality {other!r}")
+        kinds_of = {kind: name for name, known in self.modalities.items() for kind in known.scene_kinds}
+        for kind in modality.scene_kinds:
+            if kind in kinds_of:
+                other = kinds_of[kind]
+                raise self._fail(f"modality {modality.name!r}: scene kind {kind!r} belongs to modality {other!r}")
+        self.modalities[modality.name] = modality
+        return modality
+
+    @property
+    def scene_kinds(self) -> dict[str, SceneFactory]:
+        """Every registered modality's scene kinds: name to factory."""
+        return {kind: make for modality in self.modalities.values() for kind, make in modality.scene_kinds.items()}
 
     def add_tracker(
         self, tracker_class: type[Tracker], *, name: str | None = None, params: Mapping[str, Any] | None = None
@@ -115,9 +174,11 @@ class Registry:
         for attribute in ("name", "version", "modality"):
             if not isinstance(getattr(tracker_class, attribute, None), str) or not getattr(tracker_class, attribute):
                 raise self._fail(f"tracker class {tracker_class.__name__} must set a non-empty str {attribute!r}")
-        if tracker_class.modality not in MODALITIES:
+        if tracker_class.modality not in self.modalities:
+            known = ", ".join(self.modalities) or "none"
             raise self._fail(
-                f"tracker {tracker_class.name!r} has modality {tracker_class.modality!r}; expected one of {MODALITIES}"
+                f"tracker {tracker_class.name!r} has modality {tracker_class.modality!r}, which no plugin "
+                f"registered (registered: {known})"
             )
         params_class = tracker_class.Params
         if not (dataclasses.is_dataclass(params_class) and params_class.__dataclass_params__.frozen):
@@ -134,7 +195,7 @@ class Registry:
             values = tracker_class.make_params(params)
         except ParameterError as exc:
             raise self._fail(str(exc)) from exc
-        entry = TrackerEntry(entry_name, tracker_class, values, self._origin)
+        entry = TrackerEntry(entry_name, tracker_class, values, self.origin)
         self.trackers[entry_name] = entry
         return entry
 
@@ -147,7 +208,7 @@ class Registry:
         ------
         PluginError
             If the suite or one of its sequence names is taken, or an item
-            is not a :class:`benchmark.model.Sequence`.
+            is not a :class:`benchmark.model.Sequence` of a registered modality.
         """
         if name in self.suites:
             raise self._fail(f"suite {name!r} is already registered by plugin {self.suites[name].origin.plugin!r}")
@@ -158,8 +219,13 @@ class Registry:
                 raise self._fail(f"suite {name!r}: {item!r} is not a benchmark.model.Sequence")
             if item.info.name in taken:
                 raise self._fail(f"suite {name!r}: sequence name {item.info.name!r} is already registered")
+            if item.info.modality not in self.modalities:
+                raise self._fail(
+                    f"suite {name!r}: sequence {item.info.name!r} has modality {item.info.modality!r}, "
+                    f"which no plugin registered (registered: {', '.join(self.modalities) or 'none'})"
+                )
             taken.add(item.info.name)
-        entry = SuiteEntry(name, items, self._origin)
+        entry = SuiteEntry(name, items, self.origin)
         self.suites[name] = entry
         return entry
 

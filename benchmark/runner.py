@@ -1,14 +1,16 @@
 """Running cells: one tracker on one sequence with one seed, failures isolated.
 
 A *cell* is the unit of work of the benchmark: a registered tracker (with
-its parameters), a sequence and a seed, initialised either from the first
-frame's ground truth or from nothing.  :func:`run_cell` creates a fresh
-tracker, reads the first frame, calls ``reset(info, rng, init)`` and then
-``step`` once per frame, scoring each frame as it goes with the modality's
-scorer (:mod:`benchmark.metrics`; the camera rule is seeds/004, section
-VI-C, Table V).  Timing covers ``step`` only, so frames per second compare
-trackers rather than image decoders, as in the thesis' Table 5.3
-(seeds/000, section 5.2.5).
+its parameters), a sequence of the tracker's modality and a seed,
+initialised either from the first frame's ground truth or from nothing.
+:func:`run_cell` creates a fresh tracker, reads the first frame, calls
+``reset(info, rng, init)`` and then ``step`` once per frame, scoring each
+frame as it goes with the scorer of the cell's modality
+(:class:`benchmark.modality.Modality`; the camera rule is seeds/004,
+section VI-C, Table V).  A frame whose observation or truth is not of the
+modality's types is a data error, so trackers can rely on them.  Timing
+covers ``step`` only, so frames per second compare trackers rather than
+image decoders, as in the thesis' Table 5.3 (seeds/000, section 5.2.5).
 
 The generator of a cell is seeded from the seed and the CRC-32 of the
 tracker's and the dataset's names, so that a seed replays a cell bit for bit
@@ -36,28 +38,18 @@ import traceback
 import zlib
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from typing import Any, Literal, NamedTuple
+from typing import Any, Literal
 
 import numpy as np
-import pandas as pd
 
-from benchmark.metrics import EstimateError, FrameScore, frame_table, scorer_for, summarise
+from benchmark.modality import EstimateError, Modality
 from benchmark.model import Sequence, SequenceInfo
 from benchmark.registry import TrackerEntry
+from benchmark.results import CellKey, CellResult, FrameScore, Status
 
-Status = Literal["ok", "error", "timeout"]
 InitMode = Literal["truth", "none"]
 DEFAULT_TIMEOUT_S = 600.0
 """Time limit of one cell unless the caller sets another."""
-
-
-class CellKey(NamedTuple):
-    """What makes two cells the same computation (``--resume`` matches on it)."""
-
-    tracker_key: str
-    dataset: str
-    seed: int
-    init: str
 
 
 @dataclass(frozen=True)
@@ -74,16 +66,24 @@ class Cell:
         Seed of the cell's generator.
     init : {"truth", "none"}
         ``"truth"`` hands the first frame's ground truth to ``reset``.
+    modality : Modality
+        The modality of tracker and sequence: frame types and scorer
+        (keyword only).
     """
 
     tracker: TrackerEntry
     sequence: Sequence
     seed: int
     init: InitMode = "truth"
+    modality: Modality = dataclasses.field(kw_only=True)
 
     def __post_init__(self) -> None:
         if self.init not in ("truth", "none"):
             raise ValueError(f"init must be 'truth' or 'none', not {self.init!r}")
+        if self.modality.name != self.tracker.modality:
+            raise ValueError(
+                f"tracker {self.tracker.name!r} reads {self.tracker.modality} frames, not {self.modality.name} frames"
+            )
 
     @functools.cached_property
     def info(self) -> SequenceInfo:
@@ -105,84 +105,27 @@ class Cell:
         return f"{self.tracker.name} on {self.dataset}, seed {self.seed}"
 
 
-@dataclass(frozen=True)
-class CellResult:
-    """What running a cell produced, ready to be stored.
-
-    Attributes
-    ----------
-    tracker, tracker_version, tracker_key : str
-        The tracker's name, version and cache key.
-    params : dict
-        The tracker's parameters by name.
-    dataset, modality : str
-        The sequence's name and modality.
-    seed : int
-        The cell's seed.
-    init : str
-        ``"truth"`` or ``"none"``.
-    status : {"ok", "error", "timeout"}
-        How the cell ended.
-    message : str
-        Empty for ``"ok"``; otherwise ``"ExceptionType: message (frame k)"``
-        or the time limit that was exceeded.
-    scores : tuple of FrameScore
-        Every frame scored, including those before a failure.
-    elapsed_s : float
-        Wall time of the whole cell, reading and scoring included.
-    detail : str
-        The traceback of an error, for the tracker's author.
-    """
-
-    tracker: str
-    tracker_version: str
-    tracker_key: str
-    params: dict[str, Any]
-    dataset: str
-    modality: str
-    seed: int
-    init: str
-    status: Status
-    message: str
-    scores: tuple[FrameScore, ...]
-    elapsed_s: float
-    detail: str = ""
-
-    @classmethod
-    def for_cell(cls, cell: Cell, status: Status, message: str = "", **fields: Any) -> CellResult:
-        """A result carrying ``cell``'s identity."""
-        try:
-            dataset, modality = cell.info.name, cell.info.modality
-        except Exception:
-            dataset, modality = repr(cell.sequence), cell.tracker.modality
-        values: dict[str, Any] = {"scores": (), "elapsed_s": 0.0, **fields}
-        return cls(
-            tracker=cell.tracker.name,
-            tracker_version=cell.tracker.version,
-            tracker_key=cell.tracker.cache_key,
-            params=dataclasses.asdict(cell.tracker.params),
-            dataset=dataset,
-            modality=modality,
-            seed=cell.seed,
-            init=cell.init,
-            status=status,
-            message=message,
-            **values,
-        )
-
-    @property
-    def key(self) -> CellKey:
-        """Identity of the computation (see :class:`CellKey`)."""
-        return CellKey(self.tracker_key, self.dataset, self.seed, self.init)
-
-    @property
-    def frames(self) -> pd.DataFrame:
-        """The frame scores as a table (:func:`benchmark.metrics.frame_table`)."""
-        return frame_table(self.scores)
-
-    def summary(self) -> dict[str, float]:
-        """Rates, RMSEs and fps of this cell (:func:`benchmark.metrics.summarise`)."""
-        return summarise(self.frames, scorer_for(self.modality).error_columns)
+def cell_result(cell: Cell, status: Status, message: str = "", **fields: Any) -> CellResult:
+    """A result carrying ``cell``'s identity; ``fields`` fill the rest (scores, elapsed_s, detail)."""
+    try:
+        dataset, modality = cell.info.name, cell.info.modality
+    except Exception:
+        dataset, modality = repr(cell.sequence), cell.modality.name
+    values: dict[str, Any] = {"scores": (), "elapsed_s": 0.0, **fields}
+    return CellResult(
+        tracker=cell.tracker.name,
+        tracker_version=cell.tracker.version,
+        tracker_key=cell.tracker.cache_key,
+        params=dataclasses.asdict(cell.tracker.params),
+        dataset=dataset,
+        modality=modality,
+        seed=cell.seed,
+        init=cell.init,
+        status=status,
+        message=message,
+        error_columns=cell.modality.error_columns,
+        **values,
+    )
 
 
 def cell_rng(seed: int, tracker_name: str, dataset_name: str) -> np.random.Generator:
@@ -233,13 +176,15 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
     message = detail = ""
     try:
         info = cell.info
-        scorer = scorer_for(info.modality)
+        modality = cell.modality
+        scorer = modality.scorer
         tracker = cell.tracker.create()
         frames = iter(cell.sequence.frames())
         where = "reading frame 0"
         first = next(frames, None)
         if first is None:
             raise ValueError(f"sequence {info.name!r} has no frames")
+        modality.check_frame(first, f"sequence {info.name!r}, frame {first.index}")
         where = "reset, frame 0"
         rng = cell_rng(cell.seed, cell.tracker.name, info.name)
         tracker.reset(info, rng, init=first.truth if cell.init == "truth" else None)
@@ -250,7 +195,7 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
             estimate = tracker.step(frame)
             step_s = time.perf_counter() - tick
             try:
-                scorer.check(estimate)
+                modality.check_estimate(estimate)
             except EstimateError as exc:
                 raise EstimateError(f"tracker {cell.tracker.name!r} returned an invalid estimate: {exc}") from exc
             outcome, errors = scorer.score(estimate, frame.truth, info)
@@ -259,6 +204,7 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
             following = next(frames, None)
             if following is None:
                 break
+            modality.check_frame(following, f"sequence {info.name!r}, frame {following.index}")
             if time.perf_counter() > deadline:
                 status = "timeout"
                 message = f"exceeded the {timeout_s:g} s limit after {len(scores)} frames (frame {following.index})"
@@ -268,7 +214,7 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
         status = "error"
         message = f"{_describe(exc)} ({where})"
         detail = traceback.format_exc()
-    return CellResult.for_cell(
+    return cell_result(
         cell, status, message, scores=tuple(scores), elapsed_s=time.perf_counter() - started, detail=detail
     )
 
@@ -282,14 +228,14 @@ def _from_future(cell: Cell, future: concurrent.futures.Future, timeout_s: float
     try:
         return future.result()
     except TimeoutError:
-        return CellResult.for_cell(
+        return cell_result(
             cell,
             "timeout",
             f"no result within the {timeout_s:g} s limit; the worker was stopped and the frames are lost",
             elapsed_s=float(timeout_s or 0.0),
         )
     except Exception as exc:
-        return CellResult.for_cell(
+        return cell_result(
             cell, "error", f"{_describe(exc)} (worker process)", detail="".join(traceback.format_exception(exc))
         )
 

@@ -9,9 +9,11 @@ it cannot resolve is an error that lists the names it knows, so a typo is
 fixed from the message alone.
 
 A ``--dataset`` is either the name of a registered sequence (``camera/S3``)
-or the path of an image sequence file, image folder or video, opened with
+or the path of a file or folder a registered modality reads (an image
+sequence file, an image folder, a video, a swath file), opened with
 :func:`benchmark.io.open_sequence` and named in the results by the path as
-the user wrote it.
+the user wrote it.  A tracker meets a sequence when both name the same
+modality; :func:`select_cells` does all of it for a :class:`Selection`.
 """
 
 from __future__ import annotations
@@ -21,6 +23,8 @@ import os
 from collections.abc import Iterable, Iterator, Mapping
 
 from benchmark.errors import ParameterError, TrackbenchError
+from benchmark.io import open_sequence
+from benchmark.modality import Modality
 from benchmark.model import Frame, Sequence, SequenceInfo
 from benchmark.registry import Registry, TrackerEntry
 from benchmark.runner import Cell, InitMode
@@ -137,17 +141,15 @@ class NamedSequence(Sequence):
         return self.inner.frames()
 
 
-def open_dataset_path(path: str) -> Sequence:
-    """Open a sequence file, image folder or video, named by ``path`` as given.
+def open_dataset_path(path: str, modalities: Iterable[Modality]) -> Sequence:
+    """Open a dataset file or folder with the reader of its modality, named by ``path`` as given.
 
     Raises
     ------
     DataError
         If nothing readable is at ``path`` (from :func:`benchmark.io.open_sequence`).
     """
-    from benchmark.io import open_sequence
-
-    sequence = open_sequence(path)
+    sequence = open_sequence(path, modalities)
     return sequence if sequence.info.name == path else NamedSequence(sequence, path)
 
 
@@ -161,8 +163,8 @@ def select_sequences(registry: Registry, suites: Iterable[str] = (), datasets: I
     suites : iterable of str
         Suite names; each contributes all its sequences.
     datasets : iterable of str
-        Registered sequence names (``suite/sequence``) or paths of sequence
-        files, image folders or videos.
+        Registered sequence names (``suite/sequence``) or paths of files or
+        folders a registered modality reads.
 
     Returns
     -------
@@ -193,7 +195,7 @@ def select_sequences(registry: Registry, suites: Iterable[str] = (), datasets: I
         if name in registered:
             chosen.setdefault(name, registered[name])
         elif os.path.exists(name):
-            chosen.setdefault(name, open_dataset_path(name))
+            chosen.setdefault(name, open_dataset_path(name, registry.modalities.values()))
         else:
             raise SelectionError(
                 f"unknown dataset {name!r}: not a registered sequence and no such file or folder "
@@ -203,7 +205,11 @@ def select_sequences(registry: Registry, suites: Iterable[str] = (), datasets: I
 
 
 def make_cells(
-    trackers: Iterable[TrackerEntry], sequences: Iterable[Sequence], seeds: Iterable[int], init: InitMode
+    trackers: Iterable[TrackerEntry],
+    sequences: Iterable[Sequence],
+    seeds: Iterable[int],
+    init: InitMode,
+    modalities: Mapping[str, Modality],
 ) -> list[Cell]:
     """Every tracker x sequence x seed whose modalities match.
 
@@ -217,6 +223,8 @@ def make_cells(
         Seeds of each (tracker, sequence) pair.
     init : {"truth", "none"}
         Initialise trackers from the first frame's ground truth, or not.
+    modalities : Mapping
+        The registered modalities by name; each cell carries its own.
 
     Returns
     -------
@@ -232,7 +240,7 @@ def make_cells(
     sequence_list = list(sequences)
     seed_list = list(seeds)
     cells = [
-        Cell(tracker, sequence, seed, init)
+        Cell(tracker, sequence, seed, init, modality=modalities[tracker.modality])
         for tracker in tracker_list
         for sequence in sequence_list
         if sequence.info.modality == tracker.modality
@@ -246,3 +254,46 @@ def make_cells(
             f"(trackers: {tracker_modalities}; sequences: {sequence_modalities})"
         )
     return cells
+
+
+@dataclasses.dataclass(frozen=True)
+class Selection:
+    """What a run covers, in the words of the command line.
+
+    Attributes
+    ----------
+    trackers, suites, datasets : tuple of str
+        Names as ``--tracker``, ``--suite`` and ``--dataset`` give them; no
+        tracker means all, no suite and no dataset means every suite.
+    params : tuple of str
+        ``TRACKER.KEY=VALUE`` overrides.
+    seeds : int
+        Seeds ``0 .. seeds - 1`` of every tracker and sequence.
+    init : {"truth", "none"}
+        Initialise trackers from the first frame's ground truth, or not.
+    """
+
+    trackers: tuple[str, ...] = ()
+    suites: tuple[str, ...] = ()
+    datasets: tuple[str, ...] = ()
+    params: tuple[str, ...] = ()
+    seeds: int = 1
+    init: InitMode = "truth"
+
+
+def select_cells(registry: Registry, selection: Selection) -> list[Cell]:
+    """The cells a selection asks for, every name and parameter checked before any cell runs.
+
+    Raises
+    ------
+    SelectionError
+        For a name nothing registered answers to, or nothing to run.
+    ParameterError
+        For a malformed, unknown or invalid ``--param``.
+    DataError
+        For a dataset path that cannot be read.
+    """
+    overrides = parse_param_overrides(selection.params)
+    entries = apply_param_overrides(select_trackers(registry, selection.trackers), overrides)
+    sequences = select_sequences(registry, selection.suites, selection.datasets)
+    return make_cells(entries, sequences, range(selection.seeds), selection.init, registry.modalities)

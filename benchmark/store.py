@@ -45,7 +45,7 @@ import pandas as pd
 from benchmark.errors import DataError
 
 if TYPE_CHECKING:
-    from benchmark.runner import CellKey, CellResult
+    from benchmark.results import CellKey, CellResult
 
 SCHEMA_VERSION = 1
 DATABASE_NAME = "results.sqlite"
@@ -336,7 +336,8 @@ class ResultStore:
         -------
         pandas.DataFrame
             ``cell_id``, ``frame``, ``outcome``, ``step_ms`` and one column per
-            error name found (``nan`` where not stored), in processing order.
+            error name found, in the order they were written (``nan`` where
+            not stored); rows in processing order.
         """
         ids = sorted({int(cell_id) for cell_id in cell_ids})
         frame_rows: list[tuple] = []
@@ -347,7 +348,8 @@ class ResultStore:
                 f"SELECT cell_id, position, frame, outcome, step_ms FROM frames WHERE cell_id IN ({marks})", chunk
             ).fetchall()
             error_rows += self._db.execute(
-                f"SELECT cell_id, position, name, value FROM frame_errors WHERE cell_id IN ({marks})", chunk
+                f"SELECT cell_id, position, name, value FROM frame_errors WHERE cell_id IN ({marks}) ORDER BY rowid",
+                chunk,
             ).fetchall()
         frames = pd.DataFrame.from_records(
             frame_rows, columns=["cell_id", "position", "frame", "outcome", "step_ms"]
@@ -355,6 +357,7 @@ class ResultStore:
         if error_rows:
             errors = pd.DataFrame.from_records(error_rows, columns=["cell_id", "position", "name", "value"])
             wide = errors.pivot(index=["cell_id", "position"], columns="name", values="value")
+            wide = wide[list(dict.fromkeys(errors["name"]))]  # the scorer's order, as the columns were written
             wide.columns = [str(name) for name in wide.columns]
             frames = frames.merge(wide.reset_index(), on=["cell_id", "position"], how="left")
         frames = frames.sort_values(["cell_id", "position"], kind="stable")

@@ -10,24 +10,34 @@ published values.  The harness creates one instance per cell, calls
     for frame in sequence:
         estimate = tracker.step(frame)   # None: no detection this frame
 
+The runner guarantees that every frame, and ``init``, has the types the
+tracker's modality declares (:class:`benchmark.modality.Modality`), so a
+tracker need not check them.  ``Tracker`` is generic in the truth and the
+estimate of its modality: a camera tracker is a
+``Tracker[CameraTruth, CableState]``.
+
 All randomness must come from the ``rng`` handed to :meth:`Tracker.reset`,
 so that a seed replays a run bit for bit.
+
+Parameters are validated when they are made, by one declarative mechanism
+for every tracker (:mod:`benchmark.parameters`): a field declares its range
+or its choices beside it.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import hashlib
-import json
-import typing
 from abc import ABC, abstractmethod
-from collections.abc import Iterable, Mapping
-from typing import Any, ClassVar
+from collections.abc import Mapping
+from typing import Any, ClassVar, Generic, TypeVar
 
 import numpy as np
 
-from benchmark.errors import ParameterError
-from benchmark.model import Frame, Modality, Sequence, SequenceInfo
+from benchmark.model import Frame, SequenceInfo
+from benchmark.parameters import make_params
+
+TruthT = TypeVar("TruthT")
+EstimateT = TypeVar("EstimateT")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -35,7 +45,7 @@ class NoParams:
     """Parameters of a tracker that has none."""
 
 
-class Tracker(ABC):
+class Tracker(ABC, Generic[TruthT, EstimateT]):
     """Base class of all trackers, first-party and third-party alike.
 
     Class attributes
@@ -44,15 +54,16 @@ class Tracker(ABC):
         Unique name in leaderboards and on the command line.
     version : str
         Bumped whenever results may change; part of the cache key.
-    modality : {"camera", "sonar", "stereo"}
-        The observations the tracker reads.
+    modality : str
+        Name of the registered modality whose frames the tracker reads
+        (``"camera"``, ``"sonar"``, ``"stereo"``, or a plugin's).
     Params : type
         A frozen dataclass whose fields, with defaults, are the parameters.
     """
 
     name: ClassVar[str]
     version: ClassVar[str]
-    modality: ClassVar[Modality]
+    modality: ClassVar[str]
     Params: ClassVar[type] = NoParams
 
     def __init__(self, params: Any = None) -> None:
@@ -65,38 +76,19 @@ class Tracker(ABC):
 
     @classmethod
     def make_params(cls, overrides: Mapping[str, Any] | None = None) -> Any:
-        """Build ``Params`` from defaults and overrides.
+        """This tracker's ``Params`` from its defaults and ``overrides``, validated.
 
-        Values given as strings (from the command line) are converted to the
-        type of the default.
+        See :func:`benchmark.parameters.make_params`.
 
         Raises
         ------
         ParameterError
-            For a name ``Params`` does not declare or a value that does not
-            convert; the message names the tracker and the parameter.
+            For an unknown name or an invalid value, naming tracker, parameter and value.
         """
-        overrides = dict(overrides or {})
-        fields = {f.name: f for f in dataclasses.fields(cls.Params)}
-        unknown = sorted(set(overrides) - set(fields))
-        if unknown:
-            known = ", ".join(fields) or "none"
-            raise ParameterError(
-                f"tracker {cls.name!r} has no parameter {', '.join(map(repr, unknown))} (known: {known})"
-            )
-        defaults = cls.Params()
-        hints = typing.get_type_hints(cls.Params)
-        converted = {
-            key: _convert(cls.name, key, value, getattr(defaults, key), hints.get(key))
-            for key, value in overrides.items()
-        }
-        return dataclasses.replace(defaults, **converted)
-
-    def fit(self, training: Iterable[Sequence]) -> None:  # noqa: B027 - optional hook
-        """Learn from labelled training sequences; only learning trackers override it."""
+        return make_params(cls.Params, cls.name, overrides)
 
     @abstractmethod
-    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: TruthT | None = None) -> None:
         """Prepare for a new sequence.
 
         Parameters
@@ -105,41 +97,12 @@ class Tracker(ABC):
             What is known of the sequence before its first frame.
         rng : numpy.random.Generator
             The only source of randomness the tracker may use.
-        init : optional
-            The first frame's whole ground-truth object (camera: a
-            ``CameraTruth``) when the run initialises from truth
-            (``--init truth``), otherwise None.
+        init : TruthT or None
+            The first frame's ground truth, of the modality's truth type
+            (camera: a ``CameraTruth``), when the run initialises from truth
+            (``--init truth``) and the frame is labelled; otherwise None.
         """
 
     @abstractmethod
-    def step(self, frame: Frame) -> Any:
+    def step(self, frame: Frame[Any, TruthT]) -> EstimateT | None:
         """Process one frame and return the estimate, or None for no detection."""
-
-
-def _convert(tracker: str, key: str, value: Any, default: Any, hint: Any) -> Any:
-    target = type(default) if default is not None else hint
-    if not isinstance(value, str) or target is str or not isinstance(target, type):
-        return value
-    try:
-        if target is bool:
-            lowered = value.strip().lower()
-            if lowered not in {"1", "0", "true", "false", "yes", "no", "on", "off"}:
-                raise ValueError(value)
-            return lowered in {"1", "true", "yes", "on"}
-        if target in (tuple, list):
-            return target(json.loads(value))
-        return target(value)
-    except (TypeError, ValueError) as exc:
-        raise ParameterError(
-            f"tracker {tracker!r}: parameter {key!r} expects {target.__name__}, got {value!r}"
-        ) from exc
-
-
-def params_key(name: str, version: str, params: Any) -> str:
-    """Hash of a tracker's name, version and parameters: the results cache key."""
-    payload = json.dumps(
-        {"name": name, "version": version, "params": dataclasses.asdict(params)},
-        sort_keys=True,
-        default=repr,
-    )
-    return hashlib.sha256(payload.encode()).hexdigest()[:16]

@@ -19,6 +19,7 @@ from benchmark.filters.particles import ParticleSet, effective_sample_size, norm
 from benchmark.filters.resampling import (
     RESAMPLERS,
     Resampler,
+    ResamplerName,
     multinomial_resample,
     residual_resample,
     stratified_resample,
@@ -34,6 +35,7 @@ __all__ = [
     "ObservationModel",
     "ParticleSet",
     "Resampler",
+    "ResamplerName",
     "effective_sample_size",
     "multinomial_resample",
     "normalise_weights",

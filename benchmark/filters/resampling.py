@@ -20,6 +20,7 @@ The schemes differ in how the ``N`` points on ``[0, 1)`` are drawn:
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Literal
 
 import numpy as np
 
@@ -85,7 +86,10 @@ def residual_resample(weights: np.ndarray, rng: np.random.Generator) -> np.ndarr
     return np.concatenate([indices, _walk(residual, rng.random(remaining))])
 
 
-RESAMPLERS: dict[str, Resampler] = {
+ResamplerName = Literal["multinomial", "stratified", "systematic", "residual"]
+"""The name of a resampling scheme: a tracker parameter's type."""
+
+RESAMPLERS: dict[ResamplerName, Resampler] = {
     "multinomial": multinomial_resample,
     "stratified": stratified_resample,
     "systematic": systematic_resample,

@@ -22,7 +22,7 @@ trajectory cases of seeds/002, section 3 (case 1 both boats straight,
 case 2 the target sinusoidal, case 3 both sinusoidal), each at three
 speeds (the target's top speed 3.6, 7 or 9 m/s).  A frame holds the stereo
 front end's measurement of the target boat, or None when it lost it
-(:class:`benchmark.scenes.StereoScene`).
+(:class:`benchmark.modalities.stereo.scenes.scene.StereoScene`).
 
 The ``stereo-images`` suite (``stereo_images.toml``) holds three rendered
 sequences, ``stereo-images/case1-medium`` to ``case3-medium``: each is
@@ -30,7 +30,7 @@ sequences, ``stereo-images/case1-medium`` to ``case3-medium``: each is
 seed, so the same truth and navigation errors), but a frame holds the
 camera's pair of BGR images instead of a measurement, in which a tracker
 finds the target's yellow marker and its disparity itself, as the field
-system of seeds/002, section 4.1 did (:class:`benchmark.scenes.StereoImageScene`).
+system of seeds/002, section 4.1 did (:class:`benchmark.modalities.stereo.scenes.images.StereoImageScene`).
 
 The ``sonar`` suite (``sonar.toml``) holds four simulated multibeam
 echo-sounder sequences modelled on the data of seeds/003, section 4:
@@ -38,22 +38,22 @@ echo-sounder sequences modelled on the data of seeds/003, section 4:
 ``sonar/as-laid`` and ``sonar/concrete`` (RESON 8125-like, a pipe as laid
 and a concrete-coated section), and ``sonar/second-pipe``, with a second
 pipe laid nearby to tempt a tracker away.  A frame holds one swath
-(:class:`benchmark.scenes.SonarScene`).
+(:class:`benchmark.modalities.sonar.scenes.scene.SonarScene`).
 
-Each suite file names its scene kind (:data:`trackbench_suites.loader.SCENE_KINDS`:
-``camera``, ``sonar``, ``stereo``, ``stereo-images``), and a sequence may start from a
-sequence of another shipped suite (``based_on``); see
-:mod:`trackbench_suites.loader`.
+Each suite file names its scene kind, one of those the registered
+modalities declare (``camera``, ``sonar``, ``stereo``, ``stereo-images``),
+and a sequence may start from a sequence of another shipped suite
+(``based_on``); see :mod:`trackbench_suites.loader`.
 """
 
 from benchmark import Registry, hookimpl
-from trackbench_suites.loader import SCENE_KINDS, load_suites, parse_suite, shipped_table
+from trackbench_suites.loader import load_suites, parse_suite, shipped_table
 
-__all__ = ["SCENE_KINDS", "load_suites", "parse_suite", "shipped_table", "trackbench_register_datasets"]
+__all__ = ["load_suites", "parse_suite", "shipped_table", "trackbench_register_datasets"]
 
 
 @hookimpl
 def trackbench_register_datasets(registry: Registry) -> None:
     """Register every suite defined by a TOML file of this package."""
-    for name, sequences in load_suites():
+    for name, sequences in load_suites(registry.scene_kinds):
         registry.add_suite(name, sequences)

@@ -16,10 +16,11 @@ Each ``*.toml`` file next to this module defines one suite::
     seed = 1
     ...
 
-The ``kind`` selects a factory in :data:`SCENE_KINDS` that turns one merged
-sequence table into a :class:`benchmark.model.Sequence`; a new modality
-adds its kind there and its suites as more TOML files.  Errors name the
-file and the sequence.
+The ``kind`` selects one of the scene kinds the registered modalities
+declare (:attr:`benchmark.modality.Modality.scene_kinds`): a factory that
+turns one merged sequence table into a :class:`benchmark.model.Sequence`.
+A new modality declares its kinds, and its suites are more TOML files.
+Errors name the file and the sequence.
 
 A sequence may start from a sequence of another shipped suite, so that two
 suites can show the same scene to different sensors without repeating its
@@ -42,19 +43,8 @@ from importlib.resources.abc import Traversable
 from typing import Any
 
 from benchmark.errors import DataError
+from benchmark.modality import SceneFactory
 from benchmark.model import Sequence
-from benchmark.scenes import CameraScene, SonarScene, StereoImageScene, StereoScene
-
-SceneFactory = Callable[[Mapping[str, Any], str], Sequence]
-"""Builds a sequence from its merged table and a description of where it came from."""
-
-SCENE_KINDS: dict[str, SceneFactory] = {
-    "camera": CameraScene.from_dict,
-    "sonar": SonarScene.from_dict,
-    "stereo": StereoScene.from_dict,
-    "stereo-images": StereoImageScene.from_dict,
-}
-"""Scene kinds a suite file may name, and the factory of each."""
 
 BASE_KEY = "based_on"
 """Key of a sequence table that names the sequence, ``"<suite>/<sequence>"``, it starts from."""
@@ -156,7 +146,9 @@ def shipped_table(reference: str, where: str, _chain: tuple[str, ...] = ()) -> d
     raise DataError(f"{where}: {BASE_KEY} {reference!r} names no sequence of a shipped suite")
 
 
-def parse_suite(text: str, source: str, resolve: BaseResolver = shipped_table) -> tuple[str, list[Sequence]]:
+def parse_suite(
+    text: str, source: str, kinds: Mapping[str, SceneFactory], resolve: BaseResolver = shipped_table
+) -> tuple[str, list[Sequence]]:
     """The suite a TOML document defines.
 
     Parameters
@@ -165,6 +157,9 @@ def parse_suite(text: str, source: str, resolve: BaseResolver = shipped_table) -
         The TOML document.
     source : str
         Its file name, for error messages.
+    kinds : Mapping
+        The scene kinds a suite may name, and the factory of each
+        (:attr:`benchmark.registry.Registry.scene_kinds`).
     resolve : callable, optional
         Finds the table a ``based_on`` reference names; by default among
         the suites shipped in this package (:func:`shipped_table`).
@@ -186,12 +181,12 @@ def parse_suite(text: str, source: str, resolve: BaseResolver = shipped_table) -
     header, defaults, entries = _read(text, source)
     suite = header["name"]
     kind = header.get("kind")
-    if kind not in SCENE_KINDS:
-        raise DataError(f"{source}: [suite] kind {kind!r} is not one of {sorted(SCENE_KINDS)}")
+    if kind not in kinds:
+        raise DataError(f"{source}: [suite] kind {kind!r} is not one of the registered scene kinds {sorted(kinds)}")
     extra = sorted(set(header) - {"name", "kind", "description"})
     if extra:
         raise DataError(f"{source}: unknown [suite] key(s) {extra}")
-    factory = SCENE_KINDS[kind]
+    factory = kinds[kind]
     sequences: list[Sequence] = []
     for short, table in _tables(defaults, entries, source, resolve):
         table["name"] = f"{suite}/{short}"
@@ -205,6 +200,6 @@ def suite_files() -> Iterator[Traversable]:
     yield from sorted((item for item in folder.iterdir() if item.name.endswith(".toml")), key=lambda i: i.name)
 
 
-def load_suites() -> list[tuple[str, list[Sequence]]]:
-    """Every suite shipped in this package, as ``(name, sequences)``."""
-    return [parse_suite(item.read_text(encoding="utf-8"), item.name) for item in suite_files()]
+def load_suites(kinds: Mapping[str, SceneFactory]) -> list[tuple[str, list[Sequence]]]:
+    """Every suite shipped in this package, as ``(name, sequences)``, built with the scene kinds ``kinds``."""
+    return [parse_suite(item.read_text(encoding="utf-8"), item.name, kinds) for item in suite_files()]

@@ -40,9 +40,9 @@ at its exact position instead, four pixels per tap, for comparison.
 The functions are compiled with numba (``cache=True``) and loop over
 particles x borders x sample points x taps; the image may be ``uint8`` or
 ``float32``.  :func:`particle_weights` is the observation model's whole
-measurement in one pass; :func:`border_scores`, :func:`centre_contrast` and
-:func:`border_sample_points` expose its parts; :func:`line_scores` and
-:func:`best_pairs` serve the re-detection of :mod:`trackbench_condensation.detect`.
+measurement in one pass; :func:`border_scores` and :func:`centre_contrast`
+are its parts; :func:`line_scores` and :func:`best_pairs` serve the
+re-detection of :mod:`trackbench_condensation.detect`.
 """
 
 from __future__ import annotations
@@ -270,57 +270,6 @@ def border_scores(
             scores[i, column] = total
             counts[i, column] = k1 - k0 + 1
     return scores, counts
-
-
-@numba.njit(cache=True, nogil=True)
-def border_sample_points(
-    state: np.ndarray, width: int, height: int, radius: int, spacing: float
-) -> np.ndarray:
-    """The sample points of both borders of one state, as :func:`border_scores` visits them.
-
-    Parameters
-    ----------
-    state : numpy.ndarray
-        ``(D,)`` state, ``D >= 4``.
-    width, height : int
-        Image size in px.
-    radius : int
-        Half size ``r`` of the filter window, px.
-    spacing : float
-        Distance between sample points, px.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``(M, 5)`` rows ``(side, u, v, mu, mv)``: side -1 (left) or +1 (right),
-        the point in pixels and the unit normal the filter runs along.
-
-    References
-    ----------
-    seeds/000, section 4.5, Fig. 4.7.
-    """
-    cu = 0.5 * (width - 1)
-    cv = 0.5 * (height - 1)
-    lo = float(radius)
-    hi_u = width - 1.0 - radius
-    hi_v = height - 1.0 - radius
-    rows = []
-    for column in range(2):
-        side = 2 * column - 1
-        nx, ny = math.cos(state[1]), math.sin(state[1])
-        cb, sb = math.cos(state[3]), math.sin(state[3])
-        u0, v0, du, dv, mu, mv = _border(state[0], state[2], side, nx, ny, cb, sb, cu, cv)
-        k0, k1 = _sample_range(u0, v0, du, dv, lo, hi_u, hi_v, spacing)
-        for k in range(k0, k1 + 1):
-            s = k * spacing
-            u = min(max(u0 + s * du, lo), hi_u)
-            v = min(max(v0 + s * dv, lo), hi_v)
-            rows.append((float(side), u, v, mu, mv))
-    out = np.empty((len(rows), 5))
-    for i in range(len(rows)):
-        for j in range(5):
-            out[i, j] = rows[i][j]
-    return out
 
 
 @numba.njit(cache=True, nogil=True)

@@ -41,40 +41,19 @@ scale-freeness of eq. (4.11) changes.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Literal, get_args
 
 import numpy as np
 
 from benchmark.errors import DataError
 from trackbench_condensation.kernel import dog_taps
-from trackbench_condensation.measure import border_sample_points, border_scores, particle_weights
+from trackbench_condensation.measure import particle_weights
 
-INTERPOLATIONS = ("nearest", "bilinear")
+Interpolation = Literal["nearest", "bilinear"]
 """How the image is read between pixel centres."""
 
-
-def eq_4_11(scores: np.ndarray, epsilon: float) -> np.ndarray:
-    """Unnormalised weights from the two border counts.
-
-    Parameters
-    ----------
-    scores : numpy.ndarray
-        ``(N, 2)`` border counts ``c_l``, ``c_r``.
-    epsilon : float
-        The weight of a particle whose counts do not have opposite signs.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``(N,)`` weights ``pi'``: ``|c_l - c_r|`` where the counts have
-        strictly opposite signs, ``epsilon`` elsewhere.
-
-    References
-    ----------
-    seeds/000, eq. (4.11).
-    """
-    left, right = scores[:, 0], scores[:, 1]
-    opposite = ((left > 0) & (right < 0)) | ((left < 0) & (right > 0))
-    return np.where(opposite, np.abs(left - right), epsilon)
+INTERPOLATIONS: tuple[str, ...] = get_args(Interpolation)
+"""The values of :data:`Interpolation`."""
 
 
 def as_grey_image(observation: object) -> np.ndarray:
@@ -122,7 +101,7 @@ class BorderObservation:
     filter_size_px: int = 11
     sample_distance_px: float = 20.0
     epsilon: float = 1e-3
-    interpolation: str = "nearest"
+    interpolation: Interpolation = "nearest"
     centre_weight: float = 0.0
     exponent: float = 1.0
     taps: np.ndarray = field(init=False, repr=False, compare=False)
@@ -139,21 +118,6 @@ class BorderObservation:
         if not self.exponent > 0:
             raise ValueError(f"weight exponent must be positive, got {self.exponent}")
         object.__setattr__(self, "taps", dog_taps(self.filter_size_px))
-
-    @property
-    def radius(self) -> int:
-        """Half size ``r`` of the filter window, px."""
-        return (self.filter_size_px - 1) // 2
-
-    def border_scores(self, states: np.ndarray, image: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Border counts ``(N, 2)`` and their numbers of sample points ``(N, 2)``.
-
-        See :func:`trackbench_condensation.measure.border_scores`.
-        """
-        states = np.ascontiguousarray(states, dtype=float)
-        return border_scores(
-            states, as_grey_image(image), self.taps, float(self.sample_distance_px), self.interpolation == "bilinear"
-        )
 
     def score(self, states: np.ndarray, image: np.ndarray) -> np.ndarray:
         """Eq. (4.11) weights of ``(N, D)`` states on a grey image, before any exponent.
@@ -186,15 +150,3 @@ class BorderObservation:
             float(self.centre_weight),
             exponent,
         )
-
-    def sample_points(self, state: np.ndarray, size: tuple[int, int]) -> np.ndarray:
-        """The border sample points of one state on a ``(W, H)`` image.
-
-        Returns
-        -------
-        numpy.ndarray
-            ``(M, 5)`` rows ``(side, u, v, mu, mv)``
-            (:func:`trackbench_condensation.measure.border_sample_points`).
-        """
-        state = np.ascontiguousarray(state, dtype=float)
-        return border_sample_points(state, int(size[0]), int(size[1]), self.radius, float(self.sample_distance_px))

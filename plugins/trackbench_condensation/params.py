@@ -59,108 +59,141 @@ brighter-centre term (``centre_weight``, :mod:`trackbench_condensation.observati
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import Annotated
+
+import pydantic
+from annotated_types import Ge, Gt, Interval
+
+from benchmark.filters import ResamplerName
+from benchmark.parameters import NonNegative, Share
+from trackbench_condensation.observation import Interpolation
+
+Variance = NonNegative
+"""A diffusion variance: finite, 0 or above."""
+
+Limits = tuple[pydantic.FiniteFloat, pydantic.FiniteFloat]
+"""Finite ``(minimum, maximum)`` of a uniform initialisation range; ``__post_init__`` checks the order."""
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True)
 class CondensationParams:
-    """Parameters of the condensation tracker (seeds/000, Tables 5.1-5.2 and section 6.1)."""
+    """Parameters of the condensation tracker (seeds/000, Tables 5.1-5.2 and section 6.1).
 
-    n_particles: int = 500
+    Each field's type declares its domain; the rules that are not bounds of
+    one field are :meth:`__post_init__`.  A value outside them is a
+    :class:`pydantic.ValidationError`.
+    """
+
+    n_particles: Annotated[int, Ge(1)] = 500
     """Number of particles N (section 5.2.1: 500; 300 the minimum)."""
 
-    var_d_px2: float = 0.5
+    var_d_px2: Variance = 0.5
     """Diffusion variance of the distance d, px^2 (Table 5.1)."""
 
-    var_alpha_deg2: float = 0.01
+    var_alpha_deg2: Variance = 0.01
     """Diffusion variance of the angle alpha, deg^2 (Table 5.1)."""
 
-    var_w_px2: float = 4.0
+    var_w_px2: Variance = 4.0
     """Diffusion variance of the width w, px^2 (Table 5.1)."""
 
-    var_beta_deg2: float = 0.1
+    var_beta_deg2: Variance = 0.1
     """Diffusion variance of the skew beta, deg^2 (Table 5.1)."""
 
-    var_v_d_px2: float = 8.0
+    var_v_d_px2: Variance = 8.0
     """Diffusion variance of the distance velocity v_d, (px/frame)^2 (Table 5.1)."""
 
-    var_v_alpha_deg2: float = 0.1
+    var_v_alpha_deg2: Variance = 0.1
     """Diffusion variance of the angle velocity v_alpha, (deg/frame)^2 (Table 5.1: 0.005; see the notes)."""
 
-    filter_size_px: int = 11
+    filter_size_px: Annotated[int, Ge(3)] = 11
     """Derivative-of-Gaussian window across a border, odd, px; sigma = size / 7 (Table 5.1: 11, sigma ~ 1.6)."""
 
-    sample_distance_px: float = 20.0
+    sample_distance_px: Annotated[pydantic.FiniteFloat, Gt(0)] = 20.0
     """Distance between sample points along a border, px (Table 5.1)."""
 
-    epsilon: float = 1e-3
+    epsilon: Annotated[pydantic.FiniteFloat, Gt(0)] = 1e-3
     """Weight of a particle whose border counts do not have opposite signs, grey levels (eq. 4.11)."""
 
-    weight_exponent: float = 6.0
+    weight_exponent: Annotated[pydantic.FiniteFloat, Gt(0)] = 6.0
     """Power the eq. (4.11) weights are raised to (the thesis: 1; see the notes)."""
 
-    interpolation: str = "nearest"
+    interpolation: Interpolation = "nearest"
     """Image reads: "nearest" pixel (digital normal) or "bilinear"."""
 
-    resampler: str = "systematic"
+    resampler: ResamplerName = "systematic"
     """Resampling scheme: systematic, multinomial (Fig. 3.6), stratified or residual."""
 
-    ess_fraction: float = 0.5
+    ess_fraction: Share = 0.5
     """Resample when the effective sample size is below this fraction of N (section 3.4.1: N/2)."""
 
     carry_weights: bool = False
     """Multiply old weights into new ones when not resampling (False: Fig. 4.10 step c)."""
 
-    init_d_px: tuple[float, float] = (-150.0, 150.0)
+    init_d_px: Limits = (-150.0, 150.0)
     """Uniform initialisation range of d, px (Table 5.2)."""
 
-    init_alpha_deg: tuple[float, float] = (-45.0, 45.0)
+    init_alpha_deg: Limits = (-45.0, 45.0)
     """Uniform initialisation range of alpha, deg (Table 5.2); also the angles re-detection scans."""
 
-    init_w_px: tuple[float, float] = (5.0, 100.0)
+    init_w_px: Limits = (5.0, 100.0)
     """Uniform initialisation range of w, px (Table 5.2); also the widths re-detection accepts."""
 
-    init_beta_deg: tuple[float, float] = (0.0, 10.0)
+    init_beta_deg: Limits = (0.0, 10.0)
     """Uniform initialisation range of beta, deg (Table 5.2)."""
 
-    init_v_d_px: tuple[float, float] = (-1.0, 1.0)
+    init_v_d_px: Limits = (-1.0, 1.0)
     """Uniform initialisation range of v_d, px/frame (Table 5.2)."""
 
-    init_v_alpha_deg: tuple[float, float] = (-0.1, 0.1)
+    init_v_alpha_deg: Limits = (-0.1, 0.1)
     """Uniform initialisation range of v_alpha, deg/frame (Table 5.2)."""
 
-    reinit_every: int = 0
+    reinit_every: Annotated[int, Ge(0)] = 0
     """Re-draw the particles uniformly every this many frames; 0: never (Fig. 5.8 used 100)."""
 
     width_skew_velocities: bool = False
     """Add v_w and v_beta to the particle: the 8-dimensional state of section 6.1."""
 
-    var_v_w_px2: float = 0.1
+    var_v_w_px2: Variance = 0.1
     """Diffusion variance of v_w, (px/frame)^2, with ``width_skew_velocities`` (not in the thesis)."""
 
-    var_v_beta_deg2: float = 0.001
+    var_v_beta_deg2: Variance = 0.001
     """Diffusion variance of v_beta, (deg/frame)^2, with ``width_skew_velocities`` (not in the thesis)."""
 
-    centre_weight: float = 0.0
+    centre_weight: Annotated[pydantic.FiniteFloat, Ge(0)] = 0.0
     """Weight of the brighter-centre term added to eq. (4.11) (section 6.1); 0: off."""
 
-    redetect_fraction: float = 0.1
+    redetect_fraction: Share = 0.1
     """Share of the particles re-drawn around detected candidate cables at a re-detection; 0: never."""
 
-    redetect_every: int = 10
+    redetect_every: Annotated[int, Ge(0)] = 10
     """Frames between re-detections while the cable is tracked (every frame while lost); 0: only while lost."""
 
-    redetect_window_deg: float = 10.0
+    redetect_window_deg: Annotated[float, Ge(0)] = 10.0
     """While tracking, re-detection scans angles within this many degrees of the estimate; while lost, all."""
 
-    redetect_margin: float = 1.5
+    redetect_margin: Annotated[float, Ge(0)] = 1.5
     """While tracking, a candidate is proposed only if its score is this multiple of the estimate's."""
 
-    redetect_candidates: int = 5
+    redetect_candidates: Annotated[int, Ge(1)] = 5
     """Number of strongest candidate cables of the line scan that proposals are drawn around."""
 
-    lost_threshold: float = 0.3
+    lost_threshold: Share = 0.3
     """Report no cable when the estimate's eq. (4.11) score is below this fraction of its reference; 0: never."""
 
-    lost_decay: float = 0.99
+    lost_decay: Annotated[float, Interval(gt=0, le=1)] = 0.99
     """Per-frame factor by which the lost test's reference score forgets a past maximum."""
+
+    def __post_init__(self) -> None:
+        """The rules that are not bounds of one field: an odd filter window, ordered initialisation ranges.
+
+        Raises
+        ------
+        ValueError
+            Naming the parameter and its value.
+        """
+        if self.filter_size_px % 2 == 0:
+            raise ValueError(f"filter_size_px must be odd (a window of 2 r + 1 px), got {self.filter_size_px}")
+        for name in ("init_d_px", "init_alpha_deg", "init_w_px", "init_beta_deg", "init_v_d_px", "init_v_alpha_deg"):
+            low, high = getattr(self, name)
+            if low > high:
+                raise ValueError(f"{name} must be (minimum, maximum) with minimum <= maximum, got {(low, high)}")

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from benchmark.model import CableState
+from benchmark.modalities.camera.model import CableState
 
 
 @dataclass(frozen=True)

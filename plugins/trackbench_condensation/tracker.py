@@ -44,9 +44,10 @@ import math
 
 import numpy as np
 
-from benchmark.errors import DataError, ParameterError
+from benchmark.errors import DataError
 from benchmark.filters import RESAMPLERS, Condensation, ParticleSet
-from benchmark.model import CableState, CameraTruth, Frame, SequenceInfo
+from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
+from benchmark.model import Frame, SequenceInfo
 from benchmark.tracker import Tracker
 from trackbench_condensation.detect import LineScan, propose
 from trackbench_condensation.lost import LostCable
@@ -56,12 +57,7 @@ from trackbench_condensation.params import CondensationParams
 from trackbench_condensation.prior import InitLimits, particles_at, uniform_particles
 
 
-def _check_count(name: str, value: object, minimum: int) -> None:
-    if not isinstance(value, int | np.integer) or isinstance(value, bool) or value < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
-
-
-class CondensationTracker(Tracker):
+class CondensationTracker(Tracker[CameraTruth, CableState]):
     """Particle filter over ``(d, alpha, w, beta, v_d, v_alpha)`` with border-gradient weights.
 
     Attributes
@@ -87,40 +83,25 @@ class CondensationTracker(Tracker):
     def __init__(self, params: CondensationParams | None = None) -> None:
         super().__init__(params)
         p = self.params
-        try:
-            _check_count("n_particles", p.n_particles, 1)
-            _check_count("reinit_every", p.reinit_every, 0)
-            _check_count("redetect_every", p.redetect_every, 0)
-            _check_count("redetect_candidates", p.redetect_candidates, 1)
-            if p.resampler not in RESAMPLERS:
-                raise ValueError(f"resampler must be one of {sorted(RESAMPLERS)}, got {p.resampler!r}")
-            if not 0.0 <= p.ess_fraction <= 1.0:
-                raise ValueError(f"ess_fraction must be in [0, 1], got {p.ess_fraction}")
-            if not 0.0 <= p.redetect_fraction <= 1.0:
-                raise ValueError(f"redetect_fraction must be in [0, 1], got {p.redetect_fraction}")
-            if not p.redetect_margin >= 0:
-                raise ValueError(f"redetect_margin must be >= 0, got {p.redetect_margin}")
-            if not p.weight_exponent > 0:
-                raise ValueError(f"weight_exponent must be positive, got {p.weight_exponent}")
-            self.observation = BorderObservation(
-                filter_size_px=p.filter_size_px,
-                sample_distance_px=p.sample_distance_px,
-                epsilon=p.epsilon,
-                interpolation=p.interpolation,
-                centre_weight=p.centre_weight,
-                exponent=p.weight_exponent,
-            )
-            extra = (p.var_v_w_px2, p.var_v_beta_deg2) if p.width_skew_velocities else (None, None)
-            noise = diffusion_std(
-                p.var_d_px2, p.var_alpha_deg2, p.var_w_px2, p.var_beta_deg2, p.var_v_d_px2, p.var_v_alpha_deg2, *extra
-            )
-            self.limits = InitLimits(
-                p.init_d_px, p.init_alpha_deg, p.init_w_px, p.init_beta_deg, p.init_v_d_px, p.init_v_alpha_deg
-            )
-            self.lost = LostCable(p.lost_threshold, p.lost_decay)
-            self.scan = LineScan(alpha_range_deg=self.limits.alpha_deg, width_range_px=self.limits.w_px)
-        except (TypeError, ValueError) as exc:
-            raise ParameterError(f"tracker {self.name!r}: {exc}") from exc
+        # The parameters were validated when they were made (CondensationParams
+        # declares every domain), so the components below accept them.
+        self.observation = BorderObservation(
+            filter_size_px=p.filter_size_px,
+            sample_distance_px=p.sample_distance_px,
+            epsilon=p.epsilon,
+            interpolation=p.interpolation,
+            centre_weight=p.centre_weight,
+            exponent=p.weight_exponent,
+        )
+        extra = (p.var_v_w_px2, p.var_v_beta_deg2) if p.width_skew_velocities else (None, None)
+        noise = diffusion_std(
+            p.var_d_px2, p.var_alpha_deg2, p.var_w_px2, p.var_beta_deg2, p.var_v_d_px2, p.var_v_alpha_deg2, *extra
+        )
+        self.limits = InitLimits(
+            p.init_d_px, p.init_alpha_deg, p.init_w_px, p.init_beta_deg, p.init_v_d_px, p.init_v_alpha_deg
+        )
+        self.lost = LostCable(p.lost_threshold, p.lost_decay)
+        self.scan = LineScan(alpha_range_deg=self.limits.alpha_deg, width_range_px=self.limits.w_px)
         self.filter = Condensation(
             movement=movement_model(noise),
             observation=self.observation,
@@ -149,12 +130,7 @@ class CondensationTracker(Tracker):
         """Dimension of a particle: 6, or 8 with ``width_skew_velocities``."""
         return 8 if self.params.width_skew_velocities else 6
 
-    @property
-    def steps(self) -> int:
-        """Frames processed since :meth:`reset`."""
-        return self._steps
-
-    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: object = None) -> None:
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: CameraTruth | None = None) -> None:
         """Draw the initial particle set.
 
         Parameters
@@ -163,7 +139,7 @@ class CondensationTracker(Tracker):
             Not used: the image size is read from each frame.
         rng : numpy.random.Generator
             The tracker's only source of randomness.
-        init : CameraTruth or CableState, optional
+        init : CameraTruth, optional
             The first frame's truth: every particle starts at its cable state
             with zero velocities (:func:`trackbench_condensation.prior.particles_at`).
             Without it (or with an unknown state) the particles are uniform
@@ -176,10 +152,9 @@ class CondensationTracker(Tracker):
         seeds/000, section 4.3, eq. (4.1), Table 5.2, Fig. 4.10 step 1.
         """
         _compile_kernels(self.params)
-        cable = init.cable if isinstance(init, CameraTruth) else init
         n = int(self.params.n_particles)
-        if isinstance(cable, CableState) and cable.is_known:
-            self._begin(particles_at(cable, n, self.dims), rng, lost=False)
+        if init is not None and init.cable.is_known:
+            self._begin(particles_at(init.cable, n, self.dims), rng, lost=False)
         else:
             # Not knowing where the cable is, the tracker starts out lost:
             # the first frame is searched like a frame after losing the cable.
@@ -192,12 +167,12 @@ class CondensationTracker(Tracker):
         self.lost.reset()
         self.particles = ParticleSet.equally_weighted(states)
 
-    def step(self, frame: Frame) -> CableState | None:
+    def step(self, frame: CameraFrame) -> CableState | None:
         """One condensation step on a frame and the estimate of the cable state.
 
         Parameters
         ----------
-        frame : Frame
+        frame : CameraFrame
             Its observation is a grey image of shape ``(H, W)``.
 
         Returns

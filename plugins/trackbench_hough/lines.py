@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from benchmark.geometry import ImageSize, Line
+from benchmark.modalities.camera.geometry import ImageSize, Line
 
 
 def wrap_half_turn(angle: float) -> float:
@@ -80,7 +80,7 @@ class HoughLine:
         return cls(float(rho), float(theta), float(votes), float(r), float(phi))
 
     def line(self, size: ImageSize) -> Line:
-        """The line in model coordinates (:class:`benchmark.geometry.Line`)."""
+        """The line in model coordinates (:class:`benchmark.modalities.camera.geometry.Line`)."""
         c, s = math.cos(self.theta), math.sin(self.theta)
         foot = (self.rho * c, self.rho * s)
         return Line.from_pixels(foot, (foot[0] - s, foot[1] + c), size)

@@ -29,8 +29,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from benchmark.geometry import ImageSize, Line, cable_from_borders
-from benchmark.model import CableState
+from benchmark.modalities.camera.geometry import ImageSize, Line, cable_from_borders
+from benchmark.modalities.camera.model import CableState
 from trackbench_hough.lines import HoughLine
 from trackbench_hough.window import SearchWindow
 
@@ -46,7 +46,7 @@ class BorderPair:
     borders : tuple of Line
         The same lines in model coordinates.
     state : CableState
-        The cable state they define (:func:`benchmark.geometry.cable_from_borders`).
+        The cable state they define (:func:`benchmark.modalities.camera.geometry.cable_from_borders`).
     votes : float
         Sum of the two lines' votes.
     """

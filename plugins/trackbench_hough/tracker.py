@@ -28,13 +28,17 @@ The tracker is deterministic and does not use the random generator.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from typing import Annotated
 
 import numpy as np
+import pydantic
+from annotated_types import Ge, Interval
 
 from benchmark.errors import DataError
-from benchmark.geometry import cable_borders
-from benchmark.model import CableState, CameraTruth, Frame, SequenceInfo
+from benchmark.modalities.camera.geometry import cable_borders
+from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
+from benchmark.model import SequenceInfo
+from benchmark.parameters import NonNegative, Positive
 from benchmark.tracker import Tracker
 from trackbench_hough.edges import edge_image
 from trackbench_hough.lines import hough_lines, suppress_duplicates
@@ -42,63 +46,81 @@ from trackbench_hough.pairing import choose_pair, compatible_pairs
 from trackbench_hough.window import SearchWindow
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True)
 class HoughParams:
-    """Parameters of the Hough baseline; defaults follow seeds/000 where it gives values."""
+    """Parameters of the Hough baseline; defaults follow seeds/000 where it gives values.
 
-    log_sigma: float = 3.0
+    Each field's type declares its domain; the rule that is not a bound of
+    one field is :meth:`__post_init__`.  A value outside them is a
+    :class:`pydantic.ValidationError`.
+    """
+
+    log_sigma: Positive = 3.0
     """Standard deviation in px of the LoG's Gaussian (seeds/000, Fig. 2.2 shows 3 and 5)."""
 
-    edge_step: float = 12.0
+    edge_step: NonNegative = 12.0
     """Edge threshold: smallest grey-level step a zero crossing must imply to survive."""
 
-    rho_step_px: float = 1.0
+    rho_step_px: Positive = 1.0
     """Distance resolution of the Hough accumulator, px."""
 
-    theta_step_deg: float = 1.0
+    theta_step_deg: Annotated[float, Interval(gt=0, le=180)] = 1.0
     """Angle resolution of the Hough accumulator, degrees."""
 
-    vote_fraction: float = 0.3
+    vote_fraction: Annotated[pydantic.FiniteFloat, Ge(0)] = 0.3
     """Vote threshold as a fraction of the shorter image side (a border spans the image)."""
 
-    max_lines: int = 12
+    max_lines: Annotated[int, Ge(2)] = 12
     """Number of strongest lines, after duplicate suppression, that are paired."""
 
-    duplicate_rho_px: float = 3.0
+    duplicate_rho_px: NonNegative = 3.0
     """Lines closer than this in distance (and ``duplicate_theta_deg`` in angle) are one edge, px."""
 
-    duplicate_theta_deg: float = 3.0
+    duplicate_theta_deg: NonNegative = 3.0
     """Lines closer than this in angle (and ``duplicate_rho_px`` in distance) are one edge, degrees."""
 
-    max_skew_deg: float = 10.0
+    max_skew_deg: Annotated[float, Interval(ge=0, lt=90)] = 10.0
     """Largest skew beta of a converging border pair, degrees (seeds/000, Table 5.2: 0 to 10)."""
 
-    max_divergence_deg: float = 1.0
+    max_divergence_deg: Annotated[float, Interval(ge=0, lt=90)] = 1.0
     """Largest skew of a pair diverging towards the top, degrees (allows angle quantisation)."""
 
-    min_width_px: float = 5.0
+    min_width_px: NonNegative = 5.0
     """Smallest plausible cable width, px (seeds/000, Table 5.2)."""
 
-    max_width_px: float = 100.0
+    max_width_px: NonNegative = 100.0
     """Largest plausible cable width, px (seeds/000, Table 5.2)."""
 
-    window_rho_px: float = 15.0
+    window_rho_px: Positive = 15.0
     """Half-width in distance of the tracking window around each previous border, px."""
 
-    window_theta_deg: float = 5.0
+    window_theta_deg: Positive = 5.0
     """Half-width in angle of the tracking window around each previous border, degrees."""
 
-    closeness_weight: float = 0.5
+    closeness_weight: Annotated[float, Interval(ge=0, le=1)] = 0.5
     """While tracking, share of its votes a pair at the window's edge loses, in [0, 1]."""
 
-    max_misses: int = 3
+    max_misses: Annotated[int, Ge(1)] = 3
     """Frames in a row without a pair after which the whole parameter space is searched again."""
 
     use_init: bool = True
     """Start in the window around ``init`` when the run initialises from truth."""
 
+    def __post_init__(self) -> None:
+        """The rule that is not a bound of one field: the plausible widths form a range.
 
-class HoughTracker(Tracker):
+        Raises
+        ------
+        ValueError
+            Naming the parameters and their values.
+        """
+        if self.min_width_px > self.max_width_px:
+            raise ValueError(
+                f"min_width_px must not exceed max_width_px, got {self.min_width_px} > {self.max_width_px}"
+            )
+
+
+class HoughTracker(Tracker[CameraTruth, CableState]):
     """LoG edges, Hough lines and border-pair grouping with a tracking window.
 
     References
@@ -117,12 +139,7 @@ class HoughTracker(Tracker):
         self._window: SearchWindow | None = None
         self._misses = 0
 
-    @property
-    def tracking(self) -> bool:
-        """True while the parameter space is limited around a previous result."""
-        return self._window is not None
-
-    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: object = None) -> None:
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: CameraTruth | None = None) -> None:
         """Forget the previous sequence; optionally start tracking from ``init``.
 
         Parameters
@@ -131,32 +148,30 @@ class HoughTracker(Tracker):
             Not used: the image size is read from each frame.
         rng : numpy.random.Generator
             Not used: the tracker is deterministic.
-        init : CableState or CameraTruth, optional
-            The first frame's truth; with ``use_init`` its borders centre the
-            first search window.
+        init : CameraTruth, optional
+            The first frame's truth; with ``use_init`` the borders of its
+            cable, when known, centre the first search window.
         """
         self._window = None
         self._misses = 0
-        if isinstance(init, CameraTruth):
-            init = init.cable
-        if self.params.use_init and isinstance(init, CableState) and init.is_known:
+        if self.params.use_init and init is not None and init.cable.is_known:
             self._window = SearchWindow.around_borders(
-                cable_borders(init), self.params.window_rho_px, math.radians(self.params.window_theta_deg)
+                cable_borders(init.cable), self.params.window_rho_px, math.radians(self.params.window_theta_deg)
             )
 
-    def step(self, frame: Frame) -> CableState | None:
+    def step(self, frame: CameraFrame) -> CableState | None:
         """Detect the cable borders in one frame.
 
         Parameters
         ----------
-        frame : Frame
+        frame : CameraFrame
             Its observation is a grey ``uint8`` image of shape ``(H, W)``.
 
         Returns
         -------
         CableState or None
             The state of the chosen border pair
-            (:func:`benchmark.geometry.cable_from_borders`); None when no
+            (:func:`benchmark.modalities.camera.geometry.cable_from_borders`); None when no
             plausible pair exists.
 
         Raises

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from benchmark.geometry import Line
+from benchmark.modalities.camera.geometry import Line
 from trackbench_hough.lines import HoughLine, normal_form, theta_intervals, wrap_half_turn
 
 

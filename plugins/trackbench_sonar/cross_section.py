@@ -133,16 +133,3 @@ class CrossSection:
         distance = np.sqrt(dx * dx + dz * dz)
         radius = np.where(scaled > 0.0, distance / np.where(scaled > 0.0, scaled, 1.0), self.half_height_m)
         return distance - radius
-
-    def arc_depth(self, x: np.ndarray, cx: np.ndarray, cz: np.ndarray) -> np.ndarray:
-        """Depth of the upper arc of the ellipse centred at ``(cx, cz)`` at positions ``x``.
-
-        Returns
-        -------
-        numpy.ndarray
-            ``cz - (M_i/2) sqrt(1 - ((x - cx) / (M_a/2))^2)``, broadcast over
-            the inputs; ``nan`` where ``|x - cx| > M_a/2``.
-        """
-        u = (np.asarray(x, float) - cx) / self.half_width_m
-        inside = np.abs(u) <= 1.0
-        return np.where(inside, cz - self.half_height_m * np.sqrt(np.clip(1.0 - u * u, 0.0, None)), np.nan)

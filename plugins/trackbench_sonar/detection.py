@@ -1,9 +1,9 @@
 """From a ping to its likelihood scan: the detector of seeds/003, section 2.
 
 A :class:`SwathDetector` is set up once per sequence from the trackers'
-parameters and the sequence's :class:`~benchmark.model.SonarCalibration`
+parameters and the sequence's :class:`~benchmark.modalities.sonar.model.SonarCalibration`
 (the pipe's diameter, the sonar's range noise), and then turns each frame's
-:class:`~benchmark.model.Swath` into a resampled profile
+:class:`~benchmark.modalities.sonar.model.Swath` into a resampled profile
 (:mod:`trackbench_sonar.profile`) and the likelihood of eq. (1) over it
 (:mod:`trackbench_sonar.likelihood`).  Both trackers of the plugin share it,
 so that ``sonar_pf`` observes exactly what ``sonar_detector`` reports;
@@ -19,45 +19,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
-from benchmark.errors import DataError, ParameterError
-from benchmark.model import Frame, SequenceInfo, SonarCalibration, Swath
+from benchmark.errors import DataError
+from benchmark.modalities.sonar.model import PipeEstimate, SonarCalibration, SonarFrame, SonarTruth, Swath
+from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
 from trackbench_sonar.cross_section import CrossSection
 from trackbench_sonar.likelihood import LikelihoodScan, PipeLikelihood
 from trackbench_sonar.params import DetectorParams
 from trackbench_sonar.profile import Profile, resample_swath
-
-
-def check_detector_params(params: DetectorParams, tracker: str) -> None:
-    """Reject detector parameters no sequence could use.
-
-    Raises
-    ------
-    ParameterError
-        Naming the tracker and the parameter.
-    """
-    def fail(name: str, rule: str) -> ParameterError:
-        return ParameterError(f"tracker {tracker!r}: parameter {name!r} {rule}, got {getattr(params, name)!r}")
-
-    rules = {
-        "grid_m": (lambda v: 0.0 < v < math.inf, "must be positive"),
-        "flank_widths": (lambda v: 0.0 < v < math.inf, "must be positive"),
-        "fit_span": (lambda v: 0.0 < v <= 1.0, "must be in (0, 1]"),
-    }
-    for name in ("spike_heights", "major_axis_m", "minor_axis_m", "model_sigma_m", "proud_weight", "min_pipe_returns"):
-        rules[name] = (lambda v: 0.0 <= v < math.inf, "must be finite and non-negative")
-    for name, (valid, rule) in rules.items():
-        value = getattr(params, name)
-        if isinstance(value, bool) or not isinstance(value, int | float) or not valid(value):
-            raise fail(name, rule)
-    for name in ("spike_window", "min_beams"):
-        value = getattr(params, name)
-        if isinstance(value, bool) or not isinstance(value, int) or value < 0:
-            raise fail(name, "must be a non-negative integer")
 
 
 @dataclass(frozen=True)
@@ -143,7 +115,7 @@ class SwathDetector:
         spike_m = params.spike_heights * minor if params.spike_heights > 0 else math.inf
         return cls(likelihood, float(params.grid_m), params.spike_window, spike_m, params.min_beams, tracker)
 
-    def read(self, frame: Frame) -> Swath:
+    def read(self, frame: SonarFrame) -> Swath:
         """The frame's swath.
 
         Raises
@@ -175,7 +147,7 @@ class SwathDetector:
         except DataError as exc:
             raise DataError(f"{self.tracker}: frame {index}: {exc}") from exc
 
-    def scan(self, frame: Frame) -> tuple[Profile, LikelihoodScan]:
+    def scan(self, frame: SonarFrame) -> tuple[Profile, LikelihoodScan]:
         """The frame's resampled profile and its likelihood scan (empty without enough returns).
 
         Raises
@@ -187,11 +159,12 @@ class SwathDetector:
         return profile, self.likelihood.scan(profile)
 
 
-class ScanTracker(Tracker):
+class ScanTracker(Tracker[SonarTruth, PipeEstimate]):
     """A sonar tracker that sees each ping through its likelihood scan.
 
     Subclasses set ``name``, ``version`` and ``Params`` (a subclass of
-    :class:`DetectorParams`) and call :meth:`scan` in their ``step``.
+    :class:`DetectorParams`, whose fields declare their domains) and call
+    :meth:`scan` in their ``step``.
 
     Attributes
     ----------
@@ -203,11 +176,10 @@ class ScanTracker(Tracker):
 
     def __init__(self, params: DetectorParams | None = None) -> None:
         super().__init__(params)
-        check_detector_params(self.params, self.name)
         self._detector: SwathDetector | None = None
         self.last_scan: LikelihoodScan | None = None
 
-    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: SonarTruth | None = None) -> None:
         """Set the detector up for the sequence's pipe and sonar.
 
         Raises
@@ -232,7 +204,7 @@ class ScanTracker(Tracker):
             raise RuntimeError(f"{self.name}: step() called before reset()")
         return self._detector
 
-    def scan(self, frame: Frame) -> tuple[Profile, LikelihoodScan]:
+    def scan(self, frame: SonarFrame) -> tuple[Profile, LikelihoodScan]:
         """The frame's resampled profile and likelihood scan, kept as :attr:`last_scan`.
 
         Raises

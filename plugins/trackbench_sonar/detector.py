@@ -13,7 +13,7 @@ detector uses no randomness and ignores ``init``.
 
 from __future__ import annotations
 
-from benchmark.model import Frame, PipeEstimate
+from benchmark.modalities.sonar.model import PipeEstimate, SonarFrame
 from trackbench_sonar.detection import ScanTracker
 from trackbench_sonar.params import DetectorParams
 
@@ -30,7 +30,7 @@ class SonarDetector(ScanTracker):
     version = "1.0"
     Params = DetectorParams
 
-    def step(self, frame: Frame) -> PipeEstimate | None:
+    def step(self, frame: SonarFrame) -> PipeEstimate | None:
         """The position of the scan's maximum, or None for an empty or all-zero scan.
 
         Raises

@@ -49,7 +49,7 @@ A candidate is scored only when its whole span lies inside the profile (at
 the swath's ends the arc could otherwise be judged on its two defining
 points alone) and where the sonar resolves the pipe: its beams must land
 close enough at the candidate's centre for ``min_pipe_returns`` intervals
-between them to cross the pipe (:func:`benchmark.model.beam_footprint`, the sonar's own
+between them to cross the pipe (:func:`benchmark.modalities.sonar.model.beam_footprint`, the sonar's own
 spacing; the gap between returns would not do, as a lost beam or the
 pipe's own shadow widens it without making the sonar any coarser).  Far
 from nadir the beams spread until a pipe falls between two of them; there
@@ -72,7 +72,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from benchmark.model import beam_footprint
+from benchmark.modalities.sonar.model import beam_footprint
 from trackbench_sonar.cross_section import CrossSection
 from trackbench_sonar.profile import Profile
 

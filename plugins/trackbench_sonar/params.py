@@ -128,74 +128,84 @@ with smaller errors than a wrong peak, but fewer pings correct everywhere).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import Annotated
+
+import pydantic
+from annotated_types import Ge, Interval
+
+from benchmark.filters import ResamplerName
+from benchmark.parameters import NonNegative, Positive
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True)
 class DetectorParams:
-    """Parameters of the pipe detector of seeds/003, section 2 (``sonar_detector``)."""
+    """Parameters of the pipe detector of seeds/003, section 2 (``sonar_detector``).
 
-    grid_m: float = 0.05
+    Each field's type declares its domain; a value outside it is a
+    :class:`pydantic.ValidationError`.
+    """
+
+    grid_m: Positive = 0.05
     """Spacing of the across-track grid the swath is resampled on, m (section 2)."""
 
-    spike_window: int = 5
+    spike_window: Annotated[int, Ge(0)] = 5
     """Returns in the running median of the spike test, odd; below 3: no spike test."""
 
-    spike_heights: float = 0.5
+    spike_heights: NonNegative = 0.5
     """A return whose range is off the running median by more than this many pipe heights M_i is a spike; 0: no test."""
 
-    min_beams: int = 5
+    min_beams: Annotated[int, Ge(0)] = 5
     """Fewest valid returns for a scan; fewer leave the ping without a detection."""
 
-    major_axis_m: float = 0.0
+    major_axis_m: NonNegative = 0.0
     """M_a, the pipe cross-section's horizontal axis, m (section 2); 0: the calibration's pipe diameter."""
 
-    minor_axis_m: float = 0.0
+    minor_axis_m: NonNegative = 0.0
     """M_i, the pipe cross-section's vertical axis, m (section 2); 0: the calibration's pipe diameter."""
 
-    model_sigma_m: float = 0.01
+    model_sigma_m: NonNegative = 0.01
     """Model part of the residual scale of L1, added in quadrature to the calibration's range sigma, m."""
 
-    fit_span: float = 0.8
+    fit_span: Annotated[float, Interval(gt=0, le=1)] = 0.8
     """Share of the half-width M_a/2 about the centre whose points L1 compares with the ellipse, in (0, 1]."""
 
-    min_pipe_returns: float = 2.0
+    min_pipe_returns: NonNegative = 2.0
     """Candidates are scored only where the sonar's beams land at most M_a / min_pipe_returns apart; 0: everywhere."""
 
-    proud_weight: float = 1.0
+    proud_weight: NonNegative = 1.0
     """The constant weight on L2 in eq. (1)."""
 
-    flank_widths: float = 1.0
+    flank_widths: Positive = 1.0
     """Width of each flank read as local seafloor in L2, in major axes M_a."""
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True)
 class ParticleFilterParams(DetectorParams):
     """Parameters of the pipe particle filter of seeds/003, section 3 (``sonar_pf``), and its detector's."""
 
-    n_particles: int = 300
+    n_particles: Annotated[int, Ge(1)] = 300
     """Number of particles N (section 3)."""
 
-    walk_speed_mps: float = 0.4
+    walk_speed_mps: NonNegative = 0.4
     """Standard deviation of the random walk of eq. (3) per second, m/s: per ping, times the ping interval."""
 
-    walk_sigma_m: float = 0.0
+    walk_sigma_m: NonNegative = 0.0
     """Standard deviation of the random walk per ping, m, when set; 0: ``walk_speed_mps`` times the ping interval."""
 
-    inject_fraction: float = 0.05
+    inject_fraction: Annotated[float, Interval(ge=0, le=1)] = 0.05
     """J: share of the particles re-drawn uniformly over the swath at each update (section 3.4)."""
 
-    init_sigma_m: float = 0.1
+    init_sigma_m: NonNegative = 0.1
     """Spread of the initial particles about a known start position, m."""
 
-    weight_exponent: float = 6.0
+    weight_exponent: Positive = 6.0
     """gamma: the particles are weighed by the scan raised to this power (eq. 4 as written: 1; see the notes)."""
 
-    weight_floor: float = 0.02
+    weight_floor: NonNegative = 0.02
     """Each particle's likelihood is at least this share of the best particle's (eq. 4 as written: 0)."""
 
-    peak_halfwidth: float = 1.0
+    peak_halfwidth: NonNegative = 1.0
     """Half-width of the peak whose particles eq. (5) averages, in major axes M_a (section 3.3); 0: all particles."""
 
-    resampler: str = "multinomial"
+    resampler: ResamplerName = "multinomial"
     """Resampling scheme at every update: multinomial (SIR, section 3.4), systematic, stratified or residual."""

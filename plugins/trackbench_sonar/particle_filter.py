@@ -23,11 +23,11 @@ evidence in :mod:`trackbench_sonar.params`: the scan is raised to a power
 before it weighs the particles, every weight keeps a small share of the
 best one, and eq. (5) averages the heaviest peak rather than all particles.
 
-Start: with ``init`` (the first ping's :class:`~benchmark.model.SonarTruth`,
-or a :class:`~benchmark.model.PipeEstimate`) the particles are drawn about
-its position with ``init_sigma_m``; without it they are drawn uniformly
-over the first swath that has returns, as the injected samples are.  Until
-then the tracker reports no detection.
+Start: with ``init`` (the first ping's
+:class:`~benchmark.modalities.sonar.model.SonarTruth`) the particles are
+drawn about its position with ``init_sigma_m``; without it they are drawn
+uniformly over the first swath that has returns, as the injected samples
+are.  Until then the tracker reports no detection.
 
 A ping without a usable scan (too few returns, or a likelihood of zero
 everywhere) carries no information about the pipe: the filter then only
@@ -43,16 +43,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
-from benchmark.errors import DataError, ParameterError
+from benchmark.errors import DataError
 from benchmark.filters import RESAMPLERS, Condensation, ParticleSet
-from benchmark.model import Frame, PipeEstimate, SequenceInfo, SonarTruth
+from benchmark.modalities.sonar.model import PipeEstimate, SonarFrame, SonarTruth
+from benchmark.model import SequenceInfo
 from trackbench_sonar.detection import ScanTracker
 from trackbench_sonar.estimate import peak_mean
 from trackbench_sonar.importance import RandomWalkInjection, uniform_positions
+from trackbench_sonar.likelihood import LikelihoodScan
 from trackbench_sonar.params import ParticleFilterParams
 
 
@@ -83,26 +84,6 @@ class ScanWeights:
         """``max(L_k^i ^ gamma, floor * max_j L_k^j ^ gamma)`` for every particle of ``states`` (shape ``(N, 1)``)."""
         values = observation.at(np.asarray(states, dtype=float)[:, 0]) ** self.exponent
         return np.maximum(values, self.floor * values.max(initial=0.0))
-
-
-def _check_params(params: ParticleFilterParams, tracker: str) -> None:
-    def fail(name: str, rule: str) -> ParameterError:
-        return ParameterError(f"tracker {tracker!r}: parameter {name!r} {rule}, got {getattr(params, name)!r}")
-
-    n = params.n_particles
-    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-        raise fail("n_particles", "must be an integer >= 1")
-    rates = ("walk_speed_mps", "walk_sigma_m", "init_sigma_m", "weight_floor", "inject_fraction", "weight_exponent")
-    for name in (*rates, "peak_halfwidth"):
-        value = getattr(params, name)
-        if isinstance(value, bool) or not isinstance(value, int | float) or not 0.0 <= value < math.inf:
-            raise fail(name, "must be finite and non-negative")
-    if not params.weight_exponent > 0.0:
-        raise fail("weight_exponent", "must be positive")
-    if params.inject_fraction > 1.0:
-        raise fail("inject_fraction", "must be in [0, 1]")
-    if params.resampler not in RESAMPLERS:
-        raise fail("resampler", f"must be one of {sorted(RESAMPLERS)}")
 
 
 def walk_sigma(params: ParticleFilterParams, info: SequenceInfo, tracker: str) -> float:
@@ -149,13 +130,12 @@ class SonarParticleFilter(ScanTracker):
 
     def __init__(self, params: ParticleFilterParams | None = None) -> None:
         super().__init__(params)
-        _check_params(self.params, self.name)
         self._observation = ScanWeights(float(self.params.weight_floor), float(self.params.weight_exponent))
         self._walk_sigma = 0.0
         self._rng: np.random.Generator | None = None
         self.particles: ParticleSet | None = None
 
-    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: SonarTruth | None = None) -> None:
         """Set up the detector and, given a start, the particles.
 
         Parameters
@@ -164,10 +144,11 @@ class SonarParticleFilter(ScanTracker):
             Its SonarCalibration gives the pipe's dimensions.
         rng : numpy.random.Generator
             The tracker's only source of randomness.
-        init : SonarTruth or PipeEstimate, optional
+        init : SonarTruth, optional
             The pipe's position at the first ping; the particles start
-            normally distributed about it.  Otherwise they start uniformly
-            over the first swath with returns.
+            normally distributed about it.  Otherwise, or when its
+            ``across_m`` is not finite (no pipe in view), they start
+            uniformly over the first swath with returns.
 
         Raises
         ------
@@ -180,13 +161,13 @@ class SonarParticleFilter(ScanTracker):
         self._walk_sigma = walk_sigma(self.params, info, self.name)
         self._rng = rng
         self.particles = None
-        start = init.across_m if isinstance(init, SonarTruth | PipeEstimate) else math.nan
+        start = init.across_m if init is not None else math.nan
         if math.isfinite(start):
             n = int(self.params.n_particles)
             states = start + self.params.init_sigma_m * rng.standard_normal((n, 1))
             self.particles = ParticleSet.equally_weighted(states)
 
-    def step(self, frame: Frame) -> PipeEstimate | None:
+    def step(self, frame: SonarFrame) -> PipeEstimate | None:
         """One update of the filter on a ping and the estimate of eq. (5).
 
         Returns

@@ -43,7 +43,7 @@ import numpy as np
 import pandas as pd
 
 from benchmark.errors import DataError
-from benchmark.model import Swath
+from benchmark.modalities.sonar.model import Swath
 
 MAX_GRID_POINTS = 200_000
 """Most points a profile may have; a wider swath is taken for corrupt data."""

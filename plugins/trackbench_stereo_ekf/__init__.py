@@ -4,16 +4,15 @@ A chase boat follows a target boat with a stereo camera; an extended Kalman
 filter on the target's North-East position and velocity combines the
 camera's relative measurement, the chase boat's GPS and heading, and a
 nearly-constant-velocity motion model (seeds/002, sections 2-3).  The
-stereo geometry (eqs. 10-12, 15, 17) is :mod:`benchmark.stereo_geometry`.
+stereo geometry (eqs. 10-12, 15, 17) is :mod:`benchmark.modalities.stereo.geometry`.
 
 Frames carry either the stereo front end's measurement (the ``stereo``
 suite) or the camera's image pair (the ``stereo-images`` suite); a pair is
-measured by the field system's front end, :mod:`trackbench_stereo_ekf.frontend`
+measured by the field system's front end, :mod:`benchmark.modalities.stereo.frontend`
 (colour tracker and block-matching disparity, section 4.1), through
-:mod:`trackbench_stereo_ekf.observation`, whose settings every tracker
-here takes as ``frontend_*`` parameters.  Those two modules are this
-package's public part for other stereo trackers (the raw baseline uses
-them).
+:mod:`benchmark.modalities.stereo.observation`, whose settings every tracker
+here takes as ``frontend_*`` parameters.  Both modules belong to the stereo
+modality, so the raw baseline uses them without importing this plugin.
 
 The plugin registers three trackers through the ``trackbench`` entry-point
 group:

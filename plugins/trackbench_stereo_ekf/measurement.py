@@ -8,8 +8,8 @@ its inverse, eq. (11)::
 
     h(x) = Rot(psi)^T [X - X_ch, Y - Y_ch].
 
-Both are :mod:`benchmark.stereo_geometry` (:func:`~benchmark.stereo_geometry.to_north_east`
-and :func:`~benchmark.stereo_geometry.to_camera`), shared with the
+Both are :mod:`benchmark.modalities.stereo.geometry` (:func:`~benchmark.modalities.stereo.geometry.to_north_east`
+and :func:`~benchmark.modalities.stereo.geometry.to_camera`), shared with the
 simulator.  What is the filter's own is the state they act on:
 ``h`` is linear in it, so its Jacobian is the rotation on the position
 components and zero on the velocities::
@@ -27,8 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from benchmark.model import ChaseNavigation
-from benchmark.stereo_geometry import to_camera, to_camera_jacobian
+from benchmark.modalities.stereo.geometry import to_camera, to_camera_jacobian
+from benchmark.modalities.stereo.model import ChaseNavigation
 
 
 def observe(state: np.ndarray, navigation: ChaseNavigation) -> np.ndarray:

@@ -6,7 +6,7 @@ carries them through the linearised triangulation (eq. 16)::
 
     Q_t = Q_f J J^T,
 
-``J`` being the Jacobian of eq. (17) (:func:`benchmark.stereo_geometry.triangulation_jacobian`).
+``J`` being the Jacobian of eq. (17) (:func:`benchmark.modalities.stereo.geometry.triangulation_jacobian`).
 Eq. (16) writes ``Q_f J N_t J^T`` after "factoring out" ``Q_f``, that is with
 ``N_t`` the identity; eq. (18) confirms one factor ``Q_f`` only.  With
 ``D = E^2`` the square of the triangulation denominator the entries are
@@ -36,8 +36,8 @@ from typing import Literal
 
 import numpy as np
 
-from benchmark.model import StereoCalibration
-from benchmark.stereo_geometry import signed_baseline, triangulation_denominator, triangulation_jacobian
+from benchmark.modalities.stereo.geometry import signed_baseline, triangulation_denominator, triangulation_jacobian
+from benchmark.modalities.stereo.model import StereoCalibration
 
 CovarianceForm = Literal["eq18", "eq20"]
 COVARIANCE_FORMS: tuple[CovarianceForm, ...] = ("eq18", "eq20")

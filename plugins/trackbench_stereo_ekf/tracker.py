@@ -13,8 +13,8 @@ Each frame runs the filter of seeds/002, Table 2:
    ``Q_t`` of eq. (20) or eq. (18) (:mod:`trackbench_stereo_ekf.noise`).
 
 A frame's observation is a StereoMeasurement (or None), or an image pair
-that the front end of :mod:`trackbench_stereo_ekf.frontend` measures
-first (:func:`trackbench_stereo_ekf.observation.read_frame`); its settings
+that the front end of :mod:`benchmark.modalities.stereo.frontend` measures
+first (:func:`benchmark.modalities.stereo.observation.read_frame`); its settings
 are the ``frontend_*`` parameters.
 
 ``Q_t`` lives in the camera frame, which is the space of ``z`` and of
@@ -56,79 +56,82 @@ would report a heading of north.  It never reads a frame's truth and uses no ran
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any
+from typing import Annotated, Literal
 
 import numpy as np
+import pydantic
+from annotated_types import Ge
 
-from benchmark.errors import DataError, ParameterError
+from benchmark.errors import DataError
 from benchmark.filters.kalman import Gaussian, compile_kernels, predict, update
-from benchmark.model import (
+from benchmark.modalities.stereo.geometry import in_front, project, rotation, to_north_east
+from benchmark.modalities.stereo.model import (
     ChaseNavigation,
-    Frame,
-    SequenceInfo,
     StereoCalibration,
+    StereoFrame,
     StereoMeasurement,
     StereoTruth,
     TargetEstimate,
 )
-from benchmark.stereo_geometry import in_front, project, rotation, to_north_east
+from benchmark.modalities.stereo.observation import FrontEndSettings, front_end_params, read_frame
+from benchmark.model import SequenceInfo
+from benchmark.parameters import Finite, NonNegative, Positive
 from benchmark.tracker import Tracker
 from trackbench_stereo_ekf.measurement import observation_jacobian, observe
 from trackbench_stereo_ekf.motion import process_noise, propagate, transition_matrix
-from trackbench_stereo_ekf.noise import COVARIANCE_FORMS, measurement_noise, navigation_noise
-from trackbench_stereo_ekf.observation import FrontEndSettings, front_end_params, read_frame
+from trackbench_stereo_ekf.noise import CovarianceForm, measurement_noise, navigation_noise
 
-NOISE_POINTS = ("prediction", "measurement")
+NoisePoint = Literal["prediction", "measurement"]
 """Where ``Q_t`` may be evaluated: at the predicted or at the measured pixel coordinates."""
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True)
 class StereoEkfParams(FrontEndSettings):
     """Parameters of the stereo EKF; defaults are seeds/002, Table 5 and section 3.1 where it gives values.
 
-    The ``frontend_*`` parameters (:class:`~trackbench_stereo_ekf.observation.FrontEndSettings`)
-    set the front end that measures image pairs.
+    The ``frontend_*`` parameters (:class:`~benchmark.modalities.stereo.observation.FrontEndSettings`)
+    set the front end that measures image pairs.  Each field's type declares
+    its domain; a value outside it is a :class:`pydantic.ValidationError`.
     """
 
-    covariance: str = "eq20"
+    covariance: CovarianceForm = "eq20"
     """Measurement covariance: ``"eq20"`` (modified, section 3.1's choice) or ``"eq18"`` (full)."""
 
-    control_acceleration_mps2: float = 0.003
+    control_acceleration_mps2: Finite = 0.003
     """``a``, the constant acceleration of the motion model, m/s^2 (Table 5; eq. 5)."""
 
-    sigma_a_mps2: float = 0.40
+    sigma_a_mps2: Positive = 0.40
     """``sigma_a``, standard deviation of the acceleration, m/s^2 (Table 5; eqs. 8-9)."""
 
-    pixel_variance_px2: float = 0.11**2 / 2.0
+    pixel_variance_px2: Positive = 0.11**2 / 2.0
     """``Q_f``, variance of each matched pixel coordinate, px^2 (Table 5; eq. 19 with m = 0.11 px)."""
 
-    lateral_k: float = 2.0
+    lateral_k: Positive = 2.0
     """``k`` of eq. (20), m^2/px^2, so that the lateral variance ``Q_f k`` is ``m^2`` in m^2 (section 3.1)."""
 
-    noise_at: str = "prediction"
+    noise_at: NoisePoint = "prediction"
     """Evaluate ``Q_t`` at the ``"prediction"``'s pixel coordinates or the ``"measurement"``'s (module docstring)."""
 
-    gps_std_m: float = 0.3
+    gps_std_m: NonNegative = 0.3
     """CH's GPS error per axis, m, added to ``Q_t`` (0 as in seeds/002; 0.3 is the stereo suite's GPS)."""
 
-    compass_std_deg: float = 0.5
+    compass_std_deg: NonNegative = 0.5
     """CH's heading error, degrees, added to ``Q_t`` (0 as in seeds/002; 0.5 is the stereo suite's compass)."""
 
-    beyond_range_inflation: float = 1.0
+    beyond_range_inflation: Annotated[pydantic.FiniteFloat, Ge(1)] = 1.0
     """Factor on ``Q_t`` for measurements farther than the calibration's ``range_limit_m``; 1 adds nothing."""
 
-    init_position_std_m: float = 0.5
+    init_position_std_m: Positive = 0.5
     """Standard deviation of the initial position when starting from the first frame's truth, m."""
 
-    init_velocity_std_mps: float = 0.5
+    init_velocity_std_mps: Positive = 0.5
     """Standard deviation of the initial velocity when starting from the first frame's truth, m/s."""
 
-    unknown_velocity_std_mps: float = 5.0
+    unknown_velocity_std_mps: Positive = 5.0
     """Standard deviation of the velocity when starting from a measurement, m/s (about TG's top speed)."""
 
 
-class StereoEkfTracker(Tracker):
+class StereoEkfTracker(Tracker[StereoTruth, TargetEstimate]):
     """Extended Kalman filter on ``[X, Y, X_dot, Y_dot]`` from stereo measurements and CH's navigation.
 
     References
@@ -144,8 +147,7 @@ class StereoEkfTracker(Tracker):
 
     def __init__(self, params: StereoEkfParams | None = None) -> None:
         super().__init__(params)
-        _check(self.name, self.params)
-        self._front_end = front_end_params(self.params, self.name)
+        self._front_end = front_end_params(self.params)
         self._info: SequenceInfo | None = None
         self._belief: Gaussian | None = None
         self._last_index: int | None = None
@@ -153,10 +155,10 @@ class StereoEkfTracker(Tracker):
 
     @property
     def belief(self) -> Gaussian | None:
-        """The current mean and covariance of ``[X, Y, X_dot, Y_dot]``, None before the first one."""
+        """The filter's mean and covariance of ``[X, Y, X_dot, Y_dot]``, None before the first one."""
         return self._belief
 
-    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: StereoTruth | None = None) -> None:
         """Start a sequence, from the first frame's truth (``init``) or from nothing.
 
         Parameters
@@ -172,8 +174,7 @@ class StereoEkfTracker(Tracker):
         Raises
         ------
         DataError
-            If the sequence lacks its stereo calibration or frame interval,
-            or ``init`` is not a StereoTruth.
+            If the sequence lacks its stereo calibration or frame interval.
         """
         compile_kernels()
         if not isinstance(info.calibration, StereoCalibration):
@@ -186,14 +187,12 @@ class StereoEkfTracker(Tracker):
         self._moving = init is not None
         if init is None:
             return
-        if not isinstance(init, StereoTruth):
-            raise DataError(f"sequence {info.name!r}: init must be a StereoTruth, not {type(init).__name__}")
         p = self.params
         mean = np.array([*init.target.position_m, *init.target.velocity_mps], dtype=float)
         stds = [p.init_position_std_m] * 2 + [p.init_velocity_std_mps] * 2
         self._belief = Gaussian(mean, np.diag(np.square(stds)))
 
-    def step(self, frame: Frame) -> TargetEstimate | None:
+    def step(self, frame: StereoFrame) -> TargetEstimate | None:
         """Predict to this frame, update with its measurement if usable, and report the mean.
 
         Raises
@@ -226,7 +225,7 @@ class StereoEkfTracker(Tracker):
         mean = self._belief.mean
         return TargetEstimate((float(mean[0]), float(mean[1])), (float(mean[2]), float(mean[3])))
 
-    def _measurement(self, frame: Frame) -> tuple[StereoMeasurement, np.ndarray, ChaseNavigation] | None:
+    def _measurement(self, frame: StereoFrame) -> tuple[StereoMeasurement, np.ndarray, ChaseNavigation] | None:
         """``(measurement, z, navigation)`` of a frame with a usable measurement, else None."""
         read = read_frame(frame, self._info, self._front_end)
         if read is None:
@@ -284,25 +283,3 @@ class StereoEkfTracker(Tracker):
         self._belief = Gaussian(np.array([north, east, 0.0, 0.0]), covariance)
         self._last_index = index
 
-
-def _check(name: str, p: StereoEkfParams) -> None:
-    """Raise ParameterError for a parameter outside its domain."""
-
-    def fail(key: str, requirement: str) -> ParameterError:
-        return ParameterError(f"tracker {name!r}: parameter {key!r} must be {requirement}, not {getattr(p, key)!r}")
-
-    if p.covariance not in COVARIANCE_FORMS:
-        raise fail("covariance", f"one of {COVARIANCE_FORMS}")
-    if p.noise_at not in NOISE_POINTS:
-        raise fail("noise_at", f"one of {NOISE_POINTS}")
-    for key in ("sigma_a_mps2", "pixel_variance_px2", "lateral_k", "init_position_std_m", "init_velocity_std_mps",
-                "unknown_velocity_std_mps"):
-        if not (math.isfinite(getattr(p, key)) and getattr(p, key) > 0.0):
-            raise fail(key, "positive")
-    for key in ("gps_std_m", "compass_std_deg"):
-        if not (math.isfinite(getattr(p, key)) and getattr(p, key) >= 0.0):
-            raise fail(key, ">= 0")
-    if not math.isfinite(p.control_acceleration_mps2):
-        raise fail("control_acceleration_mps2", "finite")
-    if not (math.isfinite(p.beyond_range_inflation) and p.beyond_range_inflation >= 1.0):
-        raise fail("beyond_range_inflation", ">= 1")

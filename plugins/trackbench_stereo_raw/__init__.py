@@ -5,9 +5,9 @@ speed and heading from the moving average of their changes: the "Raw" rows
 of seeds/002, Tables 6-8, against which the ``stereo_ekf`` filter is
 measured.  It reads the ``stereo`` suite's measurements and the
 ``stereo-images`` suite's image pairs alike, measuring a pair with the
-front end of ``trackbench_stereo_ekf`` (its public modules ``frontend`` and
-``observation``: this plugin depends on that package as on a third-party
-one).  Registered as ``stereo_raw`` through the ``trackbench`` entry-point
+stereo modality's front end (:mod:`benchmark.modalities.stereo.frontend`
+through :mod:`benchmark.modalities.stereo.observation`), as ``stereo_ekf``
+does.  Registered as ``stereo_raw`` through the ``trackbench`` entry-point
 group::
 
     [project.entry-points.trackbench]

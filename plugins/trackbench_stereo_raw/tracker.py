@@ -11,12 +11,12 @@ section 4).  Each frame with a measurement reports
   from which the leaderboard takes speed and heading.
 
 A frame's observation is a StereoMeasurement (or None), or an image pair
-that the front end of the ``trackbench_stereo_ekf`` plugin measures first
-(:func:`trackbench_stereo_ekf.observation.read_frame`, settings in the
-``frontend_*`` parameters).  The baseline uses that package's public front
-end and observation modules the way a third-party plugin would, so that
-both trackers see the same measurements; it depends on nothing of the
-filter itself.  The geometry of eq. (10) is :mod:`benchmark.stereo_geometry`.
+that the stereo modality's front end measures first
+(:func:`benchmark.modalities.stereo.observation.read_frame`, settings in the
+``frontend_*`` parameters), the same front end the ``stereo_ekf`` filter
+uses, so that both trackers see the same measurements; the baseline depends
+on nothing of the filter itself.  The geometry of eq. (10) is
+:mod:`benchmark.modalities.stereo.geometry`.
 
 A frame without a measurement, or whose measurement is not a finite point
 ahead of the camera (disparity not positive), reports nothing: the raw
@@ -29,28 +29,33 @@ position; a zero velocity would fabricate a heading.  The baseline ignores
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any
+from typing import Annotated
 
 import numpy as np
+import pydantic
+from annotated_types import Ge
 
-from benchmark.errors import DataError, ParameterError
-from benchmark.model import Frame, SequenceInfo, TargetEstimate
-from benchmark.stereo_geometry import to_north_east
+from benchmark.errors import DataError
+from benchmark.modalities.stereo.geometry import to_north_east
+from benchmark.modalities.stereo.model import StereoFrame, StereoTruth, TargetEstimate
+from benchmark.modalities.stereo.observation import FrontEndSettings, front_end_params, read_frame
+from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
-from trackbench_stereo_ekf.observation import FrontEndSettings, front_end_params, read_frame
 from trackbench_stereo_raw.smoothing import VelocitySmoother
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True)
 class StereoRawParams(FrontEndSettings):
-    """Parameters of the raw baseline (seeds/002, section 4); ``frontend_*`` set the front end for image pairs."""
+    """Parameters of the raw baseline (seeds/002, section 4); ``frontend_*`` set the front end for image pairs.
 
-    window: int = 15
+    Each field's type declares its domain; a value outside it is a :class:`pydantic.ValidationError`.
+    """
+
+    window: Annotated[int, Ge(1)] = 15
     """Samples of the moving average smoothing speed and heading (seeds/002, section 4, Figs. 14-15)."""
 
 
-class StereoRawTracker(Tracker):
+class StereoRawTracker(Tracker[StereoTruth, TargetEstimate]):
     """Triangulated positions, and moving-average speed and heading, without a filter.
 
     References
@@ -65,15 +70,11 @@ class StereoRawTracker(Tracker):
 
     def __init__(self, params: StereoRawParams | None = None) -> None:
         super().__init__(params)
-        if self.params.window < 1:
-            raise ParameterError(
-                f"tracker {self.name!r}: parameter 'window' must be at least 1, not {self.params.window}"
-            )
-        self._front_end = front_end_params(self.params, self.name)
+        self._front_end = front_end_params(self.params)
         self._info: SequenceInfo | None = None
         self._smoother = VelocitySmoother(self.params.window)
 
-    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: StereoTruth | None = None) -> None:
         """Start a sequence; ``rng`` and ``init`` are not used.
 
         Raises
@@ -86,7 +87,7 @@ class StereoRawTracker(Tracker):
         self._info = info
         self._smoother = VelocitySmoother(self.params.window)
 
-    def step(self, frame: Frame) -> TargetEstimate | None:
+    def step(self, frame: StereoFrame) -> TargetEstimate | None:
         """The raw position and the smoothed velocity, or None without a usable measurement.
 
         Raises

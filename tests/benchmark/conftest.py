@@ -1,7 +1,9 @@
-"""Fixtures of the harness tests: fake trackers, a fake camera sequence, a fake registry.
+"""Fixtures of the harness tests: fake trackers, a fake camera sequence, a fake registry, tiny image files.
 
 The fakes are module-level classes so that worker processes can unpickle
-them; tests reach them through the ``fakes`` fixture (this module).
+them; tests reach them through the ``fakes`` fixture (this module).  The
+fake registry holds the built-in camera and sonar modalities, registered
+before the trackers as the plugin manager does.
 """
 
 from __future__ import annotations
@@ -11,16 +13,24 @@ import math
 import sys
 import time
 import types
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from pathlib import Path
+from typing import Annotated, Any, ClassVar
 
+import annotated_types
+import cv2
 import numpy as np
 import pytest
 
 from benchmark.errors import DataError
-from benchmark.model import CableState, CameraTruth, Frame, Sequence, SequenceInfo
-from benchmark.registry import Origin, Registry
+from benchmark.modalities.camera.modality import CAMERA
+from benchmark.modalities.camera.model import CableState, CameraTruth
+from benchmark.modalities.sonar.modality import SONAR
+from benchmark.modality import Modality
+from benchmark.model import Frame, Sequence, SequenceInfo
+from benchmark.registry import Origin, Registry, TrackerEntry
+from benchmark.runner import Cell
 from benchmark.tracker import Tracker
 
 WIDTH, HEIGHT = 64, 48
@@ -176,18 +186,41 @@ class SonarOnly(Perfect):
     modality = "sonar"
 
 
+@dataclasses.dataclass(frozen=True)
+class BoundedParams:
+    window: Annotated[int, annotated_types.Ge(1)] = 3
+
+
+class Bounded(Counting):
+    """A counting tracker whose parameter declares its range (not among ALL_TRACKERS)."""
+
+    name = "bounded"
+    Params = BoundedParams
+
+
 ALL_TRACKERS = (Perfect, Counting, Blind, Raising, Sleepy, Garbage, Noisy, SonarOnly)
+MODALITIES: tuple[Modality, ...] = (CAMERA, SONAR)
+BUILT_IN = Origin("modalities", "subsea-trackbench 0.0")
 ORIGIN = Origin("fakes", "fake-trackers 9.9")
 
 
 def make_registry(trackers: tuple[type[Tracker], ...] = ALL_TRACKERS) -> Registry:
-    """A registry with the fake trackers and a suite ``fake`` of two sequences."""
+    """A registry with the camera and sonar modalities, the fake trackers and a suite ``fake`` of two sequences."""
     registry = Registry()
+    with registry.acting_for(BUILT_IN):
+        for modality in MODALITIES:
+            registry.add_modality(modality)
     with registry.acting_for(ORIGIN):
         for tracker in trackers:
             registry.add_tracker(tracker)
         registry.add_suite("fake", [FakeSequence("fake/S1", 10), FakeSequence("fake/S2", 6, description="shorter")])
     return registry
+
+
+def make_cell(entry: TrackerEntry, sequence: Sequence, seed: int = 0, init: str = "truth") -> Cell:
+    """A cell of a fake tracker, carrying the built-in modality the tracker reads."""
+    modality = {modality.name: modality for modality in MODALITIES}[entry.modality]
+    return Cell(entry, sequence, seed, init, modality=modality)  # type: ignore[arg-type]
 
 
 @pytest.fixture(scope="session")
@@ -200,3 +233,20 @@ def fakes() -> types.ModuleType:
 def fake_registry() -> Registry:
     """A fresh registry of fake trackers and the suite ``fake``."""
     return make_registry()
+
+
+ImageMaker = Callable[..., np.ndarray]
+
+
+@pytest.fixture
+def make_image() -> ImageMaker:
+    """Write a small random grey PNG (or any OpenCV format, by the name's ending) and return its pixels."""
+    rng = np.random.default_rng(20240611)
+
+    def make(path: Path, width: int = 12, height: int = 8) -> np.ndarray:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        image = rng.integers(0, 256, size=(height, width), dtype=np.uint8)
+        assert cv2.imwrite(str(path), image)
+        return image
+
+    return make

@@ -291,3 +291,47 @@ def test_tables_lays_out_a_suite_per_case(fakes: types.ModuleType, monkeypatch: 
     bad = CliRunner().invoke(main, ["tables", "grid", "--out", out, "--metric", "nope"])
     assert bad.exit_code == 2 and "no column nope" in bad.output
     assert CliRunner().invoke(main, ["tables", "fake", "--out", out]).exit_code == 2
+
+
+@pytest.mark.parametrize(
+    ("param", "words"),
+    [
+        ("bounded.windw=2", ["tracker 'bounded' has no parameter 'windw'", "known: window"]),
+        ("bounded.window=0", ["tracker 'bounded'", "parameter 'window'", "greater than or equal to 1", "got 0"]),
+        ("bounded.window=wide", ["tracker 'bounded'", "parameter 'window'", "wide"]),
+    ],
+)
+def test_a_bad_param_exits_2_before_any_cell_runs(
+    fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch, tmp_path: Path, param: str, words: list[str]
+) -> None:
+    monkeypatch.setattr(benchmark.plugins, "load_registry", lambda disable=(): fakes.make_registry((fakes.Bounded,)))
+    monkeypatch.setattr(fakes.Bounded, "created", 0)
+    out = tmp_path / "out"
+    args = ["run", "--tracker", "bounded", "--jobs", "0", "--out", str(out)]
+    assert CliRunner().invoke(main, [*args, "--param", "bounded.window=2"]).exit_code == 0
+    before, created = cell_rows(out), fakes.Bounded.created
+    assert len(before) == 2 and created == 2
+
+    result = CliRunner().invoke(main, [*args, "--param", param])
+    assert result.exit_code == 2
+    message = result.stderr.strip()
+    assert message.startswith("Error: ") and "\n" not in message and "Traceback" not in result.output
+    for word in words:
+        assert word in message
+    assert cell_rows(out) == before and fakes.Bounded.created == created
+    with sqlite3.connect(out / "results.sqlite") as connection:
+        assert connection.execute("SELECT COUNT(*) FROM runs").fetchone() == (1,)
+
+
+def test_leaderboard_boards_a_modality_whose_plugin_is_gone_by_its_name(
+    invoke: Invoke, monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "noisy", "--jobs", "0", "--out", str(out)).exit_code == 0
+    expected = board(out)
+    monkeypatch.setattr(benchmark.plugins, "load_registry", lambda disable=(): Registry())
+    result = invoke("leaderboard", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    assert result.stdout.startswith("camera\n")
+    # Without the scorer the error columns come in the order the store wrote them: the board is the same.
+    pd.testing.assert_frame_equal(board(out), expected)

@@ -1,28 +1,22 @@
-"""Tests of benchmark.leaderboard: pooled rows, ranks, units and exports."""
+"""Tests of benchmark.leaderboard: pooled rows, ranks, units, one board per modality (writers: see report/)."""
 
 from __future__ import annotations
 
-import io
 import math
 import re
-from pathlib import Path
 
-import numpy as np
 import pandas as pd
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from benchmark.leaderboard import (
-    ALL_DATASETS,
-    display_table,
-    leaderboards,
-    to_csv,
-    to_markdown,
-    write_leaderboards,
-)
+from benchmark.leaderboard import ALL_DATASETS, board_columns, error_columns, leaderboards
+from benchmark.modalities.camera.modality import CAMERA
+from benchmark.modalities.sonar.modality import SONAR
+from benchmark.modality import Modality
 
 ERRORS = ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
+MODALITIES: dict[str, Modality] = {"camera": CAMERA, "sonar": SONAR}
 
 
 class Cells:
@@ -74,8 +68,8 @@ class Cells:
                 }
             )
 
-    def boards(self) -> dict[str, pd.DataFrame]:
-        return leaderboards(pd.DataFrame(self.cells), pd.DataFrame(self.frames))
+    def boards(self, modalities: dict[str, Modality] = MODALITIES) -> dict[str, pd.DataFrame]:
+        return leaderboards(pd.DataFrame(self.cells), pd.DataFrame(self.frames), modalities)
 
 
 def rows(board: pd.DataFrame, dataset: str) -> pd.DataFrame:
@@ -169,6 +163,9 @@ def test_one_board_per_modality() -> None:
     boards = data.boards()
     assert list(boards) == ["camera", "sonar"]
     assert boards["sonar"]["tracker"].unique().tolist() == ["sonar-thing"]
+    assert list(boards["sonar"].columns) == board_columns(SONAR.error_columns)
+    assert "rmse_across_m" in boards["sonar"] and "rmse_d_px" not in boards["sonar"]
+    assert list(boards["camera"].columns) == board_columns(CAMERA.error_columns)
 
 
 def test_one_name_with_two_parameter_sets_is_shown_twice() -> None:
@@ -179,36 +176,30 @@ def test_one_name_with_two_parameter_sets_is_shown_twice() -> None:
     assert trackers == {"a [11111111]", "a [22222222]"}
 
 
-def test_display_rounds_but_csv_keeps_full_precision(tmp_path: Path) -> None:
-    data = Cells()
-    data.add("a", "s/1", 0, ["correct", "correct", "false"], [1.0, 2.0, 3.0], step_ms=3.0)
-    boards = data.boards()
-    board = boards["camera"]
-    shown = display_table(board).iloc[0]
-    assert shown["correct_pct"] == "66.7" and shown["rmse_d_px"] == f"{math.sqrt(14 / 3):.2f}"
-    assert shown["fps"] == "333" and shown["rmse_beta_deg"] == ""
-    back = pd.read_csv(io.StringIO(to_csv(boards)))
-    assert back["modality"].tolist() == ["camera", "camera"]
-    np.testing.assert_allclose(back["correct_pct"], board["correct_pct"])
-    np.testing.assert_allclose(back["rmse_d_px"], board["rmse_d_px"])
-
-    written = write_leaderboards(boards, tmp_path / "out", caption="Run 1.")
-    assert [p.name for p in written] == ["leaderboard.csv", "leaderboard.md", "leaderboard.html"]
-    markdown = (tmp_path / "out" / "leaderboard.md").read_text()
-    assert "## camera" in markdown and re.search(r"\|\s+66\.7 \|", markdown) and "Run 1." in markdown
-    page = (tmp_path / "out" / "leaderboard.html").read_text()
-    assert "<table" in page and "<td>66.7</td>" in page
-
-
-def test_empty_results_export_cleanly(tmp_path: Path) -> None:
-    assert "No results." in to_markdown({})
-    written = write_leaderboards({}, tmp_path)
-    assert all(path.exists() for path in written)
-
-
 def test_cells_without_any_frame_still_get_a_row() -> None:
     data = Cells()
     data.add("killed", "s/1", 0, [], status="timeout", message="no result within the 5 s limit")
-    board = leaderboards(pd.DataFrame(data.cells), pd.DataFrame())["camera"]
+    board = leaderboards(pd.DataFrame(data.cells), pd.DataFrame(), MODALITIES)["camera"]
     row = rows(board, "s/1").loc["killed"]
     assert row["frames"] == 0 and math.isnan(row["correct_pct"]) and row["status"].startswith("timeout (1/1")
+
+
+def test_a_modality_no_plugin_registers_is_boarded_by_name_with_the_error_columns_of_its_frames() -> None:
+    data = Cells()
+    data.add("a", "s/1", 0, ["correct", "false"], [1.0, 3.0])
+    data.add("scanner", "lidar/1", 0, ["correct", "missed"], [2.0, math.nan], modality="lidar")
+    frames = pd.DataFrame(data.frames)
+    frames.loc[frames["cell_id"] == 2, ["err_alpha_deg", "err_w_px", "err_beta_deg"]] = math.nan
+    boards = leaderboards(pd.DataFrame(data.cells), frames, {"camera": CAMERA})
+    assert list(boards) == ["camera", "lidar"]
+    lidar = rows(boards["lidar"], "lidar/1").loc["scanner"]
+    assert lidar["correct_pct"] == 50.0 and lidar["rmse_d_px"] == pytest.approx(2.0)
+    assert math.isnan(lidar["rmse_w_px"])
+    assert rows(boards["camera"], "s/1").loc["a", "rmse_d_px"] == pytest.approx(math.sqrt(5.0))
+
+
+def test_error_columns_come_from_the_modality_or_else_from_the_frames() -> None:
+    frames = pd.DataFrame(columns=["cell_id", "frame", "outcome", "err_range_m", "step_ms", "err_bearing_deg"])
+    assert error_columns(SONAR, frames) == ("err_across_m",)
+    assert error_columns(None, frames) == ("err_range_m", "err_bearing_deg")
+    assert error_columns(None, pd.DataFrame()) == ()

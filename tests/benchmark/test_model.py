@@ -1,49 +1,55 @@
-import math
+"""Tests of benchmark.model: the generic frame every modality shares, and sequences."""
+
+import dataclasses
+import pickle
 
 import numpy as np
 import pytest
-from hypothesis import given
-from hypothesis import strategies as st
 
-from benchmark.model import SonarCalibration, Swath, beam_footprint
-
-
-def test_a_swath_keeps_its_beams_as_float_arrays_and_marks_missing_ones():
-    swath = Swath([-1, 0, 1], [20.0, math.nan, 20.5])
-    assert swath.across_m.dtype == float and swath.depth_m.dtype == float
-    assert swath.valid.tolist() == [True, False, True]
+from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
+from benchmark.model import Frame, Outcome, Sequence, SequenceInfo
 
 
-@pytest.mark.parametrize(
-    ("across", "depth", "message"),
-    [
-        (np.zeros((2, 3)), np.zeros((2, 3)), "across_m must be one-dimensional"),
-        (np.zeros(3), np.zeros(4), "differ in shape"),
-    ],
-)
-def test_a_swath_of_the_wrong_shape_is_refused_with_its_shapes(across, depth, message):
-    with pytest.raises(ValueError, match=message):
-        Swath(across, depth)
+def test_a_frame_is_made_through_its_generic_alias():
+    image = np.arange(6, dtype=np.uint8).reshape(2, 3)
+    frame = Frame[np.ndarray, int](index=2, observation=image, truth=7, time_s=0.08)
+    assert type(frame) is Frame
+    assert (frame.index, frame.truth, frame.navigation, frame.time_s) == (2, 7, None, 0.08)
+    assert frame.observation is image
+    unlabelled = CameraFrame(0, image)
+    assert type(unlabelled) is Frame and unlabelled.truth is None and unlabelled.time_s == 0.0
 
 
-def test_beam_spacing_divides_the_fan_between_neighbouring_beams():
-    calibration = SonarCalibration(n_beams=111, swath_angle=math.radians(110.0), range_sigma_m=0.05, pipe_diameter_m=0.9)
-    assert calibration.beam_spacing == pytest.approx(math.radians(1.0))
+def test_a_frame_pickles_with_its_parts():
+    truth = CameraTruth(CableState(1.0, 0.1, 20.0, 0.0))
+    frame = Frame[np.ndarray, CameraTruth](4, np.full((2, 2), 9, dtype=np.uint8), truth, {"u": 0.5}, 0.16)
+    back = pickle.loads(pickle.dumps(frame))
+    assert (back.index, back.truth, back.navigation, back.time_s) == (4, truth, {"u": 0.5}, 0.16)
+    np.testing.assert_array_equal(back.observation, frame.observation)
 
 
-@given(st.floats(-0.9, 0.9), st.floats(3.0, 30.0))
-def test_beam_footprint_is_the_spacing_of_neighbouring_beams_on_a_level_seabed(theta: float, depth: float) -> None:
-    spacing = math.radians(0.5)
-    x = depth * math.tan(theta)
-    gap = depth * (math.tan(theta + spacing / 2) - math.tan(theta - spacing / 2))
-    assert beam_footprint(np.array([x]), np.array([depth]), spacing)[0] == pytest.approx(gap, rel=1e-3)
+def test_a_frame_is_frozen():
+    frame = Frame[str, int](0, "ping", 1)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        frame.truth = 2  # type: ignore[misc]
+    assert dataclasses.replace(frame, truth=2).truth == 2 and frame.truth == 1
 
 
-def test_beam_footprint_grows_away_from_nadir_and_is_infinite_above_the_transducer() -> None:
-    beam_240 = math.radians(120.0) / 239
-    assert beam_footprint(np.array([0.0]), np.array([10.0]), 0.01)[0] == pytest.approx(0.1)
-    for x in (0.0, 5.0, 12.0):
-        theta = math.atan2(x, 10.0)
-        between = 10.0 * (math.tan(theta + beam_240 / 2) - math.tan(theta - beam_240 / 2))
-        assert beam_footprint(np.array([x]), np.array([10.0]), beam_240)[0] == pytest.approx(between, rel=1e-3)
-    assert np.isinf(beam_footprint(np.array([1.0]), np.array([0.0]), 0.01)[0])
+class Three(Sequence):
+    @property
+    def info(self) -> SequenceInfo:
+        return SequenceInfo("mini/three", "anything")
+
+    def frames(self):
+        return (Frame(index, f"obs {index}") for index in range(3))
+
+
+def test_a_sequence_iterates_its_frames_and_names_itself():
+    sequence = Three()
+    assert [frame.observation for frame in sequence] == ["obs 0", "obs 1", "obs 2"]
+    assert repr(sequence) == "<Three 'mini/three'>"
+    assert sequence.info.modality == "anything" and sequence.info.extra == {}
+
+
+def test_outcomes_are_the_rates_of_table_v():
+    assert [str(outcome) for outcome in Outcome] == ["correct", "false", "missed"]

@@ -3,6 +3,7 @@
 import importlib.metadata
 import sys
 import types
+from dataclasses import dataclass
 
 import pandas as pd
 import pytest
@@ -11,7 +12,10 @@ from click.testing import CliRunner
 from benchmark import Tracker, hookimpl
 from benchmark.cli import main
 from benchmark.errors import PluginError
-from benchmark.plugins import DISABLE_ENV, load_registry
+from benchmark.modality import Modality
+from benchmark.model import Frame, Sequence, SequenceInfo
+from benchmark.plugins import DISABLE_ENV, REGISTER_HOOKS, load_registry
+from benchmark.registry import Origin
 
 
 class ThirdParty(Tracker):
@@ -24,17 +28,27 @@ class ThirdParty(Tracker):
         return None
 
 
-class FakeDistribution:
-    def __init__(self, name, entry_points):
-        self.metadata = {"name": name}
-        self.version = "0.3"
-        self.entry_points = [importlib.metadata.EntryPoint(ep, value, "trackbench") for ep, value in entry_points]
+class FakeDistribution(importlib.metadata.Distribution):
+    """An installed distribution offering entry points of the ``trackbench`` group, as its metadata files say."""
+
+    def __init__(self, name, entry_points, version="0.3"):
+        self.files_text = {
+            "METADATA": f"Metadata-Version: 2.1\nName: {name}\nVersion: {version}\n",
+            "entry_points.txt": "[trackbench]\n" + "".join(f"{ep} = {value}\n" for ep, value in entry_points),
+        }
+
+    def read_text(self, filename):
+        return self.files_text.get(filename)
+
+    def locate_file(self, path):
+        return path
 
 
 def plugin_module(monkeypatch, module_name, **hooks):
+    """A plugin module with these hook implementations (marked with a plain ``hookimpl`` unless marked already)."""
     module = types.ModuleType(module_name)
     for hook_name, function in hooks.items():
-        setattr(module, hook_name, hookimpl(function))
+        setattr(module, hook_name, function if hasattr(function, "trackbench_impl") else hookimpl(function))
     monkeypatch.setitem(sys.modules, module_name, module)
     return module
 
@@ -81,12 +95,18 @@ def test_a_disabled_plugin_is_not_imported(monkeypatch, installed):
 
 
 def test_a_duplicate_tracker_name_is_named(monkeypatch, installed):
+    def register_copy(registry):
+        registry.add_tracker(ThirdParty)
+
     plugin_module(monkeypatch, "acme_trackers", trackbench_register_trackers=register_third_party)
-    plugin_module(monkeypatch, "copycat_trackers", trackbench_register_trackers=register_third_party)
+    plugin_module(monkeypatch, "copycat_trackers", trackbench_register_trackers=register_copy)
     installed.append(FakeDistribution("acme-trackers", [("acme", "acme_trackers")]))
     installed.append(FakeDistribution("copycat", [("copycat", "copycat_trackers")]))
-    with pytest.raises(PluginError, match=r"plugin 'copycat'.*'acme' is already registered by plugin 'acme'"):
+    # pluggy calls the plugin registered last first: copycat adds 'acme', then acme is refused.
+    with pytest.raises(PluginError, match=r"tracker name 'acme' is already registered by plugin") as info:
         load_registry()
+    message = str(info.value)
+    assert "plugin 'acme' (acme-trackers 0.3)" in message and "by plugin 'copycat'" in message
 
 
 def test_an_unknown_parameter_is_named(monkeypatch, installed):
@@ -141,3 +161,260 @@ def test_a_third_party_tracker_shows_up_ranked(monkeypatch, installed, fakes, tm
     row = board[(board.tracker == "acme") & (board.dataset == "acme-suite/mini")].iloc[0]
     assert row["rank"] == 1 and row["correct_pct"] == 100.0
     assert board[(board.tracker == "blind") & (board.dataset == "acme-suite/mini")].iloc[0]["rank"] == 2
+
+
+# ---------------------------------------------------------------- entry-point names
+def test_two_distributions_offering_the_same_plugin_name_are_an_error_naming_both(monkeypatch, installed):
+    plugin_module(monkeypatch, "acme_trackers", trackbench_register_trackers=register_third_party)
+    plugin_module(monkeypatch, "impostor_trackers", trackbench_register_trackers=register_third_party)
+    installed.append(FakeDistribution("acme-trackers", [("acme", "acme_trackers")]))
+    installed.append(FakeDistribution("impostor", [("acme", "impostor_trackers")], version="6.6"))
+    with pytest.raises(PluginError, match=r"plugin name 'acme' .* is taken twice") as info:
+        load_registry()
+    assert "by acme-trackers 0.3 and impostor 6.6" in str(info.value) and "--disable acme" in str(info.value)
+    assert "acme" not in load_registry(disable=["acme"]).trackers
+
+
+def test_a_distribution_seen_twice_on_the_path_is_no_duplicate(monkeypatch, installed):
+    plugin_module(monkeypatch, "acme_trackers", trackbench_register_trackers=register_third_party)
+    installed.append(FakeDistribution("acme-trackers", [("acme", "acme_trackers")]))
+    installed.append(FakeDistribution("acme-trackers", [("acme", "acme_trackers")]))
+    installed.append(FakeDistribution("acme-trackers", [("acme", "acme_trackers")], version="0.2.dev0"))
+    entry = load_registry().trackers["acme"]
+    assert entry.tracker_class is ThirdParty
+    assert entry.origin.distribution == "acme-trackers 0.3"
+
+
+# ---------------------------------------------------------------- pluggy's ordering and wrappers
+def named_tracker(tracker_name):
+    return type(f"Tracker_{tracker_name}", (ThirdParty,), {"name": tracker_name})
+
+
+def adds(*names):
+    def register(registry):
+        for tracker_name in names:
+            registry.add_tracker(named_tracker(tracker_name))
+
+    return register
+
+
+def test_tryfirst_and_trylast_order_the_implementations_of_a_hook(monkeypatch, installed):
+    plugin_module(monkeypatch, "early_trackers", trackbench_register_trackers=hookimpl(tryfirst=True)(adds("early")))
+    plugin_module(monkeypatch, "last_trackers", trackbench_register_trackers=hookimpl(trylast=True)(adds("last")))
+    plugin_module(monkeypatch, "plain_trackers", trackbench_register_trackers=adds("plain"))
+    for name in ("early", "last", "plain"):
+        installed.append(FakeDistribution(f"{name}-dist", [(name, f"{name}_trackers")]))
+    order = list(load_registry().trackers)
+    # Without the markers pluggy would call plain, last, early (last registered first), then the first-party plugins.
+    assert order[:2] == ["early", "plain"]
+    assert order[-1] == "last" and order.index("plain") < order.index("hough") < order.index("last")
+
+
+def test_a_wrapper_sees_the_registry_before_and_after_the_other_implementations(monkeypatch, installed):
+    seen = {}
+
+    @hookimpl(wrapper=True)
+    def wrap(registry):
+        seen["before"] = list(registry.trackers)
+        result = yield
+        seen["after"] = list(registry.trackers)
+        registry.add_tracker(named_tracker("after-all"))
+        return result
+
+    plugin_module(monkeypatch, "wrapping_trackers", trackbench_register_trackers=wrap)
+    plugin_module(monkeypatch, "acme_trackers", trackbench_register_trackers=register_third_party)
+    installed.append(FakeDistribution("wrapping-dist", [("wrapping", "wrapping_trackers")]))
+    installed.append(FakeDistribution("acme-trackers", [("acme", "acme_trackers")]))
+    registry = load_registry()
+    assert seen["before"] == []
+    assert {"acme", "hough"} <= set(seen["after"]) and "after-all" not in seen["after"]
+    assert list(registry.trackers)[-1] == "after-all"
+    assert registry.trackers["after-all"].origin.plugin == "wrapping"
+    assert registry.trackers["acme"].origin.plugin == "acme"
+
+
+# ---------------------------------------------------------------- hook order: modalities, trackers, datasets
+class Columns:
+    error_columns = ("err_range_m",)
+
+    def check(self, estimate):
+        pass
+
+    def score(self, estimate, truth, info):
+        return None, (float("nan"),)
+
+
+@dataclass(frozen=True)
+class ScanSequence(Sequence):
+    name: str
+
+    @property
+    def info(self):
+        return SequenceInfo(self.name, "scan", 1)
+
+    def frames(self):
+        yield Frame(0, 1.0)
+
+
+SCAN = Modality("scan", float, float, float, Columns(), scene_kinds={"scan-sim": lambda t, w: ScanSequence(t["name"])})
+
+
+class ScanTracker(ThirdParty):
+    name, modality = "scanner", "scan"
+
+
+def test_hooks_run_modalities_then_trackers_then_datasets(monkeypatch, installed):
+    calls = []
+
+    def register_modalities(registry):
+        calls.append(("scan-modality", "modalities"))
+        registry.add_modality(SCAN)
+
+    def register_trackers(registry):
+        calls.append(("scan-trackers", "trackers"))
+        registry.add_tracker(ScanTracker)
+
+    def register_datasets(registry):
+        calls.append(("scan-trackers", "datasets"))
+        registry.add_suite("scans", [registry.scene_kinds["scan-sim"]({"name": "scans/a"}, "here")])
+
+    # The trackers' plugin is loaded before the modality's: only calling every plugin's modalities hook
+    # first lets its tracker find its modality.
+    plugin_module(
+        monkeypatch,
+        "scan_trackers",
+        trackbench_register_trackers=register_trackers,
+        trackbench_register_datasets=register_datasets,
+    )
+    plugin_module(monkeypatch, "scan_modality", trackbench_register_modalities=register_modalities)
+    installed.append(FakeDistribution("scan-trackers", [("scan-trackers", "scan_trackers")]))
+    installed.append(FakeDistribution("scan-modality", [("scan-modality", "scan_modality")]))
+    registry = load_registry()
+    assert REGISTER_HOOKS == (
+        "trackbench_register_modalities",
+        "trackbench_register_trackers",
+        "trackbench_register_datasets",
+    )
+    assert calls == [("scan-modality", "modalities"), ("scan-trackers", "trackers"), ("scan-trackers", "datasets")]
+    assert registry.modalities["scan"] is SCAN and registry.trackers["scanner"].origin.plugin == "scan-trackers"
+    assert registry.suites["scans"].sequences == (ScanSequence("scans/a"),)
+    assert {"camera", "sonar", "stereo", "scan"} <= set(registry.modalities)
+
+
+def test_a_plugin_may_register_a_modality_and_its_trackers_in_one_module(monkeypatch, installed):
+    def register_modalities(registry):
+        registry.add_modality(SCAN)
+
+    def register_trackers(registry):
+        registry.add_tracker(ScanTracker)
+
+    plugin_module(
+        monkeypatch,
+        "scan_plugin",
+        trackbench_register_modalities=register_modalities,
+        trackbench_register_trackers=register_trackers,
+    )
+    installed.append(FakeDistribution("scan-plugin", [("scan", "scan_plugin")]))
+    registry = load_registry()
+    assert registry.trackers["scanner"].modality == "scan"
+    assert registry.modalities["scan"] is SCAN
+    assert registry.trackers["scanner"].origin.distribution == "scan-plugin 0.3"
+
+
+def register_scan(registry):
+    registry.add_modality(SCAN)
+
+
+def test_a_modality_a_plugin_adds_twice_is_named(monkeypatch, installed):
+    def register_scan_again(registry):
+        registry.add_modality(SCAN)
+
+    plugin_module(monkeypatch, "scan_one", trackbench_register_modalities=register_scan_again)
+    plugin_module(monkeypatch, "scan_two", trackbench_register_modalities=register_scan)
+    installed.append(FakeDistribution("scan-one", [("scan-one", "scan_one")]))
+    installed.append(FakeDistribution("scan-two", [("scan-two", "scan_two")]))
+    with pytest.raises(PluginError, match=r"^plugin 'scan-one' \(scan-one 0.3\): modality 'scan' is already"):
+        load_registry()
+
+
+def test_one_plain_function_serving_two_plugins_is_attributed_to_both(monkeypatch, installed):
+    plugin_module(monkeypatch, "scan_one", trackbench_register_modalities=register_scan)
+    plugin_module(monkeypatch, "scan_two", trackbench_register_modalities=register_scan)
+    installed.append(FakeDistribution("scan-one", [("scan-one", "scan_one")]))
+    installed.append(FakeDistribution("scan-two", [("scan-two", "scan_two")]))
+    with pytest.raises(PluginError, match=r"^plugin 'scan-one or scan-two' \(scan-one 0.3 or scan-two 0.3\): modality"):
+        load_registry()
+
+
+def test_methods_of_one_plugin_class_are_told_apart_by_their_object(monkeypatch, installed):
+    class TrackerPlugin:
+        def __init__(self, tracker_name):
+            self.tracker_name = tracker_name
+
+        @hookimpl
+        def trackbench_register_trackers(self, registry):
+            registry.add_tracker(named_tracker(self.tracker_name))
+
+    monkeypatch.setitem(sys.modules, "p_trackers", types.SimpleNamespace(plugin=TrackerPlugin("p")))
+    monkeypatch.setitem(sys.modules, "q_trackers", types.SimpleNamespace(plugin=TrackerPlugin("q")))
+    for name in ("p", "q"):
+        installed.append(FakeDistribution(f"{name}-dist", [(name, f"{name}_trackers:plugin")]))
+    trackers = load_registry().trackers
+    assert (trackers["p"].origin, trackers["q"].origin) == (Origin("p", "p-dist 0.3"), Origin("q", "q-dist 0.3"))
+
+
+# ---------------------------------------------------------------- exceptions name the plugin that raised
+def raise_offline(registry):
+    raise RuntimeError("database offline")
+
+
+def test_an_exception_names_its_plugin_after_another_plugin_ran_in_the_same_call(monkeypatch, installed):
+    plugin_module(monkeypatch, "acme_trackers", trackbench_register_trackers=raise_offline)
+    plugin_module(monkeypatch, "helper_trackers", trackbench_register_trackers=adds("helped"))
+    installed.append(FakeDistribution("acme-trackers", [("acme", "acme_trackers")]))
+    installed.append(FakeDistribution("helper-dist", [("helper", "helper_trackers")]))  # called before acme
+    with pytest.raises(PluginError) as info:
+        load_registry()
+    assert str(info.value) == (
+        "plugin 'acme' (acme-trackers 0.3) raised in trackbench_register_trackers: RuntimeError: database offline"
+    )
+
+
+def test_an_exception_names_its_plugin_inside_another_plugin_s_wrapper(monkeypatch, installed):
+    @hookimpl(wrapper=True)
+    def wrap(registry):
+        registry.add_tracker(named_tracker("wrapped"))
+        return (yield)
+
+    def deep(registry):
+        adds("fine")(registry)
+        raise_offline(registry)
+
+    plugin_module(monkeypatch, "wrapping_trackers", trackbench_register_trackers=wrap)
+    plugin_module(monkeypatch, "acme_trackers", trackbench_register_trackers=deep)
+    installed.append(FakeDistribution("acme-trackers", [("acme", "acme_trackers")]))
+    installed.append(FakeDistribution("wrapping-dist", [("wrapping", "wrapping_trackers")]))
+    with pytest.raises(PluginError, match=r"^plugin 'acme' \(acme-trackers 0.3\) raised in trackbench_register_tr"):
+        load_registry()
+
+
+def test_a_bad_addition_after_another_plugin_ran_names_the_plugin_that_made_it(monkeypatch, installed):
+    def bad(registry):
+        registry.add_tracker(named_tracker("fine-too"))
+        registry.add_tracker(ThirdParty, name="acme-bad", params={"speed": 2})
+
+    plugin_module(monkeypatch, "acme_trackers", trackbench_register_trackers=bad)
+    plugin_module(monkeypatch, "helper_trackers", trackbench_register_trackers=adds("helped"))
+    installed.append(FakeDistribution("acme-trackers", [("acme", "acme_trackers")]))
+    installed.append(FakeDistribution("helper-dist", [("helper", "helper_trackers")]))
+    with pytest.raises(PluginError, match=r"^plugin 'acme' \(acme-trackers 0.3\): .*no parameter 'speed'"):
+        load_registry()
+
+
+def test_plugins_sharing_the_closures_of_one_factory_get_their_own_additions(monkeypatch, installed):
+    plugin_module(monkeypatch, "x_trackers", trackbench_register_trackers=adds("x"))
+    plugin_module(monkeypatch, "y_trackers", trackbench_register_trackers=adds("y"))
+    for name in ("x", "y"):
+        installed.append(FakeDistribution(f"{name}-dist", [(name, f"{name}_trackers")]))
+    trackers = load_registry().trackers
+    assert (trackers["x"].origin, trackers["y"].origin) == (Origin("x", "x-dist 0.3"), Origin("y", "y-dist 0.3"))

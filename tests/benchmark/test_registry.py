@@ -1,8 +1,13 @@
+"""Tests of benchmark.registry: modalities, trackers and suites, checked and attributed to their plugin."""
+
 import dataclasses
 
 import pytest
 
 from benchmark.errors import PluginError
+from benchmark.modalities.camera.modality import CAMERA
+from benchmark.modalities.sonar.modality import SONAR
+from benchmark.modality import ANY_FILE, Modality, Reader
 from benchmark.model import Frame, Sequence, SequenceInfo
 from benchmark.registry import Origin, Registry
 from benchmark.tracker import Tracker
@@ -25,8 +30,8 @@ class Good(Tracker):
 
 
 class Empty(Sequence):
-    def __init__(self, name):
-        self._info = SequenceInfo(name, "camera", 0)
+    def __init__(self, name, modality="camera"):
+        self._info = SequenceInfo(name, modality, 0)
 
     @property
     def info(self):
@@ -43,6 +48,8 @@ def make(**attributes):
 @pytest.fixture
 def registry():
     registry = Registry()
+    with registry.acting_for(Origin("modality-camera", "subsea-trackbench 1.0")):
+        registry.add_modality(CAMERA)
     with registry.acting_for(Origin("acme", "acme-trackers 2.0")):
         yield registry
 
@@ -108,3 +115,111 @@ def test_duplicate_suites_and_sequences_are_refused(registry):
         registry.add_suite("other", [Empty("mini/a")])
     with pytest.raises(PluginError, match="not a benchmark.model.Sequence"):
         registry.add_suite("bad", [Frame(0, None)])
+
+
+# ---------------------------------------------------------------- unregistered modalities
+def test_a_tracker_of_a_modality_nobody_registered_is_refused_naming_it(registry):
+    with pytest.raises(PluginError, match=r"plugin 'acme'.*modality 'lidar', which no plugin registered") as info:
+        registry.add_tracker(make(name="scanner", modality="lidar"))
+    assert "registered: camera" in str(info.value) and "scanner" not in registry.trackers
+    with pytest.raises(PluginError, match=r"modality 'sonar'.*registered: camera"):
+        registry.add_tracker(make(name="pinger", modality="sonar"))
+    registry.add_modality(SONAR)
+    assert registry.add_tracker(make(name="pinger", modality="sonar")).modality == "sonar"
+
+
+def test_a_tracker_needs_a_registered_modality_even_in_an_empty_registry():
+    with pytest.raises(PluginError, match=r"modality 'camera', which no plugin registered \(registered: none\)"):
+        Registry().add_tracker(Good)
+
+
+def test_a_suite_sequence_of_a_modality_nobody_registered_is_refused_naming_it(registry):
+    with pytest.raises(PluginError, match=r"plugin 'acme'.*suite 'scans': sequence 'scans/a' has modality 'lidar'"):
+        registry.add_suite("scans", [Empty("scans/b"), Empty("scans/a", modality="lidar")])
+    assert "scans" not in registry.suites
+
+
+# ---------------------------------------------------------------- add_modality
+class Columns:
+    def __init__(self, *columns):
+        self.error_columns = columns
+
+
+def modality(name="scan", columns=("err_range_m",), readers=(), kinds=None):
+    return Modality(name, object, object, object, Columns(*columns), readers=readers, scene_kinds=kinds or {})
+
+
+def reader(**claims):
+    return Reader(lambda path: None, "a scan", **claims)
+
+
+def test_a_modality_is_registered_with_its_scene_kinds(registry):
+    def factory(table, where):
+        return Empty(table["name"], "scan")
+
+    added = registry.add_modality(modality(readers=(reader(suffixes=(".scan",)),), kinds={"scan-sim": factory}))
+    assert registry.modalities["scan"] is added
+    assert list(registry.modalities) == ["camera", "scan"]
+    assert registry.scene_kinds == {"camera": CAMERA.scene_kinds["camera"], "scan-sim": factory}
+    assert registry.add_tracker(make(name="scanner", modality="scan")).modality == "scan"
+
+
+@pytest.mark.parametrize(
+    ("item", "message"),
+    [
+        ("camera", r"'camera' is not a benchmark.modality.Modality"),
+        ({"name": "scan"}, r"is not a benchmark.modality.Modality"),
+        (modality(name=""), r"a modality needs a non-empty str name, not ''"),
+        (modality(name=None), r"a modality needs a non-empty str name, not None"),
+        (modality(name="camera"), r"modality 'camera' is already registered"),
+        (modality(columns=("range_m",)), r"modality 'scan': error columns must be named err_<what>_<unit>"),
+        (modality(columns=("err_range_m", 3)), r"modality 'scan': error columns must be named err_"),
+    ],
+)
+def test_a_bad_modality_names_the_plugin(registry, item, message):
+    with pytest.raises(PluginError, match=message) as info:
+        registry.add_modality(item)
+    assert str(info.value).startswith("plugin 'acme' (acme-trackers 2.0): ")
+    assert list(registry.modalities) == ["camera"]
+
+
+@pytest.mark.parametrize(
+    ("claims", "kinds", "message"),
+    [
+        ({"suffixes": (".avi",)}, {}, r"files ending \.avi is already read by modality 'camera'"),
+        ({"folders": True}, {}, r"folders is already read by modality 'camera'"),
+        ({"suffixes": (ANY_FILE,)}, {}, r"any other file is already read by modality 'camera'"),
+        ({"suffixes": (".scan",)}, {"camera": None}, r"scene kind 'camera' belongs to modality 'camera'"),
+    ],
+)
+def test_what_another_modality_reads_or_simulates_is_refused_naming_both(registry, claims, kinds, message):
+    with pytest.raises(PluginError, match=rf"plugin 'acme' \(acme-trackers 2.0\): modality 'scan': {message}"):
+        registry.add_modality(modality(readers=(reader(**claims),), kinds=kinds))
+    assert "scan" not in registry.modalities
+
+
+def test_modalities_that_claim_different_things_live_side_by_side(registry):
+    registry.add_modality(SONAR)
+    registry.add_modality(modality(readers=(reader(suffixes=(".scan", ".sc2")),), kinds={"scan": None}))
+    assert list(registry.modalities) == ["camera", "sonar", "scan"]
+    with pytest.raises(PluginError, match=r"modality 'scan2': files ending \.sc2 is already read by modality 'scan'"):
+        registry.add_modality(modality("scan2", readers=(reader(suffixes=(".sc3", ".sc2")),)))
+
+
+# ---------------------------------------------------------------- attribution
+def test_additions_are_attributed_to_the_acting_plugin_else_to_the_finder():
+    registry = Registry()
+    assert registry.origin == Origin() == Origin("<direct>", "-")
+    registry.add_modality(CAMERA)
+    assert registry.add_tracker(Good).origin == Origin()
+    found = Origin("found", "found-dist 1.0")
+    registry.attribute_with(lambda: found)
+    assert registry.add_tracker(Good, name="good-2").origin == found
+    with registry.acting_for(Origin("acting", "acting-dist 2.0")):
+        assert registry.add_tracker(Good, name="good-3").origin.plugin == "acting"
+        with pytest.raises(PluginError, match=r"^plugin 'acting' \(acting-dist 2.0\): tracker name 'good'"):
+            registry.add_tracker(Good)
+    with pytest.raises(PluginError, match=r"^plugin 'found' \(found-dist 1.0\): .*registered by plugin '<direct>'"):
+        registry.add_tracker(Good)
+    registry.attribute_with(None)
+    assert registry.origin == Origin()

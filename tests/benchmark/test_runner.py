@@ -2,17 +2,24 @@
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import types
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from typing import Any
 
 import pandas as pd
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from benchmark.model import CameraTruth
+from benchmark.modalities.camera.modality import CAMERA
+from benchmark.modalities.camera.model import CameraTruth
+from benchmark.modalities.sonar.model import SonarTruth
+from benchmark.model import Frame, Outcome, Sequence, SequenceInfo
 from benchmark.registry import Registry
-from benchmark.runner import Cell, CellResult, cell_rng, run_cell, run_cells
+from benchmark.results import CellResult
+from benchmark.runner import Cell, cell_result, cell_rng, run_cell, run_cells
 
 MakeCell = Callable[..., Cell]
 
@@ -25,7 +32,7 @@ def make_cell(fakes: types.ModuleType, fake_registry: Registry) -> MakeCell:
         entry = fake_registry.trackers[tracker]
         if params:
             entry = entry.with_params(params)
-        return Cell(entry, sequence or fakes.FakeSequence(), seed, init)
+        return fakes.make_cell(entry, sequence or fakes.FakeSequence(), seed, init)
 
     return make
 
@@ -54,7 +61,7 @@ def test_blind_tracker_misses_every_frame(make_cell: MakeCell) -> None:
 @given(seed=st.integers(0, 2**32 - 1), sigma=st.floats(0.0, 20.0))
 def test_rates_of_any_run_sum_to_100(fakes: types.ModuleType, seed: int, sigma: float) -> None:
     entry = fakes.make_registry().trackers["noisy"].with_params({"sigma_px": sigma})
-    summary = run_cell(Cell(entry, fakes.FakeSequence(), seed)).summary()
+    summary = run_cell(fakes.make_cell(entry, fakes.FakeSequence(), seed)).summary()
     assert summary["frames"] == 10
     assert summary["correct_pct"] + summary["false_pct"] + summary["missed_pct"] == pytest.approx(100.0)
 
@@ -143,6 +150,11 @@ def test_cell_rejects_an_unknown_init_mode(make_cell: MakeCell) -> None:
         make_cell("perfect", init="guess")
 
 
+def test_cell_rejects_a_modality_its_tracker_does_not_read(fake_registry: Registry, fakes: types.ModuleType) -> None:
+    with pytest.raises(ValueError, match="tracker 'perfect' reads camera frames, not sonar frames"):
+        Cell(fake_registry.trackers["perfect"], fakes.FakeSequence(), 0, modality=fake_registry.modalities["sonar"])
+
+
 def test_pool_isolates_a_hanging_and_a_raising_tracker(make_cell: MakeCell) -> None:
     cells = [
         make_cell("sleepy", from_frame=1, sleep_s=60.0),
@@ -157,3 +169,110 @@ def test_pool_isolates_a_hanging_and_a_raising_tracker(make_cell: MakeCell) -> N
     assert results["perfect"].status == "ok" and results["perfect"].summary()["correct_pct"] == 100.0
     inline = run_cell(make_cell("noisy", seed=3))
     pd.testing.assert_frame_equal(without_timing(results["noisy"]), without_timing(inline))
+
+
+# ---------------------------------------------------------------- frames are checked against the cell's modality
+@dataclasses.dataclass(frozen=True)
+class Altered(Sequence):
+    """Another sequence with one frame's observation or truth replaced."""
+
+    inner: Sequence
+    at: int
+    changes: tuple[tuple[str, Any], ...]
+
+    @property
+    def info(self) -> SequenceInfo:
+        return self.inner.info
+
+    def frames(self) -> Iterator[Frame]:
+        for frame in self.inner.frames():
+            yield dataclasses.replace(frame, **dict(self.changes)) if frame.index == self.at else frame
+
+
+def test_a_frame_not_of_the_modality_s_types_is_a_data_error_naming_it(
+    make_cell: MakeCell, fakes: types.ModuleType
+) -> None:
+    sequence = Altered(fakes.FakeSequence(), 3, (("observation", "not an image"),))
+    result = run_cell(make_cell("perfect", sequence))
+    assert result.status == "error"
+    assert result.message.startswith("DataError: sequence 'fake/S1', frame 3: the observation is a str")
+    assert "camera" in result.message and result.message.endswith("(reading frame 3)")
+    assert [score.index for score in result.scores] == [0, 1, 2]
+
+
+def test_a_first_frame_with_a_truth_of_another_modality_fails_before_reset(
+    make_cell: MakeCell, fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    resets: list[object] = []
+    monkeypatch.setattr(fakes.Perfect, "reset", lambda self, info, rng, init=None: resets.append(init))
+    truth = SonarTruth(across_m=1.0, depth_m=20.0, burial=0.0, resolution_m=0.2)
+    result = run_cell(make_cell("perfect", Altered(fakes.FakeSequence(), 0, (("truth", truth),))))
+    assert result.status == "error" and result.scores == () and resets == []
+    assert result.message.startswith("DataError: sequence 'fake/S1', frame 0: the truth is a SonarTruth, not a Camera")
+    assert result.message.endswith("(reading frame 0)")
+
+
+class Distance:
+    """A camera scorer of one column: any estimate is correct, its error the true d."""
+
+    error_columns = ("err_true_d_px",)
+
+    def check(self, estimate: Any) -> None:
+        pass
+
+    def score(self, estimate: Any, truth: Any, info: SequenceInfo) -> tuple[Outcome | None, tuple[float, ...]]:
+        return (Outcome.CORRECT if estimate is not None else Outcome.MISSED), (truth.cable.d,)
+
+
+def test_the_cell_s_modality_scores_its_frames(fake_registry: Registry, fakes: types.ModuleType) -> None:
+    modality = dataclasses.replace(CAMERA, scorer=Distance())
+    cell = Cell(fake_registry.trackers["perfect"], fakes.FakeSequence(n_frames=3), 0, modality=modality)
+    result = run_cell(cell)
+    assert result.status == "ok" and result.error_columns == ("err_true_d_px",)
+    assert result.frames["err_true_d_px"].tolist() == [fakes.truth_at(i).cable.d for i in range(3)]
+    assert "rmse_true_d_px" in result.summary() and "rmse_d_px" not in result.summary()
+
+
+def test_a_cell_needs_its_modality_by_keyword(fake_registry: Registry, fakes: types.ModuleType) -> None:
+    entry = fake_registry.trackers["perfect"]
+    with pytest.raises(TypeError, match="modality"):
+        Cell(entry, fakes.FakeSequence(), 0)  # type: ignore[call-arg]
+    with pytest.raises(TypeError):
+        Cell(entry, fakes.FakeSequence(), 0, "truth", CAMERA)  # type: ignore[misc]
+
+
+# ---------------------------------------------------------------- cell_result
+def test_a_cell_result_carries_the_cell_s_identity_and_its_modality_s_columns(
+    make_cell: MakeCell, fake_registry: Registry
+) -> None:
+    cell = make_cell("raising", seed=4, init="none", fail_at=2)
+    result = cell_result(cell, "timeout", "too slow", elapsed_s=1.5)
+    assert (result.tracker, result.dataset, result.modality, result.seed, result.init) == (
+        "raising", "fake/S1", "camera", 4, "none"
+    )
+    assert result.tracker_key == cell.tracker.cache_key != fake_registry.trackers["raising"].cache_key
+    assert result.params == {"fail_at": 2} and result.key == cell.key
+    assert (result.status, result.message, result.scores, result.elapsed_s, result.detail) == (
+        "timeout", "too slow", (), 1.5, ""
+    )
+    assert result.error_columns == CAMERA.error_columns
+
+
+class Unreadable(Sequence):
+    @property
+    def info(self) -> SequenceInfo:
+        raise OSError("disk gone")
+
+    def frames(self) -> Iterator[Frame]:
+        return iter(())
+
+    def __repr__(self) -> str:
+        return "<Unreadable>"
+
+
+def test_a_cell_whose_sequence_cannot_describe_itself_still_gets_a_result(fake_registry: Registry) -> None:
+    cell = Cell(fake_registry.trackers["perfect"], Unreadable(), 0, modality=CAMERA)
+    result = run_cell(cell)
+    assert (result.status, result.dataset, result.modality) == ("error", "<Unreadable>", "camera")
+    assert result.message == "OSError: disk gone (before frame 0)"
+    assert math.isnan(result.summary()["correct_pct"])

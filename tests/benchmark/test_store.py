@@ -12,10 +12,10 @@ import pandas as pd
 import pytest
 
 from benchmark.errors import DataError
-from benchmark.metrics import FrameScore
 from benchmark.model import Outcome
 from benchmark.registry import Registry
-from benchmark.runner import Cell, CellResult, run_cell
+from benchmark.results import CellResult, FrameScore
+from benchmark.runner import run_cell
 from benchmark.store import ResultStore
 
 
@@ -24,7 +24,7 @@ def results(fakes: types.ModuleType, fake_registry: Registry) -> dict[str, CellR
     """Results of a noisy (ok), a raising (error) and a blind (ok) cell."""
     sequence = fakes.FakeSequence()
     return {
-        name: run_cell(Cell(fake_registry.trackers[name], sequence, 1))
+        name: run_cell(fakes.make_cell(fake_registry.trackers[name], sequence, 1))
         for name in ("noisy", "raising", "blind")
     }
 

@@ -1,9 +1,12 @@
+"""Tests of benchmark.tracker: the contract and its parameters' defaults."""
+
 import dataclasses
+import inspect
 
 import pytest
 
 from benchmark.errors import ParameterError
-from benchmark.tracker import Tracker, params_key
+from benchmark.tracker import NoParams, Tracker
 
 
 @dataclasses.dataclass(frozen=True)
@@ -30,25 +33,17 @@ def test_defaults_are_the_params_dataclass_defaults():
     assert Knobbed().params == Knobs()
 
 
-def test_string_overrides_are_converted_to_the_type_of_the_default():
-    params = Knobbed.make_params({"sigma": "1.5", "count": "7", "enabled": "yes", "label": "abc"})
-    assert params == Knobs(1.5, 7, True, "abc")
+def test_fit_is_not_part_of_the_contract():
+    assert not hasattr(Tracker, "fit")
+    assert Tracker.__abstractmethods__ == frozenset({"reset", "step"})
+    assert list(inspect.signature(Tracker.reset).parameters) == ["self", "info", "rng", "init"]
 
 
-def test_unknown_parameter_names_tracker_and_parameter():
-    with pytest.raises(ParameterError, match=r"'knobbed'.*'sigmaa'.*known: sigma, count"):
-        Knobbed.make_params({"sigmaa": 1})
+def test_a_tracker_without_params_has_none():
+    class Bare(Knobbed):
+        name = "bare"
+        Params = NoParams
 
-
-@pytest.mark.parametrize("key, value", [("count", "many"), ("enabled", "perhaps"), ("sigma", "1,5")])
-def test_unconvertible_value_names_the_parameter(key, value):
-    with pytest.raises(ParameterError, match=repr(key)):
-        Knobbed.make_params({key: value})
-
-
-def test_cache_key_changes_with_parameters_and_version():
-    base = params_key("knobbed", "1.0", Knobs())
-    assert base == params_key("knobbed", "1.0", Knobs())
-    assert base != params_key("knobbed", "1.0", Knobs(sigma=2.0))
-    assert base != params_key("knobbed", "1.1", Knobs())
-    assert base != params_key("other", "1.0", Knobs())
+    assert Bare.defaults() == {} and Bare.make_params() == NoParams()
+    with pytest.raises(ParameterError, match=r"'bare' has no parameter 'x' \(known: none\)"):
+        Bare.make_params({"x": "1"})

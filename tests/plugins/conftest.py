@@ -16,10 +16,10 @@ from collections.abc import Iterator
 
 import pytest
 
+from benchmark.modalities.stereo.frontend import measure
 from benchmark.model import Frame, Sequence, SequenceInfo
 from benchmark.plugins import load_registry
 from benchmark.registry import Registry
-from trackbench_stereo_ekf.frontend import measure
 
 CLIP_FRAMES = 10
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from benchmark.model import SequenceInfo
-from benchmark.scenes import SimulatedScene
+from benchmark.scenes.scene import SimulatedScene
 
 
 @dataclass(frozen=True)

@@ -6,21 +6,21 @@ import math
 
 import numpy as np
 import pytest
-
-from benchmark.scenes.overgrowth import overgrowth_layer
-from benchmark.scenes.texture import TextureGrid, profile_factor
 from trackbench_suites.loader import load_suites
+
+from benchmark.modalities.camera.scenes.overgrowth import overgrowth_layer
+from benchmark.modalities.camera.scenes.texture import TextureGrid, profile_factor
 
 
 @pytest.fixture(scope="module")
-def camera():
-    suites = dict(load_suites())
+def camera(kinds):
+    suites = dict(load_suites(kinds))
     return {seq.info.name.split("/")[1]: seq for seq in suites["camera"]}
 
 
 @pytest.fixture(scope="module")
 def truths(camera):
-    return {name: list(seq.ground_truth()) for name, seq in camera.items()}
+    return {name: [seq.truth(k) for k in range(seq.spec.n_frames)] for name, seq in camera.items()}
 
 
 def test_lengths_follow_the_thesis_and_foresti(camera) -> None:

@@ -7,18 +7,18 @@ import pickle
 
 import numpy as np
 import pytest
-
-from benchmark.model import SonarTruth, Swath
-from benchmark.plugins import load_registry
-from benchmark.scenes import SonarScene
 from trackbench_suites.loader import load_suites
+
+from benchmark.modalities.sonar.model import SonarTruth, Swath
+from benchmark.modalities.sonar.scenes.scene import SonarScene
+from benchmark.plugins import load_registry
 
 NAMES = ["sonar/autotracker", "sonar/as-laid", "sonar/concrete", "sonar/second-pipe"]
 
 
 @pytest.fixture(scope="module")
-def sonar() -> dict[str, SonarScene]:
-    return {seq.info.name: seq for seq in dict(load_suites())["sonar"]}
+def sonar(kinds) -> dict[str, SonarScene]:
+    return {seq.info.name: seq for seq in dict(load_suites(kinds))["sonar"]}
 
 
 def test_plugin_registers_the_four_sonar_sequences() -> None:

@@ -6,18 +6,18 @@ import pickle
 
 import numpy as np
 import pytest
+from trackbench_suites.loader import load_suites, parse_suite, shipped_table
 
 from benchmark.errors import DataError
+from benchmark.modalities.stereo.scenes.images import StereoImageScene
 from benchmark.plugins import load_registry
-from benchmark.scenes.stereo_images import StereoImageScene
-from trackbench_suites.loader import load_suites, parse_suite, shipped_table
 
 NAMES = [f"stereo-images/case{case}-medium" for case in (1, 2, 3)]
 
 
 @pytest.fixture(scope="module")
-def suites() -> dict:
-    return {name: {seq.info.name: seq for seq in sequences} for name, sequences in load_suites()}
+def suites(kinds) -> dict:
+    return {name: {seq.info.name: seq for seq in sequences} for name, sequences in load_suites(kinds)}
 
 
 def test_plugin_registers_three_rendered_stereo_sequences() -> None:
@@ -87,9 +87,9 @@ seed = 5
 """
 
 
-def test_based_on_takes_the_named_sequence_under_the_files_defaults_and_entry() -> None:
+def test_based_on_takes_the_named_sequence_under_the_files_defaults_and_entry(kinds) -> None:
     base_a, base_b = shipped_table("stereo/case2-slow", "test"), shipped_table("stereo/case1-fast", "test")
-    name, (a, b) = parse_suite(BASED, "demo.toml")
+    name, (a, b) = parse_suite(BASED, "demo.toml", kinds)
     assert name == "demo-images"
     assert (a.info.name, b.info.name) == ("demo-images/A", "demo-images/B")
     assert a.spec.n_frames == b.spec.n_frames == 7
@@ -108,9 +108,9 @@ def test_based_on_takes_the_named_sequence_under_the_files_defaults_and_entry() 
         ("seed = 5", "seed = 5\nfocal = 1.0", r"demo\.toml \[sequence B\]: unknown key\(s\) 'focal'"),
     ],
 )
-def test_bad_based_on_is_named(old: str, new: str, message: str) -> None:
+def test_bad_based_on_is_named(kinds, old: str, new: str, message: str) -> None:
     with pytest.raises(DataError, match=message):
-        parse_suite(BASED.replace(old, new), "demo.toml")
+        parse_suite(BASED.replace(old, new), "demo.toml", kinds)
 
 
 def test_based_on_references_in_a_circle_are_refused() -> None:

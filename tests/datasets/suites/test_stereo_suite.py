@@ -7,21 +7,21 @@ import pickle
 
 import numpy as np
 import pytest
-
-from benchmark.model import StereoTruth
-from benchmark.plugins import load_registry
-from benchmark.stereo_geometry import project
-from benchmark.scenes.stereo_scene import StereoScene
-from benchmark.scenes.stereo_sensors import Loss
 from trackbench_suites.loader import load_suites
+
+from benchmark.modalities.stereo.geometry import project
+from benchmark.modalities.stereo.model import StereoTruth
+from benchmark.modalities.stereo.scenes.scene import StereoScene
+from benchmark.modalities.stereo.scenes.sensors import Loss
+from benchmark.plugins import load_registry
 
 TOP_SPEED = {"slow": 3.6, "medium": 7.0, "fast": 9.0}
 NAMES = [f"stereo/case{case}-{speed}" for case in (1, 2, 3) for speed in TOP_SPEED]
 
 
 @pytest.fixture(scope="module")
-def stereo() -> dict[str, StereoScene]:
-    return {seq.info.name: seq for seq in dict(load_suites())["stereo"]}
+def stereo(kinds) -> dict[str, StereoScene]:
+    return {seq.info.name: seq for seq in dict(load_suites(kinds))["stereo"]}
 
 
 def test_plugin_registers_nine_stereo_sequences_next_to_camera() -> None:

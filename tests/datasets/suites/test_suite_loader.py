@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import pytest
+from trackbench_suites.loader import merge_tables, parse_suite
 
 from benchmark.errors import DataError
-from trackbench_suites.loader import merge_tables, parse_suite
 
 GOOD = """
 [suite]
@@ -38,8 +38,8 @@ def test_merge_tables_merges_nested_tables_and_replaces_the_rest() -> None:
     assert base["t"] == {"x": 1, "y": [1, 2]}
 
 
-def test_sequences_get_the_defaults_and_the_suite_prefix() -> None:
-    name, sequences = parse_suite(GOOD, "demo.toml")
+def test_sequences_get_the_defaults_and_the_suite_prefix(kinds) -> None:
+    name, sequences = parse_suite(GOOD, "demo.toml", kinds)
     assert name == "demo"
     a, b = (seq.spec for seq in sequences)
     assert (a.name, b.name) == ("demo/A", "demo/B")
@@ -53,7 +53,7 @@ def test_sequences_get_the_defaults_and_the_suite_prefix() -> None:
         ("[suite\n", r"bad\.toml: not valid TOML"),
         (
             GOOD.replace('kind = "camera"', 'kind = "lidar"'),
-            r"kind 'lidar' is not one of \['camera', 'sonar', 'stereo', 'stereo-images'\]",
+            r"kind 'lidar' is not one of the registered scene kinds \['camera', 'sonar', 'stereo', 'stereo-images'\]",
         ),
         (GOOD.replace('name = "B"', 'name = "A"'), r"sequence name 'A' appears twice"),
         (GOOD.replace('name = "B"\n', ""), r"\[\[sequence\]\] number 2 needs a non-empty name"),
@@ -65,6 +65,23 @@ def test_sequences_get_the_defaults_and_the_suite_prefix() -> None:
         (GOOD.replace('name = "demo"\n', ""), r"needs a \[suite\] table with a non-empty name"),
     ],
 )
-def test_bad_suite_files_name_file_and_sequence(text: str, message: str) -> None:
+def test_bad_suite_files_name_file_and_sequence(kinds, text: str, message: str) -> None:
     with pytest.raises(DataError, match=message):
-        parse_suite(text, "bad.toml")
+        parse_suite(text, "bad.toml", kinds)
+
+
+def test_a_suite_may_name_any_kind_it_is_given_and_its_factory_builds_each_sequence() -> None:
+    built = []
+
+    def factory(table, where):
+        built.append((dict(table), where))
+        return table["name"]
+
+    text = GOOD.replace('kind = "camera"', 'kind = "scan"')
+    assert parse_suite(text, "scan.toml", {"scan": factory}) == ("demo", ["demo/A", "demo/B"])
+    (a, where_a), (b, _) = built
+    assert where_a == "scan.toml [sequence A]"
+    assert a == {"name": "demo/A", "focal_px": 300.0, "optics": {"blur_px": 0.0, "noise_grey": 2.0}, "n_frames": 4}
+    assert (b["focal_px"], b["optics"]["noise_grey"]) == (500.0, 1.0)
+    with pytest.raises(DataError, match=r"scan\.toml: \[suite\] kind 'scan' is not one of the registered .* \[\]"):
+        parse_suite(text, "scan.toml", {})

@@ -5,12 +5,18 @@ from __future__ import annotations
 import pickle
 
 import pluggy
-
+import pytest
 import trackbench_suites
+
 from benchmark import hookspecs
+from benchmark.errors import DataError
+from benchmark.modalities.camera import modality as camera_modality
+from benchmark.modalities.camera.modality import CAMERA
+from benchmark.modalities.camera.scenes.scene import CameraScene
+from benchmark.modalities.sonar import modality as sonar_modality
+from benchmark.modalities.stereo import modality as stereo_modality
 from benchmark.plugins import load_registry
 from benchmark.registry import Registry
-from benchmark.scenes import CameraScene
 
 CAMERA_FRAMES = {"S1": 248, "S1b": 248, "S1c": 248, "S2": 499, "S3": 409, "S4": 172, "S5": 171, "S6": 129, "S7": 150}
 
@@ -33,15 +39,39 @@ def test_entry_point_registers_the_camera_suite() -> None:
 def test_hook_fills_a_fresh_plugin_manager() -> None:
     manager = pluggy.PluginManager(hookspecs.PROJECT_NAME)
     manager.add_hookspecs(hookspecs)
-    manager.register(trackbench_suites, name="suites")
+    for name, plugin in [
+        ("modality-camera", camera_modality),
+        ("modality-sonar", sonar_modality),
+        ("modality-stereo", stereo_modality),
+        ("suites", trackbench_suites),
+    ]:
+        manager.register(plugin, name=name)
     manager.check_pending()
     registry = Registry()
+    manager.hook.trackbench_register_modalities(registry=registry)
     manager.hook.trackbench_register_datasets(registry=registry)
     assert sum(len(suite.sequences) for suite in registry.suites.values()) >= 7
+    assert set(registry.suites) == {"camera", "sonar", "stereo", "stereo-images"}
+
+
+def test_the_suites_need_the_scene_kinds_of_registered_modalities() -> None:
+    registry = Registry()
+    with pytest.raises(DataError, match=r"kind 'camera' is not one of the registered scene kinds \[\]"):
+        trackbench_suites.trackbench_register_datasets(registry)
+    registry.add_modality(CAMERA)
+    with pytest.raises(DataError, match=r"kind '(sonar|stereo|stereo-images)' is not one of .*\['camera'\]"):
+        trackbench_suites.trackbench_register_datasets(registry)
+
+
+def test_the_registry_s_scene_kinds_are_those_of_the_built_in_modalities(kinds) -> None:
+    assert load_registry().scene_kinds == kinds
 
 
 def test_registered_sequences_pickle_small_and_equal() -> None:
     registry = Registry()
+    registry.add_modality(CAMERA)
+    registry.add_modality(sonar_modality.SONAR)
+    registry.add_modality(stereo_modality.STEREO)
     trackbench_suites.trackbench_register_datasets(registry)
     for seq in registry.suites["camera"].sequences:
         payload = pickle.dumps(seq)

@@ -1,7 +1,7 @@
 """Drawn images for the condensation tracker's tests.
 
 A cable of known state is drawn as the quadrilateral between its two border
-lines (:func:`benchmark.geometry.cable_borders`), filled with anti-aliased
+lines (:func:`benchmark.modalities.camera.geometry.cable_borders`), filled with anti-aliased
 edges ``contrast`` grey levels brighter (positive) or darker (negative) than
 a background of smooth random texture and pixel noise.  Tests use the
 helpers through the ``scene`` fixture.
@@ -15,8 +15,8 @@ import cv2
 import numpy as np
 import pytest
 
-from benchmark.geometry import Line, cable_borders, model_to_pixel
-from benchmark.model import CableState
+from benchmark.modalities.camera.geometry import Line, cable_borders, model_to_pixel
+from benchmark.modalities.camera.model import CableState
 
 SIZE = (320, 240)
 

@@ -6,11 +6,12 @@ import math
 
 import numpy as np
 import pytest
-
-from benchmark.geometry import cable_borders, score_line_pair
-from benchmark.model import CableState, Outcome
 from trackbench_condensation.detect import LineScan, propose
 from trackbench_condensation.kernel import dog_taps
+
+from benchmark.modalities.camera.geometry import cable_borders, score_line_pair
+from benchmark.modalities.camera.model import CableState
+from benchmark.model import Outcome
 
 
 @pytest.mark.parametrize(

@@ -8,20 +8,51 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from benchmark.geometry import cable_borders, pixel_to_model
-from benchmark.model import CableState
 from trackbench_condensation.kernel import dog_taps
 from trackbench_condensation.measure import (
+    _border,
+    _sample_range,
     best_pairs,
-    border_sample_points,
     border_scores,
     centre_contrast,
     line_scores,
 )
 
+from benchmark.modalities.camera.geometry import cable_borders, pixel_to_model
+from benchmark.modalities.camera.model import CableState
+
 SIZE = (320, 240)
 TAPS = dog_taps(11)
+
+
+def border_sample_points(state: np.ndarray, width: int, height: int, radius: int, spacing: float) -> np.ndarray:
+    """The sample points of both borders of one state, as :func:`border_scores` visits them.
+
+    Built from the same compiled helpers as :func:`border_scores` (the
+    border's foot point and normal, the range of points inside the image).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(M, 5)`` rows ``(side, u, v, mu, mv)``: side -1 (left) or +1 (right),
+        the point in pixels and the unit normal the filter runs along.
+
+    References
+    ----------
+    seeds/000, section 4.5, Fig. 4.7.
+    """
+    cu, cv = 0.5 * (width - 1), 0.5 * (height - 1)
+    lo, hi_u, hi_v = float(radius), width - 1.0 - radius, height - 1.0 - radius
+    nx, ny = math.cos(state[1]), math.sin(state[1])
+    cb, sb = math.cos(state[3]), math.sin(state[3])
+    rows = []
+    for side in (-1, 1):
+        u0, v0, du, dv, mu, mv = _border(state[0], state[2], side, nx, ny, cb, sb, cu, cv)
+        k0, k1 = _sample_range(u0, v0, du, dv, lo, hi_u, hi_v, spacing)
+        for k in range(k0, k1 + 1):
+            s = k * spacing
+            rows.append((float(side), min(max(u0 + s * du, lo), hi_u), min(max(v0 + s * dv, lo), hi_v), mu, mv))
+    return np.array(rows, dtype=float).reshape(-1, 5)
 
 
 def state_array(d, alpha_deg, w, beta_deg):

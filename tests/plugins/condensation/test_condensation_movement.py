@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
-
 from trackbench_condensation.movement import diffusion_std, movement_model, transition_matrix
 
 finite = st.floats(-1e3, 1e3)

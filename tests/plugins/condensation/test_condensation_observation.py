@@ -8,12 +8,49 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from trackbench_condensation.measure import border_scores
+from trackbench_condensation.observation import BorderObservation, as_grey_image
 
 from benchmark.errors import DataError
-from benchmark.model import CableState
-from trackbench_condensation.observation import BorderObservation, as_grey_image, eq_4_11
+from benchmark.modalities.camera.model import CableState
 
 TRUTH = CableState(12.0, math.radians(8.0), 34.0, math.radians(1.5))
+
+
+def eq_4_11(scores: np.ndarray, epsilon: float) -> np.ndarray:
+    """Unnormalised weights from the two border counts, written out as the thesis states them.
+
+    Parameters
+    ----------
+    scores : numpy.ndarray
+        ``(N, 2)`` border counts ``c_l``, ``c_r``.
+    epsilon : float
+        The weight of a particle whose counts do not have opposite signs.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(N,)`` weights ``pi'``: ``|c_l - c_r|`` where the counts have
+        strictly opposite signs, ``epsilon`` elsewhere.
+
+    References
+    ----------
+    seeds/000, eq. (4.11).
+    """
+    left, right = scores[:, 0], scores[:, 1]
+    opposite = ((left > 0) & (right < 0)) | ((left < 0) & (right > 0))
+    return np.where(opposite, np.abs(left - right), epsilon)
+
+
+def border_counts(model: BorderObservation, states: np.ndarray, image: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The border counts ``(N, 2)`` of ``states`` and their numbers of sample points, as ``model`` measures them."""
+    return border_scores(
+        np.ascontiguousarray(states, dtype=float),
+        as_grey_image(image),
+        model.taps,
+        float(model.sample_distance_px),
+        model.interpolation == "bilinear",
+    )
 
 
 def particle(state: CableState, **shift: float) -> np.ndarray:
@@ -50,8 +87,8 @@ def test_true_state_outweighs_shifted_and_rotated_states(scene, contrast):
 
 def test_each_border_sees_its_polarity(scene):
     model = BorderObservation()
-    dark, _ = model.border_scores(particle(TRUTH)[None], scene.draw_cable(TRUTH, contrast=-60.0))
-    bright, _ = model.border_scores(particle(TRUTH)[None], scene.draw_cable(TRUTH, contrast=60.0))
+    dark, _ = border_counts(model, particle(TRUTH)[None], scene.draw_cable(TRUTH, contrast=-60.0))
+    bright, _ = border_counts(model, particle(TRUTH)[None], scene.draw_cable(TRUTH, contrast=60.0))
     # Dark inside: bright behind the left border's filter (outside), dark behind the right one's (inside).
     assert dark[0, 0] > 0 > dark[0, 1]
     assert bright[0, 0] < 0 < bright[0, 1]
@@ -63,7 +100,7 @@ def test_borders_of_the_same_polarity_get_epsilon(scene):
     image = scene.staircase(steps=(-40.0, 40.0))
     model = BorderObservation()
     on_steps = np.array([[0.0, 0.0, 80.0, 0.0, 0.0, 0.0]])
-    counts, _ = model.border_scores(on_steps, image)
+    counts, _ = border_counts(model, on_steps, image)
     assert counts[0, 0] < 0 and counts[0, 1] < 0
     assert model.likelihood(on_steps, image)[0] == model.epsilon
     # A band on the same image, between a darkening and a brightening step, is accepted.
@@ -145,7 +182,7 @@ def test_compiled_weights_follow_eq_4_11_of_the_border_counts(scene, contrast):
         [rng.uniform(-60, 60, 300), rng.uniform(-0.3, 0.3, 300), rng.uniform(-10, 60, 300), rng.uniform(0, 0.1, 300)]
     )
     model = BorderObservation(epsilon=0.01)
-    counts, _ = model.border_scores(states, image)
+    counts, _ = border_counts(model, states, image)
     expected = np.where(states[:, 2] > 0, eq_4_11(counts, 0.01), 0.01)
     np.testing.assert_allclose(model.score(states, image), np.maximum(expected, 0.01))
     assert 0 < np.mean(expected > 0.01) < 1

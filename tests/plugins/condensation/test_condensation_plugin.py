@@ -1,7 +1,8 @@
 """The condensation tracker and its variants are registered through the trackbench entry point.
 
 Each test loads the plugins afresh with every other entry point of the
-group blocked, so that the tests see this plugin alone.
+group blocked but the built-in modalities, so that the tests see this
+plugin's trackers alone.
 """
 
 from __future__ import annotations
@@ -10,12 +11,17 @@ import dataclasses
 import importlib.metadata
 
 from click.testing import CliRunner
+from trackbench_condensation import VARIANTS, CondensationTracker
 
 import benchmark.plugins
 from benchmark.cli import main
-from trackbench_condensation import VARIANTS, CondensationTracker
 
-OTHERS = sorted({ep.name for ep in importlib.metadata.entry_points(group="trackbench")} - {"condensation"})
+OTHERS = sorted(
+    ep.name
+    for ep in importlib.metadata.entry_points(group="trackbench")
+    if ep.name != "condensation" and not ep.name.startswith("modality-")
+)
+"""Every other plugin but the modalities, which the tracker's modality needs."""
 
 
 def registry():

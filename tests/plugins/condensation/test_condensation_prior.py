@@ -6,9 +6,9 @@ import math
 
 import numpy as np
 import pytest
-
-from benchmark.model import UNKNOWN_CABLE, CableState
 from trackbench_condensation.prior import InitLimits, particles_at, uniform_particles
+
+from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState
 
 
 @pytest.mark.parametrize("dims", [6, 8])

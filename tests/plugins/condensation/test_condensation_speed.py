@@ -15,9 +15,10 @@ import math
 
 import numpy as np
 import pytest
-
-from benchmark.model import CableState, CameraTruth, Frame, SequenceInfo
 from trackbench_condensation import CondensationTracker
+
+from benchmark.modalities.camera.model import CableState, CameraTruth
+from benchmark.model import Frame, SequenceInfo
 
 SETTINGS = {
     "thesis-500-11px-20px": {},

@@ -3,15 +3,20 @@
 from __future__ import annotations
 
 import math
+import typing
 
 import numpy as np
+import pydantic
 import pytest
-
 import trackbench_condensation.tracker as tracker_module
+from trackbench_condensation import CondensationParams, CondensationTracker
+from trackbench_condensation.observation import INTERPOLATIONS
+
 from benchmark.errors import DataError, ParameterError
-from benchmark.geometry import cable_borders, score_line_pair
-from benchmark.model import CableState, CameraTruth, Frame, Outcome, SequenceInfo
-from trackbench_condensation import CondensationTracker
+from benchmark.filters import RESAMPLERS
+from benchmark.modalities.camera.geometry import cable_borders, score_line_pair
+from benchmark.modalities.camera.model import CableState, CameraTruth
+from benchmark.model import Frame, Outcome, SequenceInfo
 
 SIZE = (320, 240)
 INFO = SequenceInfo("drawn", "camera", frame_size=SIZE)
@@ -162,19 +167,35 @@ def test_unknown_and_bad_parameters_are_parameter_errors():
         {"filter_size_px": 4},
         {"n_particles": 0},
         {"resampler": "lottery"},
+        {"interpolation": "cubic"},
         {"var_w_px2": -1.0},
         {"init_w_px": (10.0, 1.0)},
+        {"init_d_px": (-1.0, float("nan"))},
         {"lost_threshold": 2.0},
+        {"lost_decay": 0.0},
         {"redetect_fraction": 1.5},
         {"reinit_every": -1},
+        {"redetect_candidates": 0},
+        {"weight_exponent": 0.0},
+        {"n_particles": 2.5},
     ):
-        with pytest.raises(ParameterError, match="condensation"):
+        (name,) = bad
+        with pytest.raises(ParameterError, match=rf"tracker 'condensation'.*{name}"):
             make(**bad)
+        with pytest.raises(pydantic.ValidationError, match=name):
+            CondensationParams(**bad)
+
+
+def test_choices_are_the_ones_the_components_know():
+    fields = typing.get_type_hints(CondensationParams)
+    assert set(typing.get_args(fields["resampler"])) == set(RESAMPLERS)
+    assert typing.get_args(fields["interpolation"]) == INTERPOLATIONS
 
 
 def test_parameters_from_the_command_line_are_converted():
     params = CondensationTracker.make_params({"n_particles": "300", "init_d_px": "[-100, 100]", "carry_weights": "yes"})
-    assert params.n_particles == 300 and params.init_d_px == (-100, 100) and params.carry_weights is True
+    assert params.n_particles == 300 and params.init_d_px == (-100.0, 100.0) and params.carry_weights is True
+    assert all(type(value) is float for value in params.init_d_px)
     assert make(n_particles="300").params.n_particles == 300
 
 

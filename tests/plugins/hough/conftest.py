@@ -1,7 +1,7 @@
 """Drawn test images for the Hough baseline: a band of known borders on textured sand.
 
 The band is the polygon between the two border lines of a known
-:class:`benchmark.model.CableState` (:func:`benchmark.geometry.cable_borders`),
+:class:`benchmark.modalities.camera.model.CableState` (:func:`benchmark.modalities.camera.geometry.cable_borders`),
 filled with sub-pixel, anti-aliased edges, brighter or darker than a
 background of smooth random texture plus pixel noise.  Tests reach the
 drawing functions through the ``drawing`` fixture.
@@ -15,8 +15,8 @@ import cv2
 import numpy as np
 import pytest
 
-from benchmark.geometry import Line, cable_borders, model_to_pixel
-from benchmark.model import CableState
+from benchmark.modalities.camera.geometry import Line, cable_borders, model_to_pixel
+from benchmark.modalities.camera.model import CableState
 
 SIZE = (320, 240)
 

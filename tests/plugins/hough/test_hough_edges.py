@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
 from trackbench_hough.edges import edge_image, log_response, zero_crossings
 
 

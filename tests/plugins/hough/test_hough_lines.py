@@ -8,8 +8,6 @@ import cv2
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from benchmark.geometry import Line, pixel_to_model
 from trackbench_hough.lines import (
     HoughLine,
     hough_lines,
@@ -18,6 +16,8 @@ from trackbench_hough.lines import (
     theta_intervals,
     wrap_half_turn,
 )
+
+from benchmark.modalities.camera.geometry import Line, pixel_to_model
 
 SIZE = (320, 240)
 

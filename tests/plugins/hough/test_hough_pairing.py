@@ -6,12 +6,12 @@ import math
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from benchmark.geometry import Line, cable_borders
-from benchmark.model import CableState
 from trackbench_hough.lines import HoughLine, normal_form
 from trackbench_hough.pairing import choose_pair, compatible_pairs
 from trackbench_hough.window import SearchWindow
+
+from benchmark.modalities.camera.geometry import Line, cable_borders
+from benchmark.modalities.camera.model import CableState
 
 SIZE = (320, 240)
 LIMITS = dict(max_skew=math.radians(10.0), max_divergence=math.radians(1.0), min_width=5.0, max_width=100.0)

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-import benchmark.plugins
 from trackbench_hough import HoughTracker
+
+import benchmark.plugins
 
 
 def test_hough_is_registered_as_a_camera_tracker():

@@ -6,11 +6,12 @@ import math
 
 import numpy as np
 import pytest
+from trackbench_hough.tracker import HoughTracker
 
 from benchmark.errors import DataError, ParameterError
-from benchmark.geometry import cable_borders, score_line_pair
-from benchmark.model import CableState, CameraTruth, Frame, Outcome, SequenceInfo
-from trackbench_hough.tracker import HoughTracker
+from benchmark.modalities.camera.geometry import cable_borders, score_line_pair
+from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState, CameraTruth
+from benchmark.model import Frame, Outcome, SequenceInfo
 
 SIZE = (320, 240)
 INFO = SequenceInfo("drawn", "camera", frame_size=SIZE)
@@ -20,6 +21,11 @@ def fresh(**overrides) -> HoughTracker:
     tracker = HoughTracker(HoughTracker.make_params(overrides))
     tracker.reset(INFO, np.random.default_rng(0))
     return tracker
+
+
+def tracking(tracker: HoughTracker) -> bool:
+    """True while the tracker limits the Hough parameter space to a window around a previous result."""
+    return tracker._window is not None
 
 
 def outcome(estimate: CableState | None, truth: CableState) -> Outcome:
@@ -55,7 +61,7 @@ def test_returns_none_on_blank_and_noise_only_images(drawing):
     assert tracker.step(Frame(0, np.full(SIZE[::-1], 128, np.uint8))) is None
     for seed in range(3):
         assert tracker.step(Frame(1 + seed, drawing.to_uint8(drawing.background(SIZE, seed)))) is None
-    assert not tracker.tracking
+    assert not tracking(tracker)
 
 
 def test_tracking_window_ignores_a_far_pair_until_enough_misses(drawing):
@@ -63,13 +69,13 @@ def test_tracking_window_ignores_a_far_pair_until_enough_misses(drawing):
     distractor = CableState(75.0, math.radians(-12.0), 40.0, 0.0)
     tracker = fresh(max_misses=3)
     assert outcome(tracker.step(Frame(0, drawing.draw_cable(cable))), cable) is Outcome.CORRECT
-    assert tracker.tracking
+    assert tracking(tracker)
     # The distractor alone is found at once by a tracker that searches everywhere ...
     assert outcome(fresh().step(Frame(0, drawing.draw_cable(distractor, seed=1))), distractor) is Outcome.CORRECT
     # ... but a tracking one misses it while the window is limited, then widens.
     for index in range(1, 4):
         assert tracker.step(Frame(index, drawing.draw_cable(distractor, seed=index))) is None
-    assert not tracker.tracking
+    assert not tracking(tracker)
     assert outcome(tracker.step(Frame(4, drawing.draw_cable(distractor, seed=4))), distractor) is Outcome.CORRECT
 
 
@@ -90,20 +96,20 @@ def test_init_starts_in_the_window_around_it(drawing):
     distractor = CableState(75.0, math.radians(-12.0), 40.0, 0.0)
     tracker = HoughTracker()
     tracker.reset(INFO, np.random.default_rng(0), init=CameraTruth(cable))
-    assert tracker.tracking
+    assert tracking(tracker)
     assert tracker.step(Frame(0, drawing.draw_cable(distractor))) is None
     ignoring = HoughTracker(HoughTracker.make_params({"use_init": "false"}))
-    ignoring.reset(INFO, np.random.default_rng(0), init=cable)
-    assert not ignoring.tracking
+    ignoring.reset(INFO, np.random.default_rng(0), init=CameraTruth(cable))
+    assert not tracking(ignoring)
     assert outcome(ignoring.step(Frame(0, drawing.draw_cable(distractor))), distractor) is Outcome.CORRECT
 
 
 def test_reset_forgets_the_previous_sequence(drawing):
     tracker = fresh()
     tracker.step(Frame(0, drawing.draw_cable(CableState(-70.0, 0.0, 30.0, 0.0))))
-    assert tracker.tracking
+    assert tracking(tracker)
     tracker.reset(INFO, np.random.default_rng(0))
-    assert not tracker.tracking
+    assert not tracking(tracker)
 
 
 def test_is_deterministic(drawing):
@@ -120,6 +126,31 @@ def test_is_deterministic(drawing):
 def test_unknown_parameter_is_a_parameter_error():
     with pytest.raises(ParameterError, match="log_sigmaa"):
         HoughTracker.make_params({"log_sigmaa": 2.0})
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [
+        {"log_sigma": 0.0},
+        {"rho_step_px": -1.0},
+        {"max_lines": 1},
+        {"window_rho_px": 0.0},
+        {"closeness_weight": 1.5},
+        {"max_misses": 0},
+        {"min_width_px": 120.0},
+        {"max_skew_deg": 90.0},
+    ],
+)
+def test_values_outside_the_declared_domains_are_parameter_errors(bad):
+    (name,) = bad
+    with pytest.raises(ParameterError, match=rf"tracker 'hough'.*{name}"):
+        HoughTracker.make_params(bad)
+
+
+def test_an_unknown_cable_in_the_truth_leaves_the_whole_space_to_search():
+    tracker = HoughTracker()
+    tracker.reset(INFO, np.random.default_rng(0), init=CameraTruth(UNKNOWN_CABLE))
+    assert not tracking(tracker)
 
 
 def test_parameters_from_strings_are_converted():

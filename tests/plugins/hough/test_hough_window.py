@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import math
 
-from benchmark.geometry import cable_borders
-from benchmark.model import CableState
 from trackbench_hough.lines import HoughLine
 from trackbench_hough.window import SearchWindow
+
+from benchmark.modalities.camera.geometry import cable_borders
+from benchmark.modalities.camera.model import CableState
 
 HALF_PHI = math.radians(5.0)
 

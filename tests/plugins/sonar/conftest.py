@@ -17,7 +17,8 @@ import types
 import numpy as np
 import pytest
 
-from benchmark.model import Frame, SequenceInfo, SonarCalibration, SonarTruth, Swath
+from benchmark.modalities.sonar.model import SonarCalibration, SonarTruth, Swath
+from benchmark.model import Frame, SequenceInfo
 
 
 def _circle_range(dx: np.ndarray, dz: np.ndarray, cx: float, cz: float, radius: float) -> np.ndarray:

@@ -6,15 +6,17 @@ import dataclasses
 import math
 
 import numpy as np
+import pydantic
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from benchmark.errors import DataError, ParameterError
-from benchmark.model import Frame, PipeEstimate, SequenceInfo, Swath
 from trackbench_sonar import SonarDetector
 from trackbench_sonar.detection import SwathDetector
 from trackbench_sonar.params import DetectorParams
+
+from benchmark.errors import DataError, ParameterError
+from benchmark.modalities.sonar.model import PipeEstimate, Swath
+from benchmark.model import Frame, SequenceInfo
 
 
 def detector(swaths, **overrides) -> SonarDetector:
@@ -115,7 +117,9 @@ def test_a_sequence_without_a_pipe_diameter_is_a_data_error_unless_the_axes_are_
 )
 def test_bad_parameters_name_the_tracker_and_the_parameter(name, value):
     with pytest.raises(ParameterError, match=rf"tracker 'sonar_detector'.*'{name}'"):
-        SonarDetector(dataclasses.replace(DetectorParams(), **{name: value}))
+        SonarDetector.make_params({name: value})
+    with pytest.raises(pydantic.ValidationError, match=name):
+        dataclasses.replace(DetectorParams(), **{name: value})
 
 
 def test_step_before_reset_is_an_error(swaths):

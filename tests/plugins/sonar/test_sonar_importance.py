@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
 from trackbench_sonar.importance import RandomWalkInjection, uniform_positions
 
 

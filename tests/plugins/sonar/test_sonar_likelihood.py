@@ -9,11 +9,11 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
-
 from trackbench_sonar.cross_section import CrossSection
-from benchmark.model import Swath, beam_footprint
 from trackbench_sonar.likelihood import LikelihoodScan, PipeLikelihood
 from trackbench_sonar.profile import resample_swath
+
+from benchmark.modalities.sonar.model import Swath, beam_footprint
 
 BEAM_240 = math.radians(120.0) / 239
 

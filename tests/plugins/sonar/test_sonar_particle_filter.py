@@ -4,23 +4,32 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import typing
 
 import numpy as np
+import pydantic
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from benchmark.errors import DataError, ParameterError
-from benchmark.model import Frame, PipeEstimate, SequenceInfo, SonarTruth, Swath
 from trackbench_sonar import SonarDetector, SonarParticleFilter
 from trackbench_sonar.likelihood import LikelihoodScan
-from trackbench_sonar.params import ParticleFilterParams
+from trackbench_sonar.params import ParticleFilterParams, ResamplerName
 from trackbench_sonar.particle_filter import ScanWeights, walk_sigma
+
+from benchmark.errors import DataError, ParameterError
+from benchmark.filters import RESAMPLERS
+from benchmark.modalities.sonar.model import PipeEstimate, SonarTruth, Swath
+from benchmark.model import Frame, SequenceInfo
 
 
 def run(tracker, info, frames, seed=0, init="truth"):
     tracker.reset(info, np.random.default_rng(seed), frames[0].truth if init == "truth" else init)
     return [tracker.step(frame) for frame in frames]
+
+
+def start_at(across_m: float) -> SonarTruth:
+    """A first ping's truth with the pipe at ``across_m``."""
+    return SonarTruth(across_m, 9.7, 0.0, 0.09)
 
 
 def meander(n: int = 60) -> np.ndarray:
@@ -80,7 +89,7 @@ def test_weights_stay_normalised_under_eq_4(swaths, pipe_at, noise, missing, n_p
         ParticleFilterParams(), n_particles=n_particles, weight_exponent=exponent, weight_floor=floor
     )
     tracker = SonarParticleFilter(params)
-    tracker.reset(swaths.info(), np.random.default_rng(seed), SonarTruth(0.0, 9.7, 0.0, 0.09))
+    tracker.reset(swaths.info(), np.random.default_rng(seed), start_at(0.0))
     for k in range(3):
         estimate = tracker.step(Frame(k, swaths.make(pipe_at, noise=noise, missing=missing, seed=seed + k)))
         weights = tracker.particles.weights
@@ -101,7 +110,7 @@ def _frozen(**changes) -> ParticleFilterParams:
 def test_with_injection_the_particles_never_collapse_onto_one_value(swaths, fraction, n_particles, seed):
     # No walk and a sharp scan: without injection resampling would leave copies of one particle.
     tracker = SonarParticleFilter(_frozen(n_particles=n_particles, inject_fraction=fraction, weight_floor=0.0))
-    tracker.reset(swaths.info(), np.random.default_rng(seed), PipeEstimate(1.0))
+    tracker.reset(swaths.info(), np.random.default_rng(seed), start_at(1.0))
     for k in range(6):
         tracker.step(Frame(k, swaths.make(1.0, noise=0.01, seed=k)))
         assert np.unique(tracker.particles.states).size >= 2
@@ -110,7 +119,7 @@ def test_with_injection_the_particles_never_collapse_onto_one_value(swaths, frac
 def test_without_injection_or_walk_the_particles_do_collapse(swaths):
     params = _frozen(inject_fraction=0.0, init_sigma_m=0.3, n_particles=20, weight_floor=0.0)
     tracker = SonarParticleFilter(params)
-    tracker.reset(swaths.info(), np.random.default_rng(0), PipeEstimate(1.0))
+    tracker.reset(swaths.info(), np.random.default_rng(0), start_at(1.0))
     assert np.unique(tracker.particles.states).size > 1
     for k in range(3):
         tracker.step(Frame(k, swaths.make(1.0, seed=k)))
@@ -179,7 +188,13 @@ def test_scan_weights_are_the_sharpened_scan_with_a_relative_floor():
 )
 def test_bad_parameters_name_the_tracker_and_the_parameter(name, value):
     with pytest.raises(ParameterError, match=rf"tracker 'sonar_pf'.*'{name}'"):
-        SonarParticleFilter(dataclasses.replace(ParticleFilterParams(), **{name: value}))
+        SonarParticleFilter.make_params({name: value})
+    with pytest.raises(pydantic.ValidationError, match=name):
+        dataclasses.replace(ParticleFilterParams(), **{name: value})
+
+
+def test_resampler_choices_are_the_filters_resamplers():
+    assert set(typing.get_args(ResamplerName)) == set(RESAMPLERS)
 
 
 def test_the_filter_ignores_decoys_that_fool_the_detector(swaths):

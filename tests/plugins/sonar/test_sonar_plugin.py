@@ -5,11 +5,11 @@ from __future__ import annotations
 import dataclasses
 
 from click.testing import CliRunner
+from trackbench_sonar import SonarDetector, SonarParticleFilter
+from trackbench_sonar.params import DetectorParams, ParticleFilterParams
 
 import benchmark.plugins
 from benchmark.cli import main
-from trackbench_sonar import SonarDetector, SonarParticleFilter
-from trackbench_sonar.params import DetectorParams, ParticleFilterParams
 
 
 def test_both_trackers_are_registered_as_sonar_trackers():

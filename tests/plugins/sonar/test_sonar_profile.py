@@ -9,10 +9,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
+from trackbench_sonar.profile import MAX_GRID_POINTS, resample_swath, running_median, spike_mask
 
 from benchmark.errors import DataError
-from benchmark.model import Swath
-from trackbench_sonar.profile import MAX_GRID_POINTS, resample_swath, running_median, spike_mask
+from benchmark.modalities.sonar.model import Swath
 
 
 def test_grid_is_uniform_on_whole_multiples_between_the_outermost_returns(swaths):

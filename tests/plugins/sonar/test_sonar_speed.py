@@ -13,7 +13,6 @@ import itertools
 
 import numpy as np
 import pytest
-
 from trackbench_sonar import SonarDetector, SonarParticleFilter
 
 TRACKERS = {"sonar_detector": SonarDetector, "sonar_pf": SonarParticleFilter}

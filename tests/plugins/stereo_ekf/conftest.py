@@ -18,8 +18,14 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
-from benchmark.model import ChaseNavigation, Frame, SequenceInfo, StereoCalibration, StereoMeasurement, StereoTruth
-from benchmark.model import TargetEstimate
+from benchmark.modalities.stereo.model import (
+    ChaseNavigation,
+    StereoCalibration,
+    StereoMeasurement,
+    StereoTruth,
+    TargetEstimate,
+)
+from benchmark.model import Frame, SequenceInfo
 
 CALIBRATION = StereoCalibration(
     focal_px=16.9 / 0.12,

@@ -7,10 +7,10 @@ import math
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
-
-from benchmark.model import ChaseNavigation
-from benchmark.stereo_geometry import to_north_east
 from trackbench_stereo_ekf.measurement import observation_jacobian, observe
+
+from benchmark.modalities.stereo.geometry import to_north_east
+from benchmark.modalities.stereo.model import ChaseNavigation
 
 coordinate = st.floats(-200.0, 200.0)
 heading = st.floats(-math.pi, math.pi)

@@ -5,7 +5,6 @@ from __future__ import annotations
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
-
 from trackbench_stereo_ekf.motion import control_vector, process_noise, propagate, transition_matrix
 
 

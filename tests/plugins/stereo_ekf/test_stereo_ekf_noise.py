@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
-
-from benchmark.model import ChaseNavigation
-from benchmark.stereo_geometry import triangulate
 from trackbench_stereo_ekf.measurement import observe
 from trackbench_stereo_ekf.noise import full_covariance, measurement_noise, modified_covariance, navigation_noise
+
+from benchmark.modalities.stereo.geometry import triangulate
+from benchmark.modalities.stereo.model import ChaseNavigation
 
 left_px = st.floats(0.0, 319.0)
 disparity_px = st.floats(0.3, 80.0)
@@ -50,9 +50,8 @@ def test_modified_covariance_is_diagonal_with_eq_18_depth_and_constant_lateral_v
 
 @pytest.mark.parametrize(("disparity", "accuracy"), [(1.0, 3.3792), (2.0, 0.8448), (3.5, 0.2759), (7.0, 0.0690)])
 def test_depth_standard_deviation_reproduces_table_3(scene, disparity, accuracy):
-    CALIBRATION, PIXEL_VARIANCE = scene.CALIBRATION, scene.PIXEL_VARIANCE
     # Table 3 is for a correlation accuracy of 0.2 px, so Q_f = 0.2^2 / 2 (eq. 19)
-    Q = modified_covariance(159.5 + disparity, 159.5, CALIBRATION, 0.2**2 / 2, lateral_k=2.0)
+    Q = modified_covariance(159.5 + disparity, 159.5, scene.CALIBRATION, 0.2**2 / 2, lateral_k=2.0)
     assert np.sqrt(Q[0, 0]) == pytest.approx(accuracy, rel=2e-3)
 
 

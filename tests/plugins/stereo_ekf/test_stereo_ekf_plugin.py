@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-import benchmark.plugins
 from trackbench_stereo_ekf import PAPER, StereoEkfTracker
+
+import benchmark.plugins
 
 
 def test_the_filter_and_its_variants_are_registered_as_stereo_trackers():

@@ -3,17 +3,22 @@
 from __future__ import annotations
 
 import dataclasses
+import typing
 
 import numpy as np
+import pydantic
 import pytest
-
-from benchmark.errors import DataError, ParameterError
-from benchmark.model import ChaseNavigation, Frame, SequenceInfo, StereoMeasurement, StereoTruth, TargetEstimate
-from benchmark.runner import Cell, run_cell
-from benchmark.stereo_geometry import to_north_east
 from trackbench_stereo_ekf import PAPER, StereoEkfParams, StereoEkfTracker
 from trackbench_stereo_ekf.motion import propagate
+from trackbench_stereo_ekf.noise import COVARIANCE_FORMS
 from trackbench_stereo_raw import StereoRawTracker
+
+from benchmark.errors import DataError, ParameterError
+from benchmark.modalities.stereo.geometry import to_north_east
+from benchmark.modalities.stereo.modality import STEREO
+from benchmark.modalities.stereo.model import ChaseNavigation, StereoMeasurement, StereoTruth, TargetEstimate
+from benchmark.model import Frame, SequenceInfo
+from benchmark.runner import Cell, run_cell
 
 
 def _rmse_table(scene, frames, init):
@@ -168,11 +173,20 @@ def test_runs_are_deterministic(scene):
 @pytest.mark.parametrize(
     "overrides",
     [{"covariance": "eq19"}, {"noise_at": "nowhere"}, {"sigma_a_mps2": 0.0}, {"gps_std_m": -1.0},
-     {"beyond_range_inflation": 0.5}],
+     {"beyond_range_inflation": 0.5}, {"control_acceleration_mps2": float("nan")}, {"lateral_k": float("inf")},
+     {"frontend_prefilter": "laplace"}, {"frontend_prefilter_cap": 64}],
 )
 def test_bad_parameters_are_refused(overrides):
-    with pytest.raises(ParameterError, match=next(iter(overrides))):
-        StereoEkfTracker(StereoEkfTracker.make_params(overrides))
+    with pytest.raises(ParameterError, match=rf"tracker 'stereo_ekf'.*{next(iter(overrides))}"):
+        StereoEkfTracker.make_params(overrides)
+    with pytest.raises(pydantic.ValidationError, match=next(iter(overrides))):
+        StereoEkfParams(**overrides)
+
+
+def test_choices_are_the_ones_the_noise_model_knows():
+    fields = typing.get_type_hints(StereoEkfParams)
+    assert typing.get_args(fields["covariance"]) == COVARIANCE_FORMS
+    assert set(typing.get_args(fields["noise_at"])) == {"prediction", "measurement"}
 
 
 def test_bad_inputs_name_the_sequence_and_frame(scene):
@@ -189,7 +203,7 @@ def test_bad_inputs_name_the_sequence_and_frame(scene):
 
 @pytest.mark.parametrize("name", ["stereo_ekf", "stereo_ekf-paper", "stereo_ekf-eq18"])
 def test_every_variant_tracks_the_target_in_rendered_image_pairs(name, plugin_registry, stereo_clip):
-    result = run_cell(Cell(plugin_registry.trackers[name], stereo_clip, seed=0, init="none"))
+    result = run_cell(Cell(plugin_registry.trackers[name], stereo_clip, seed=0, init="none", modality=STEREO))
     assert result.status == "ok", result.message
     errors = result.frames["err_position_m"].to_numpy()
     # started from the first measurement, the filter reports once a second one has shown a velocity

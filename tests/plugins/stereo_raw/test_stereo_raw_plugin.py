@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-import benchmark.plugins
 from trackbench_stereo_raw import StereoRawTracker
+
+import benchmark.plugins
 
 
 def test_raw_baseline_is_registered_as_a_stereo_tracker():

@@ -5,12 +5,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pydantic
 import pytest
+from trackbench_stereo_raw import StereoRawParams, StereoRawTracker
 
 from benchmark.errors import DataError, ParameterError
-from benchmark.model import ChaseNavigation, Frame, SequenceInfo, StereoCalibration, StereoMeasurement
+from benchmark.modalities.stereo.modality import STEREO
+from benchmark.modalities.stereo.model import ChaseNavigation, StereoCalibration, StereoMeasurement
+from benchmark.model import Frame, SequenceInfo
 from benchmark.runner import Cell, run_cell
-from trackbench_stereo_raw import StereoRawParams, StereoRawTracker
 
 CALIBRATION = StereoCalibration(140.8, 0.12, 159.5, 159.5, 320, 16.0, 0.11)
 INFO = SequenceInfo("synthetic/raw", "stereo", n_frames=100, frame_interval_s=0.2, calibration=CALIBRATION)
@@ -80,8 +83,10 @@ def test_the_window_smooths_speed_noise():
 
 
 def test_bad_window_and_bad_inputs_are_refused():
-    with pytest.raises(ParameterError, match="window"):
-        StereoRawTracker(StereoRawParams(window=0))
+    with pytest.raises(ParameterError, match=r"tracker 'stereo_raw'.*'window'"):
+        StereoRawTracker.make_params({"window": 0})
+    with pytest.raises(pydantic.ValidationError, match="window"):
+        StereoRawParams(window=0)
     tracker = StereoRawTracker()
     with pytest.raises(DataError, match="frame_interval_s"):
         tracker.reset(SequenceInfo("x/y", "stereo"), np.random.default_rng(0))
@@ -95,7 +100,9 @@ def test_bad_window_and_bad_inputs_are_refused():
 def test_rendered_image_pairs_give_the_positions_and_velocities_of_their_measurements(
     plugin_registry, stereo_clip, stereo_clip_measured
 ):
-    result = run_cell(Cell(plugin_registry.trackers["stereo_raw"], stereo_clip, seed=0, init="none"))
+    result = run_cell(
+        Cell(plugin_registry.trackers["stereo_raw"], stereo_clip, seed=0, init="none", modality=STEREO)
+    )
     assert result.status == "ok", result.message
     errors = result.frames["err_position_m"].to_numpy()
     assert np.isnan(errors[0]) and np.all(errors[1:] < 2.0)

@@ -1,0 +1,96 @@
+"""Export a camera sequence in the thesis' on-disk form: PNG images plus an image sequence file.
+
+:func:`export_camera_sequence` turns any camera
+:class:`~benchmark.model.Sequence` (a rendered synthetic scene, a video,
+another sequence file) into the thesis' on-disk form (seeds/000, section
+4.7.3; ``conventions.md`` section 2), so that a sequence made here can be
+labelled, inspected or tracked with other tools, and read back with
+:func:`benchmark.io.open_sequence`.  For a file stem ``stem`` it writes::
+
+    out_dir/<stem>.txt                 the sequence file
+    out_dir/<stem>/frame_00000.png     one lossless PNG per frame
+    out_dir/<stem>/frame_00001.png
+    ...
+
+with the image paths in the sequence file relative to ``out_dir``.  Frames
+are written as they are produced, one in memory at a time; the sequence
+file appears only once every image is written.  It is the camera
+modality's exporter (``trackbench make-dataset``, :func:`benchmark.io.export_sequence`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+from benchmark.errors import DataError
+from benchmark.modalities.camera.io.images import size_of, write_png
+from benchmark.modalities.camera.io.sequence_file import write_sequence_file
+from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState, CameraTruth
+from benchmark.model import Sequence
+
+
+def _truth_cable(truth: object, where: str) -> CableState:
+    if truth is None:
+        return UNKNOWN_CABLE
+    if isinstance(truth, CameraTruth):
+        return truth.cable
+    raise DataError(f"{where}truth is a {type(truth).__name__}, not a CameraTruth")
+
+
+def export_camera_sequence(sequence: Sequence, out: Path, stem: str) -> Path:
+    """Write a camera sequence as PNG frames plus an image sequence file.
+
+    Parameters
+    ----------
+    sequence : Sequence
+        A camera sequence whose frames carry ``uint8`` grey images of one
+        size and a :class:`~benchmark.modalities.camera.model.CameraTruth` or None.
+    out : pathlib.Path
+        Folder to write into; created if missing.
+    stem : str
+        Name of the sequence file (without ``.txt``) and of the image folder.
+
+    Returns
+    -------
+    pathlib.Path
+        The sequence file ``out/<stem>.txt``.
+
+    Raises
+    ------
+    DataError
+        If a frame is not a grey ``uint8`` image or differs in size from
+        the first, a truth is not a camera truth, or a file cannot be written.  Errors from reading the
+        sequence itself pass through.
+
+    References
+    ----------
+    seeds/000, section 4.7.3; ``conventions.md`` section 2.
+    """
+    info = sequence.info
+    image_dir = out / stem
+    try:
+        image_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise DataError(f"{image_dir}: cannot create folder: {exc.strerror or exc}") from None
+
+    def rows() -> Iterator[tuple[CableState, str]]:
+        first_size: tuple[int, int] | None = None
+        count = -1
+        for count, frame in enumerate(sequence.frames()):
+            where = f"{info.name}: frame {frame.index}: "
+            file_name = f"frame_{count:05d}.png"
+            write_png(image_dir / file_name, frame.observation, where=where)
+            size = size_of(frame.observation)
+            if first_size is None:
+                first_size = size
+            elif size != first_size:
+                width, height = first_size
+                raise DataError(f"{where}image is {size[0]}x{size[1]} px, but the first frame is {width}x{height} px")
+            yield _truth_cable(frame.truth, where), f"{stem}/{file_name}"
+        if count < 0:
+            raise DataError(f"{info.name}: the sequence has no frames to export")
+
+    sequence_path = out / f"{stem}.txt"
+    write_sequence_file(sequence_path, rows())
+    return sequence_path

@@ -1,0 +1,460 @@
+"""Definitions of synthetic camera sequences, as plain data.
+
+A camera sequence is a pure function of a :class:`CameraSceneSpec` (which
+includes its seed).  The spec is a tree of frozen dataclasses built from a
+plain mapping, so suites can be written as TOML files
+(:meth:`CameraSceneSpec.from_dict`); an unknown key or a value of the wrong
+type is a :class:`benchmark.errors.DataError` naming where it was found.
+
+The tree mirrors the parts of the scene model of seeds/004, section II:
+
+* :class:`MotionSpec`: the camera pose ``(Cx, Cy, Cz, theta, phi, xi)`` over
+  time, each coordinate a :class:`Signal` (a mean, waves, events and
+  smoothed noise), plus the forward speed that moves ``Cz``;
+* :class:`SeabedSpec`: the appearance of the plane the pipe rests on (sand
+  texture, :class:`Ripples`, :class:`Clutter` of rocks and algae);
+* :class:`CableLook`: the pipe's surface (albedo, shine, marine growth);
+* :class:`Burial`: stretches where sand covers the pipe (seeds/004, Fig. 14);
+* :class:`Overgrowth`: algae and stones on the pipe and against its sides,
+  which break its borders (seeds/000, section 5.2.3);
+* :class:`OpticsSpec`: light, water and sensor.
+
+Lengths are in metres, angles in degrees (converted to radians where the
+scene is built), times in frames unless a name says otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from benchmark.scenes.signal import Signal
+from benchmark.scenes.spec import TableSpec
+
+ZRange = tuple[float, float]
+"""A stretch ``(from, to)`` along the pipe axis ``Z``, in m."""
+
+EVERYWHERE: ZRange = (-math.inf, math.inf)
+
+DensityProfile = tuple[tuple[float, float], ...]
+"""Points ``(Z in m, factor)`` of a density that varies along the pipe.
+
+The factor is interpolated linearly between points and held constant
+beyond the first and the last; an empty profile is 1 everywhere.
+"""
+
+
+def check_profile(points: DensityProfile) -> None:
+    """Raise ``ValueError`` unless ``points`` is a valid :data:`DensityProfile`.
+
+    Parameters
+    ----------
+    points : DensityProfile
+        Positions must be finite and strictly increasing, factors finite
+        and ``>= 0``.
+    """
+    zs = [z for z, _ in points]
+    if not all(math.isfinite(z) and math.isfinite(f) and f >= 0 for z, f in points):
+        raise ValueError(f"density profile needs finite positions and factors >= 0, got {points}")
+    if any(b <= a for a, b in zip(zs, zs[1:])):
+        raise ValueError(f"density profile positions must increase strictly, got {zs}")
+
+
+@dataclass(frozen=True)
+class MotionSpec:
+    """The camera trajectory, seeds/004 section II and Fig. 2.
+
+    Attributes
+    ----------
+    cx_m : Signal
+        Lateral offset ``Cx`` of the camera from the pipe axis.
+    cy_m : Signal
+        Height ``Cy`` of the camera above the pipe axis (the seabed is at
+        ``Y = -r``).
+    theta_deg, phi_deg, xi_deg : Signal
+        Pan, tilt (90 looks straight down) and roll.
+    speed_mps : Signal
+        Forward speed along ``Z``; ``Cz`` starts at 0 and integrates it.
+    speed_noise_mps : float
+        Standard deviation of the inertial sensor's error on each reported
+        speed.
+    """
+
+    cx_m: Signal = Signal()
+    cy_m: Signal = Signal(mean=2.0)
+    theta_deg: Signal = Signal()
+    phi_deg: Signal = Signal(mean=60.0)
+    xi_deg: Signal = Signal()
+    speed_mps: Signal = Signal(mean=0.45)
+    speed_noise_mps: float = 0.02
+
+    def __post_init__(self) -> None:
+        if self.speed_noise_mps < 0:
+            raise ValueError("speed_noise_mps must be >= 0")
+
+
+@dataclass(frozen=True)
+class Ripples:
+    """Sand ripples: parallel crests with a sharp edge, a trap for line detectors.
+
+    Attributes
+    ----------
+    amplitude : float
+        Relative albedo modulation (0.2 changes the albedo by +-20 %).
+    wavelength_m : float
+        Distance between crests.
+    angle_deg : float
+        Angle between the crests and the pipe axis.
+    sharpness : float
+        0 gives a sine profile, 1 a sawtooth with a sharp crest.
+    waviness_m : float
+        How far the crests wander from straight lines.
+    z_m : tuple of float
+        The stretch of seabed that has them, with soft ends of ``fade_m``.
+    """
+
+    amplitude: float = 0.2
+    wavelength_m: float = 0.12
+    angle_deg: float = 15.0
+    sharpness: float = 0.85
+    waviness_m: float = 0.008
+    z_m: ZRange = EVERYWHERE
+    fade_m: float = 0.5
+
+    def __post_init__(self) -> None:
+        if not self.wavelength_m > 0 or not 0 <= self.sharpness <= 1:
+            raise ValueError("need wavelength_m > 0 and 0 <= sharpness <= 1")
+
+
+@dataclass(frozen=True)
+class Clutter:
+    """Rocks and tufts of algae scattered over a stretch of seabed.
+
+    Attributes
+    ----------
+    z_m : tuple of float
+        Stretch along the pipe; it is clipped to the seabed the camera sees.
+    x_m : float
+        Half width of the cluttered band around the pipe.
+    rocks_per_m2, algae_per_m2 : float
+        Mean densities (Poisson).
+    rock_size_m, algae_size_m : float
+        Typical diameter of a rock and length of an algae tuft.
+    rock_albedo, algae_albedo : float
+        Their mean albedos.
+    density : DensityProfile
+        Factor on both densities along ``Z``; empty for a constant density.
+    """
+
+    z_m: ZRange = EVERYWHERE
+    x_m: float = 2.5
+    rocks_per_m2: float = 0.0
+    rock_size_m: float = 0.1
+    rock_albedo: float = 0.35
+    algae_per_m2: float = 0.0
+    algae_size_m: float = 0.25
+    algae_albedo: float = 0.18
+    density: DensityProfile = ()
+
+    def __post_init__(self) -> None:
+        if min(self.rocks_per_m2, self.algae_per_m2) < 0 or min(self.rock_size_m, self.algae_size_m) <= 0:
+            raise ValueError("densities must be >= 0 and sizes > 0")
+        check_profile(self.density)
+
+
+@dataclass(frozen=True)
+class SeabedSpec:
+    """Appearance of the seabed plane ``Y = -r``.
+
+    Attributes
+    ----------
+    albedo : float
+        Mean albedo of the sand, in [0, 1].
+    patchiness, patch_scale_m : float
+        Relative strength and size of large darker and lighter patches.
+    detail : float
+        Relative strength of centimetre-to-decimetre texture.
+    grain : float
+        Relative strength of the finest, per-centimetre grain.
+    ripples : tuple of Ripples
+    clutter : tuple of Clutter
+    """
+
+    albedo: float = 0.5
+    patchiness: float = 0.15
+    patch_scale_m: float = 0.6
+    detail: float = 0.08
+    grain: float = 0.06
+    ripples: tuple[Ripples, ...] = ()
+    clutter: tuple[Clutter, ...] = ()
+
+    def __post_init__(self) -> None:
+        if not 0 <= self.albedo <= 1:
+            raise ValueError(f"albedo must be in [0, 1], got {self.albedo}")
+
+
+@dataclass(frozen=True)
+class CableLook:
+    """Appearance of the pipe's surface.
+
+    Attributes
+    ----------
+    albedo : float
+        Mean albedo of the bare pipe.
+    texture : float
+        Relative strength of its surface texture.
+    specular : float
+        Strength of the highlight along the middle (the light is on the
+        vehicle, so the middle faces it).
+    growth_coverage : float
+        Share in [0, 1] of the flanks covered by marine growth.
+    growth_albedo : float
+        Albedo of the growth.
+    growth_angle_deg, growth_spread_deg : float
+        Where the growth sits, as the angle around the pipe from its top
+        (90 is the flank the camera sees as a border), and how wide.
+    """
+
+    albedo: float = 0.22
+    texture: float = 0.06
+    specular: float = 0.15
+    growth_coverage: float = 0.0
+    growth_albedo: float = 0.4
+    growth_angle_deg: float = 80.0
+    growth_spread_deg: float = 30.0
+
+    def __post_init__(self) -> None:
+        if not (0 <= self.albedo <= 1 and 0 <= self.growth_albedo <= 1 and 0 <= self.growth_coverage <= 1):
+            raise ValueError("albedo, growth_albedo and growth_coverage must be in [0, 1]")
+
+
+@dataclass(frozen=True)
+class Burial:
+    """A stretch where sand covers the pipe (seeds/004, Fig. 14).
+
+    Attributes
+    ----------
+    z_m : tuple of float
+        Where the sand is at its full ``level``.
+    level : float
+        Sand height as a share of the pipe diameter above the seabed: 0 is
+        the seabed, 1 the top of the pipe; above 1 the pipe is hidden.
+    ramp_m : float
+        Length over which the sand rises before and falls after the
+        stretch: the pipe is partly buried there.
+    roughness : float
+        Irregularity of the sand line, as a share of the diameter.
+    """
+
+    z_m: ZRange
+    level: float = 1.15
+    ramp_m: float = 0.6
+    roughness: float = 0.05
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.z_m[0]) and math.isfinite(self.z_m[1]) and self.z_m[0] <= self.z_m[1]):
+            raise ValueError(f"burial z_m must be a finite (from, to) with from <= to, got {self.z_m}")
+        if self.ramp_m < 0 or self.roughness < 0:
+            raise ValueError("ramp_m and roughness must be >= 0")
+
+
+@dataclass(frozen=True)
+class Overgrowth:
+    """Algae and stones on the pipe and against its sides (seeds/000, section 5.2.3).
+
+    Unlike :class:`Clutter`, which lies on the seabed beside the pipe, this
+    layer is drawn over the pipe as well: algae mats and fronds drape over
+    it and across its borders, stones lean against its flanks or lie on top,
+    so stretches of the borders disappear and the fronds add short straight
+    edges of every orientation, some nearly parallel to the pipe.
+
+    Attributes
+    ----------
+    z_m : tuple of float
+        Stretch along the pipe; it is clipped to the seabed the camera sees.
+    density : DensityProfile
+        Factor along ``Z`` on the mat cover and on the numbers of fronds and
+        stones; empty for a constant density.
+    x_m : float
+        Half width of the band around the pipe axis where mats lie and
+        fronds are rooted.
+    mat_cover : float
+        Share in [0, 1) of the band that algae mats cover where the factor
+        is 1.
+    mat_scale_m : float
+        Typical size of a mat.
+    mat_albedo : float
+        Mean albedo of the mats.
+    fronds_per_m : float
+        Tufts of fronds (seaweed, seagrass) per metre of pipe (Poisson).
+    frond_length_m, frond_width_m : float
+        Typical length and width of one frond.
+    frond_albedo : float
+        Mean albedo of the fronds.
+    parallel_share : float
+        Share in [0, 1] of the tufts that lie along the pipe (within about
+        10 deg); the others point anywhere.
+    side_stones_per_m : float
+        Stones per metre of pipe that lie against its sides, either side.
+    top_stones_per_m : float
+        Stones per metre of pipe that lie on top of it.
+    stone_size_m : float
+        Typical diameter of a stone.
+    stone_height : float
+        Height of a stone as a share of its diameter.
+    stone_albedo : float
+        Mean albedo of the stones.
+    """
+
+    z_m: ZRange = EVERYWHERE
+    density: DensityProfile = ()
+    x_m: float = 0.5
+    mat_cover: float = 0.0
+    mat_scale_m: float = 0.08
+    mat_albedo: float = 0.22
+    fronds_per_m: float = 0.0
+    frond_length_m: float = 0.3
+    frond_width_m: float = 0.02
+    frond_albedo: float = 0.2
+    parallel_share: float = 0.3
+    side_stones_per_m: float = 0.0
+    top_stones_per_m: float = 0.0
+    stone_size_m: float = 0.15
+    stone_height: float = 0.6
+    stone_albedo: float = 0.35
+
+    def __post_init__(self) -> None:
+        if min(self.fronds_per_m, self.side_stones_per_m, self.top_stones_per_m) < 0:
+            raise ValueError("fronds_per_m, side_stones_per_m and top_stones_per_m must be >= 0")
+        if min(self.x_m, self.mat_scale_m, self.frond_length_m, self.frond_width_m, self.stone_size_m) <= 0:
+            raise ValueError("x_m, mat_scale_m, frond_length_m, frond_width_m and stone_size_m must be > 0")
+        if not (0 <= self.mat_cover < 1 and 0 <= self.parallel_share <= 1 and self.stone_height > 0):
+            raise ValueError("need 0 <= mat_cover < 1, 0 <= parallel_share <= 1 and stone_height > 0")
+        if not all(0 <= a <= 1 for a in (self.mat_albedo, self.frond_albedo, self.stone_albedo)):
+            raise ValueError("mat_albedo, frond_albedo and stone_albedo must be in [0, 1]")
+        check_profile(self.density)
+
+
+@dataclass(frozen=True)
+class OpticsSpec:
+    """Light, water and sensor.
+
+    Attributes
+    ----------
+    exposure : float
+        Grey level of a white surface facing the lamp at the reference distance.
+    ambient : float
+        Share of light that does not depend on the surface's orientation.
+    light_falloff : bool
+        Whether the lamp's light falls off with the distance squared.
+    daylight : float
+        Share in [0, 1] of the light that does not fall off (daylight from
+        above); the lamp gives the rest.
+    reference_distance_m : float or None
+        Distance at which the lamp's fall-off factor is 1; None takes the
+        distance from the camera to the seabed along the optical axis at
+        the mean pose of the sequence.
+    auto_gain : float
+        How much of the change of light at the image centre (the lamp's
+        fall-off as the vehicle moves) the camera's gain control undoes: 0
+        for a fixed gain, 1 for all of it.
+    water_grey : float
+        Grey level of the water far away (the haze colour).
+    attenuation_per_m : float
+        Haze coefficient: a surface at distance ``s`` keeps
+        ``exp(-attenuation_per_m s)`` of its light.
+    vignetting : float
+        Darkening of the image corners, 0 for none.
+    blur_px : float
+        Standard deviation of the Gaussian blur, 0 for none.
+    noise_grey : float
+        Standard deviation of the sensor noise in grey levels.
+    snow_per_frame : float
+        Mean number of bright suspended particles per frame.
+    """
+
+    exposure: float = 430.0
+    ambient: float = 0.15
+    light_falloff: bool = True
+    daylight: float = 0.4
+    reference_distance_m: float | None = None
+    auto_gain: float = 0.85
+    water_grey: float = 38.0
+    attenuation_per_m: float = 0.1
+    vignetting: float = 0.35
+    blur_px: float = 0.8
+    noise_grey: float = 3.5
+    snow_per_frame: float = 0.0
+
+    def __post_init__(self) -> None:
+        if min(self.attenuation_per_m, self.blur_px, self.noise_grey, self.snow_per_frame, self.vignetting) < 0:
+            raise ValueError("attenuation, blur, noise, snow and vignetting must be >= 0")
+        if self.reference_distance_m is not None and not self.reference_distance_m > 0:
+            raise ValueError("reference_distance_m must be > 0")
+        if not (0 <= self.daylight <= 1 and 0 <= self.auto_gain <= 1):
+            raise ValueError("daylight and auto_gain must be in [0, 1]")
+
+
+@dataclass(frozen=True)
+class CameraSceneSpec(TableSpec):
+    """Everything that defines one synthetic camera sequence.
+
+    Attributes
+    ----------
+    name : str
+        Sequence name in results, e.g. ``"camera/S1"``.
+    n_frames : int
+        Number of frames.
+    seed : int
+        Seed of every random choice (texture, trajectory noise, sensor noise).
+    description : str
+        What the sequence is meant to test.
+    frame_size : tuple of int
+        Image ``(W, H)`` in px.
+    frame_interval_s : float
+        Time between frames, ``tau`` of seeds/004 eq. (7).
+    focal_px : float
+        ``f / dx`` in px (seeds/004 eq. (3)).
+    pipe_diameter_m : float
+        Diameter of the cylinder.
+    nominal_tilt_deg : float or None
+        Tilt at which the camera is mounted (``phi_0`` of seeds/004 eq. (12));
+        None takes the mean of ``motion.phi_deg``.
+    """
+
+    name: str
+    n_frames: int
+    seed: int = 0
+    description: str = ""
+    frame_size: tuple[int, int] = (320, 240)
+    frame_interval_s: float = 0.04
+    focal_px: float = 380.0
+    pipe_diameter_m: float = 0.2
+    nominal_tilt_deg: float | None = None
+    motion: MotionSpec = field(default_factory=MotionSpec)
+    seabed: SeabedSpec = field(default_factory=SeabedSpec)
+    cable: CableLook = field(default_factory=CableLook)
+    burial: tuple[Burial, ...] = ()
+    overgrowth: tuple[Overgrowth, ...] = ()
+    optics: OpticsSpec = field(default_factory=OpticsSpec)
+
+    def __post_init__(self) -> None:
+        if not self.name:
+            raise ValueError("name must not be empty")
+        if self.n_frames < 1:
+            raise ValueError(f"n_frames must be >= 1, got {self.n_frames}")
+        if min(self.frame_size) < 8:
+            raise ValueError(f"frame_size must be at least 8 x 8, got {self.frame_size}")
+        if not (self.frame_interval_s > 0 and self.focal_px > 0 and self.pipe_diameter_m > 0):
+            raise ValueError("frame_interval_s, focal_px and pipe_diameter_m must be > 0")
+
+    @property
+    def radius(self) -> float:
+        """Pipe radius ``r`` in m."""
+        return self.pipe_diameter_m / 2.0
+
+    @property
+    def nominal_tilt(self) -> float:
+        """The mounting tilt ``phi_0`` in rad."""
+        tilt = self.motion.phi_deg.mean if self.nominal_tilt_deg is None else self.nominal_tilt_deg
+        return math.radians(tilt)

@@ -1,0 +1,32 @@
+"""The stereo modality: a stereo camera on a chase boat measuring a target boat.
+
+Registered as the entry point ``modality-stereo`` of the ``trackbench``
+group, exactly as a third-party sensor would be.
+"""
+
+from __future__ import annotations
+
+from benchmark.hookspecs import hookimpl
+from benchmark.modalities.stereo.model import StereoMeasurement, StereoTruth, TargetEstimate
+from benchmark.modalities.stereo.scenes.images import StereoImageScene
+from benchmark.modalities.stereo.scenes.scene import StereoScene
+from benchmark.modalities.stereo.scoring import StereoScorer
+from benchmark.modality import Modality
+from benchmark.registry import Registry
+
+STEREO = Modality(
+    name="stereo",
+    observation_type=(StereoMeasurement, tuple, list, type(None)),
+    truth_type=StereoTruth,
+    estimate_type=TargetEstimate,
+    scorer=StereoScorer(),
+    scene_kinds={"stereo": StereoScene.from_dict, "stereo-images": StereoImageScene.from_dict},
+    description="a target boat seen from a chase boat; estimates are its position and velocity",
+)
+"""Stereo frames hold a measurement of the target, None, or an image pair (seeds/002)."""
+
+
+@hookimpl
+def trackbench_register_modalities(registry: Registry) -> None:
+    """Register the stereo modality."""
+    registry.add_modality(STEREO)

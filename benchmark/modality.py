@@ -1,0 +1,167 @@
+"""The modality contract: everything the harness needs to know about one kind of sensor.
+
+A *modality* is a kind of sensor data: camera images of a cable, multibeam
+sonar swaths over a pipe, stereo measurements of a boat.  The harness itself
+knows none of them.  Each arrives as a :class:`Modality` that a plugin adds
+in its ``trackbench_register_modalities`` hook, and declares:
+
+* its ``name``, by which trackers (``Tracker.modality``) and sequences
+  (``SequenceInfo.modality``) refer to it;
+* the types of a frame's observation and truth and of a tracker's estimate,
+  which the runner checks, so that a tracker and a scorer can rely on them;
+* its :class:`Scorer`: the error columns of its leaderboard and the
+  per-frame outcome rule (correct, false or missed);
+* the :class:`Reader` objects that open its files and folders, and the
+  exporter that writes a sequence in its on-disk form;
+* the scene kinds a suite file may name to simulate its sequences.
+
+The built-in modalities, :mod:`benchmark.modalities.camera`,
+:mod:`~benchmark.modalities.sonar` and :mod:`~benchmark.modalities.stereo`,
+are registered through that hook exactly as a third-party sensor would be.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Protocol
+
+from benchmark.errors import DataError
+from benchmark.model import Frame, Outcome, Sequence, SequenceInfo
+
+ANY_FILE = "*"
+"""A :attr:`Reader.suffixes` entry that accepts a file whose suffix no other reader claims."""
+
+SceneFactory = Callable[[Mapping[str, Any], str], Sequence]
+"""Builds a simulated sequence from its table of a suite file and a description of where the table came from."""
+
+Exporter = Callable[[Sequence, Path, str], Path]
+"""Writes a sequence into a folder under a file stem and returns the file that opens it again."""
+
+
+class EstimateError(TypeError):
+    """A tracker returned something that is not an estimate of its modality."""
+
+
+class Scorer(Protocol):
+    """How a modality scores an estimate against the truth of one frame."""
+
+    error_columns: tuple[str, ...]
+    """Names of the per-frame error columns, with units, e.g. ``err_d_px``; ``err_X`` becomes ``rmse_X``."""
+
+    def check(self, estimate: Any) -> None:
+        """Raise :class:`EstimateError` unless the values of an estimate (already of the right type) are valid."""
+
+    def score(self, estimate: Any, truth: Any, info: SequenceInfo) -> tuple[Outcome | None, tuple[float, ...]]:
+        """Outcome and errors (in ``error_columns`` order) of one frame; outcome None for an unscored frame."""
+
+
+@dataclass(frozen=True)
+class Reader:
+    """A way of opening a dataset on disk as a :class:`~benchmark.model.Sequence`.
+
+    Attributes
+    ----------
+    open : callable
+        ``open(path) -> Sequence``; raises :class:`~benchmark.errors.DataError`
+        naming the file for anything it cannot read.
+    description : str
+        What it reads, for messages (``"an image sequence file"``).
+    suffixes : tuple of str
+        File name endings it reads, lower case with the dot (``".swaths"``);
+        :data:`ANY_FILE` for files whose ending no other reader claims.
+    folders : bool
+        Whether it opens a folder.
+    """
+
+    open: Callable[[str | os.PathLike[str]], Sequence]
+    description: str
+    suffixes: tuple[str, ...] = ()
+    folders: bool = False
+
+
+@dataclass(frozen=True, eq=False)
+class Modality:
+    """One kind of sensor data, as plugins register it.
+
+    Attributes
+    ----------
+    name : str
+        The name trackers and sequences use (``"camera"``).
+    observation_type : type or tuple of types
+        What a frame's ``observation`` may be (``isinstance``'s second argument).
+    truth_type : type
+        What a frame's ``truth`` is when the frame is labelled; the first
+        frame's truth is what ``Tracker.reset`` receives as ``init``.
+    estimate_type : type
+        What a tracker's ``step`` returns when it detects something.
+    scorer : Scorer
+        Error columns and the per-frame outcome rule.
+    readers : tuple of Reader
+        The files and folders of this modality that ``--dataset PATH`` opens.
+    exporter : Exporter or None
+        Writes a sequence of this modality to disk (``trackbench make-dataset``);
+        None if it cannot be exported.
+    scene_kinds : Mapping
+        Scene kind name (as a suite file's ``[suite] kind`` names it) to the
+        factory that builds one sequence of it.
+    description : str
+        One line for listings.
+    """
+
+    name: str
+    observation_type: type | tuple[type, ...]
+    truth_type: type
+    estimate_type: type
+    scorer: Scorer
+    readers: tuple[Reader, ...] = ()
+    exporter: Exporter | None = None
+    scene_kinds: Mapping[str, SceneFactory] = field(default_factory=dict)
+    description: str = ""
+
+    def check_frame(self, frame: Frame, where: str) -> None:
+        """Raise :class:`~benchmark.errors.DataError`, prefixed by ``where``, unless ``frame`` is of this modality."""
+        if not isinstance(frame.observation, self.observation_type):
+            raise DataError(
+                f"{where}: the observation is a {type(frame.observation).__name__}, "
+                f"not what a {self.name} frame holds ({_type_names(self.observation_type)})"
+            )
+        if frame.truth is not None and not isinstance(frame.truth, self.truth_type):
+            raise DataError(
+                f"{where}: the truth is a {type(frame.truth).__name__}, not a {self.truth_type.__name__} or None"
+            )
+
+    def check_estimate(self, estimate: Any) -> None:
+        """Raise :class:`EstimateError` unless ``estimate`` is None or a valid estimate of this modality."""
+        if estimate is None:
+            return
+        if not isinstance(estimate, self.estimate_type):
+            raise EstimateError(
+                f"expected a {self.estimate_type.__name__} or None, got {type(estimate).__name__}: {estimate!r}"
+            )
+        self.scorer.check(estimate)
+
+    @property
+    def claims(self) -> tuple[str, ...]:
+        """What its readers open: ``"files ending .x"`` per suffix, ``"any other file"``, ``"folders"``."""
+        return tuple(
+            claim
+            for reader in self.readers
+            for claim in (
+                *("any other file" if suffix == ANY_FILE else f"files ending {suffix}" for suffix in reader.suffixes),
+                *(["folders"] if reader.folders else []),
+            )
+        )
+
+    @property
+    def error_columns(self) -> tuple[str, ...]:
+        """The scorer's error columns."""
+        return tuple(self.scorer.error_columns)
+
+
+def _type_names(types: type | tuple[type, ...]) -> str:
+    listed = types if isinstance(types, tuple) else (types,)
+    return " or ".join("None" if kind is type(None) else kind.__name__ for kind in listed)
+

@@ -1,0 +1,26 @@
+"""Boards as a self-contained HTML page (``leaderboard.html``)."""
+
+from __future__ import annotations
+
+import html
+from collections.abc import Mapping
+
+import pandas as pd
+
+from benchmark.report.display import display_table
+
+
+def to_html(boards: Mapping[str, pd.DataFrame], caption: str = "") -> str:
+    """The boards as a self-contained HTML page, one section per modality."""
+    body = ["<h1>trackbench leaderboard</h1>"]
+    if caption:
+        body.append(f"<p>{html.escape(caption)}</p>")
+    if not boards:
+        body.append("<p>No results.</p>")
+    for modality, board in boards.items():
+        body.append(f"<h2>{html.escape(modality)}</h2>")
+        body.append(display_table(board).to_html(index=False, escape=True, border=1))
+    return (
+        '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
+        "<title>trackbench leaderboard</title>\n</head>\n<body>\n" + "\n".join(body) + "\n</body>\n</html>\n"
+    )

@@ -1,0 +1,169 @@
+"""What a cell produced: per-frame scores, the cell's result, and the summary of both.
+
+Every frame a tracker processes gets a :class:`FrameScore`: its detection
+outcome (seeds/004, section VI-C, Table V), the estimate's errors (one per
+error column of the modality's scorer) and the time the tracker's ``step``
+took.  A :class:`CellResult` holds a cell's identity, how it ended and its
+frame scores; it is what worker processes hand back and what the store
+writes.  :func:`summarise` turns frame scores, of one cell or pooled over
+many, into the rates, RMSEs and speed of a leaderboard row.
+
+Column names carry their units (``conventions.md`` section 4): angles are
+reported in degrees, distances in px (camera) or m (sonar, stereo).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import Any, Literal, NamedTuple
+
+import numpy as np
+import pandas as pd
+
+from benchmark.model import Outcome
+
+Status = Literal["ok", "error", "timeout"]
+
+
+@dataclass(frozen=True)
+class FrameScore:
+    """The score of one frame.
+
+    Attributes
+    ----------
+    index : int
+        Frame index in its sequence.
+    outcome : Outcome or None
+        None when the frame has no ground truth and is not scored.
+    errors : Mapping[str, float]
+        Estimate minus truth, one entry per error column of the modality;
+        ``nan`` where there is no estimate or no truth.
+    step_s : float
+        Wall time of the tracker's ``step`` for this frame.
+    """
+
+    index: int
+    outcome: Outcome | None
+    errors: Mapping[str, float] = field(default_factory=dict)
+    step_s: float = 0.0
+
+
+def frame_table(scores: Iterable[FrameScore]) -> pd.DataFrame:
+    """Frame scores as a table: ``frame``, ``outcome``, error columns, ``step_ms``."""
+    rows = [
+        {
+            "frame": s.index,
+            "outcome": None if s.outcome is None else str(s.outcome),
+            **s.errors,
+            "step_ms": 1000.0 * s.step_s,
+        }
+        for s in scores
+    ]
+    return pd.DataFrame(rows)
+
+
+def summarise(frames: pd.DataFrame, error_columns: Iterable[str]) -> dict[str, float]:
+    """Rates, RMSEs and speed of one cell (or of several pooled cells).
+
+    Parameters
+    ----------
+    frames : pandas.DataFrame
+        Frame scores as made by :func:`frame_table`.
+    error_columns : iterable of str
+        The modality's error columns; ``err_X`` becomes ``rmse_X``.
+
+    Returns
+    -------
+    dict
+        ``frames`` (scored frames), ``correct_pct``, ``false_pct``,
+        ``missed_pct`` (percentages of scored frames, summing to 100),
+        ``rmse_*`` over frames with both an estimate and a truth, and ``fps``
+        (frames processed per second of ``step`` time).
+    """
+    columns = list(error_columns)
+    outcomes = frames["outcome"].dropna() if "outcome" in frames else pd.Series(dtype=object)
+    scored = len(outcomes)
+    summary: dict[str, float] = {"frames": float(scored)}
+    for outcome in Outcome:
+        count = int((outcomes == str(outcome)).sum())
+        summary[f"{outcome}_pct"] = 100.0 * count / scored if scored else math.nan
+    for column in columns:
+        values = frames[column].to_numpy(dtype=float) if column in frames else np.array([])
+        values = values[np.isfinite(values)]
+        name = "rmse_" + column.removeprefix("err_")
+        summary[name] = float(np.sqrt(np.mean(values**2))) if values.size else math.nan
+    step_s = frames["step_ms"].sum() / 1000.0 if "step_ms" in frames else 0.0
+    summary["fps"] = len(frames) / step_s if step_s > 0 else math.nan
+    return summary
+
+
+class CellKey(NamedTuple):
+    """What makes two cells the same computation (``--resume`` matches on it)."""
+
+    tracker_key: str
+    dataset: str
+    seed: int
+    init: str
+
+
+@dataclass(frozen=True)
+class CellResult:
+    """What running a cell produced, ready to be stored.
+
+    Attributes
+    ----------
+    tracker, tracker_version, tracker_key : str
+        The tracker's name, version and cache key.
+    params : dict
+        The tracker's parameters by name.
+    dataset, modality : str
+        The sequence's name and modality.
+    seed : int
+        The cell's seed.
+    init : str
+        ``"truth"`` or ``"none"``.
+    status : {"ok", "error", "timeout"}
+        How the cell ended.
+    message : str
+        Empty for ``"ok"``; otherwise ``"ExceptionType: message (frame k)"``
+        or the time limit that was exceeded.
+    scores : tuple of FrameScore
+        Every frame scored, including those before a failure.
+    elapsed_s : float
+        Wall time of the whole cell, reading and scoring included.
+    detail : str
+        The traceback of an error, for the tracker's author.
+    error_columns : tuple of str
+        The modality's error columns, in its scorer's order.
+    """
+
+    tracker: str
+    tracker_version: str
+    tracker_key: str
+    params: dict[str, Any]
+    dataset: str
+    modality: str
+    seed: int
+    init: str
+    status: Status
+    message: str
+    scores: tuple[FrameScore, ...]
+    elapsed_s: float
+    detail: str = ""
+    error_columns: tuple[str, ...] = ()
+
+    @property
+    def key(self) -> CellKey:
+        """Identity of the computation (see :class:`CellKey`)."""
+        return CellKey(self.tracker_key, self.dataset, self.seed, self.init)
+
+    @property
+    def frames(self) -> pd.DataFrame:
+        """The frame scores as a table (:func:`frame_table`)."""
+        return frame_table(self.scores)
+
+    def summary(self) -> dict[str, float]:
+        """Rates, RMSEs and fps of this cell (:func:`summarise`)."""
+        return summarise(self.frames, self.error_columns)

@@ -1,0 +1,40 @@
+"""Tests of benchmark.report.display: boards rounded for reading, columns aligned by type."""
+
+from __future__ import annotations
+
+import math
+
+import pandas as pd
+import pytest
+
+from benchmark.report.display import alignment, display_table, format_value
+
+
+def test_display_rounds_rates_rmses_and_fps(boards: dict[str, pd.DataFrame]) -> None:
+    board = boards["camera"]
+    shown = display_table(board).iloc[0]
+    assert shown["correct_pct"] == "66.7" and shown["rmse_d_px"] == f"{math.sqrt(14 / 3):.2f}"
+    assert shown["fps"] == "333" and shown["rmse_beta_deg"] == ""
+    assert board["correct_pct"].iloc[0] == pytest.approx(200 / 3)  # the board itself keeps full precision
+
+
+@pytest.mark.parametrize(
+    ("column", "value", "text"),
+    [
+        ("missed_pct", 12.345, "12.3"),
+        ("rmse_across_m", 0.125001, "0.13"),
+        ("fps", 1234.5678, "1235"),
+        ("frames", 17, "17"),
+        ("status", "error (1/2 cells): x", "error (1/2 cells): x"),
+        ("rmse_d_px", math.nan, ""),
+        ("tracker", None, ""),
+    ],
+)
+def test_each_kind_of_column_is_rounded_its_way(column: str, value: object, text: str) -> None:
+    assert format_value(column, value) == text
+
+
+def test_numbers_align_right_and_text_left() -> None:
+    board = pd.DataFrame({"tracker": ["a"], "rank": [1], "correct_pct": [50.0], "status": ["ok"]})
+    assert alignment(board) == ["left", "right", "right", "left"]
+    assert display_table(board).dtypes.tolist() == [object] * 4

@@ -1,0 +1,28 @@
+"""Tests of benchmark.hookspecs: the three register hooks and the marker plugins use."""
+
+import pluggy
+
+import benchmark
+from benchmark import hookspecs
+from benchmark.plugins import REGISTER_HOOKS
+
+
+def test_the_register_hooks_are_specified_in_the_order_they_are_called():
+    manager = pluggy.PluginManager(hookspecs.PROJECT_NAME)
+    manager.add_hookspecs(hookspecs)
+    specified = [name for name in dir(manager.hook) if name.startswith("trackbench_")]
+    assert sorted(specified) == sorted(REGISTER_HOOKS)
+    assert REGISTER_HOOKS[0] == "trackbench_register_modalities"
+    for name in REGISTER_HOOKS:
+        assert getattr(manager.hook, name).spec.argnames == ("registry",)
+
+
+def test_plugins_mark_their_hooks_with_the_project_s_hookimpl():
+    assert benchmark.hookimpl is hookspecs.hookimpl
+    assert hookspecs.hookimpl.project_name == hookspecs.PROJECT_NAME == "trackbench"
+
+    @hookspecs.hookimpl(tryfirst=True)
+    def trackbench_register_trackers(registry):
+        pass
+
+    assert trackbench_register_trackers.trackbench_impl["tryfirst"] is True

@@ -1,0 +1,88 @@
+"""Tests of benchmark.results: frame scores, their table, the summary of a cell, and the cell's result."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from benchmark.model import Outcome
+from benchmark.results import CellKey, CellResult, FrameScore, frame_table, summarise
+
+COLUMNS = ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
+
+outcomes = st.lists(st.sampled_from([*Outcome, None]), min_size=1, max_size=60)
+
+
+@given(outcomes)
+def test_rates_sum_to_100_over_scored_frames(sequence):
+    scores = [FrameScore(i, o, dict(zip(COLUMNS, (1.0,) * 4)), 0.01) for i, o in enumerate(sequence)]
+    summary = summarise(frame_table(scores), COLUMNS)
+    scored = sum(o is not None for o in sequence)
+    assert summary["frames"] == scored
+    if scored:
+        total = summary["correct_pct"] + summary["false_pct"] + summary["missed_pct"]
+        assert total == pytest.approx(100.0)
+        assert summary["missed_pct"] == pytest.approx(100.0 * sequence.count(Outcome.MISSED) / scored)
+    assert summary["fps"] == pytest.approx(100.0)
+
+
+def test_rmse_ignores_frames_without_an_error():
+    errors = [(3.0, 1.0, 0.0, 0.0), (4.0, -1.0, 0.0, 0.0), (math.nan,) * 4]
+    scores = [FrameScore(i, Outcome.CORRECT, dict(zip(COLUMNS, e)), 0.5) for i, e in enumerate(errors)]
+    summary = summarise(frame_table(scores), COLUMNS)
+    assert summary["rmse_d_px"] == pytest.approx(np.sqrt((9 + 16) / 2))
+    assert summary["rmse_alpha_deg"] == pytest.approx(1.0)
+    assert summary["fps"] == pytest.approx(2.0)
+
+
+def test_frame_table_has_frame_outcome_errors_and_step_ms():
+    table = frame_table([FrameScore(0, Outcome.FALSE, {"err_x_m": 0.5}, 0.002), FrameScore(1, None)])
+    assert list(table.columns) == ["frame", "outcome", "err_x_m", "step_ms"]
+    assert table["outcome"][0] == "false" and pd.isna(table["outcome"][1])
+    assert table["step_ms"].tolist() == pytest.approx([2.0, 0.0])
+    assert math.isnan(table["err_x_m"][1])
+
+
+def test_summary_of_nothing_is_nan_but_names_every_column():
+    summary = summarise(pd.DataFrame(), ("err_x_m", "err_y_deg"))
+    assert summary["frames"] == 0.0
+    assert set(summary) == {"frames", "correct_pct", "false_pct", "missed_pct", "rmse_x_m", "rmse_y_deg", "fps"}
+    assert all(math.isnan(summary[key]) for key in summary if key != "frames")
+
+
+def result(**changes) -> CellResult:
+    base = CellResult(
+        tracker="t",
+        tracker_version="1.0",
+        tracker_key="abc",
+        params={},
+        dataset="suite/seq",
+        modality="sonar",
+        seed=3,
+        init="none",
+        status="ok",
+        message="",
+        scores=(FrameScore(0, Outcome.CORRECT, {"err_across_m": 0.3}, 0.01), FrameScore(1, Outcome.MISSED)),
+        elapsed_s=0.1,
+        error_columns=("err_across_m",),
+    )
+    return dataclasses.replace(base, **changes)
+
+
+def test_a_cell_result_is_keyed_by_tracker_key_dataset_seed_and_init():
+    assert result().key == CellKey("abc", "suite/seq", 3, "none")
+    assert result(tracker="other", status="error").key == result().key
+    assert result(seed=4).key != result().key
+
+
+def test_a_cell_result_summarises_with_its_modality_s_error_columns():
+    summary = result().summary()
+    assert summary["rmse_across_m"] == pytest.approx(0.3)
+    assert summary["correct_pct"] == summary["missed_pct"] == 50.0
+    assert "rmse_d_px" not in summary
+    assert result().frames["frame"].tolist() == [0, 1]
+    assert not any(key.startswith("rmse_") for key in result(error_columns=()).summary())
