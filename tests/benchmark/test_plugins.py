@@ -325,24 +325,25 @@ def register_scan(registry):
     registry.add_modality(SCAN)
 
 
-def test_a_modality_a_plugin_adds_twice_is_named(monkeypatch, installed):
-    def register_scan_again(registry):
-        registry.add_modality(SCAN)
+def register_scan_again(registry):
+    registry.add_modality(SCAN)
 
-    plugin_module(monkeypatch, "scan_one", trackbench_register_modalities=register_scan_again)
+
+@pytest.mark.parametrize(
+    ("second_hook", "message"),
+    [
+        # Two functions: the plugin that adds the modality a second time is named.
+        (register_scan_again, r"^plugin 'scan-one' \(scan-one 0.3\): modality 'scan' is already"),
+        # One plain function serving both plugins cannot be told apart: both are named.
+        (register_scan, r"^plugin 'scan-one or scan-two' \(scan-one 0.3 or scan-two 0.3\): modality 'scan' is already"),
+    ],
+)
+def test_a_modality_added_twice_names_the_plugin_that_did_it(monkeypatch, installed, second_hook, message):
+    plugin_module(monkeypatch, "scan_one", trackbench_register_modalities=second_hook)
     plugin_module(monkeypatch, "scan_two", trackbench_register_modalities=register_scan)
     installed.append(FakeDistribution("scan-one", [("scan-one", "scan_one")]))
     installed.append(FakeDistribution("scan-two", [("scan-two", "scan_two")]))
-    with pytest.raises(PluginError, match=r"^plugin 'scan-one' \(scan-one 0.3\): modality 'scan' is already"):
-        load_registry()
-
-
-def test_one_plain_function_serving_two_plugins_is_attributed_to_both(monkeypatch, installed):
-    plugin_module(monkeypatch, "scan_one", trackbench_register_modalities=register_scan)
-    plugin_module(monkeypatch, "scan_two", trackbench_register_modalities=register_scan)
-    installed.append(FakeDistribution("scan-one", [("scan-one", "scan_one")]))
-    installed.append(FakeDistribution("scan-two", [("scan-two", "scan_two")]))
-    with pytest.raises(PluginError, match=r"^plugin 'scan-one or scan-two' \(scan-one 0.3 or scan-two 0.3\): modality"):
+    with pytest.raises(PluginError, match=message):
         load_registry()
 
 
