@@ -21,6 +21,7 @@ written against it; every modality's own types live in
 
 from benchmark.errors import DataError, ParameterError, PluginError, TrackbenchError
 from benchmark.hookspecs import hookimpl
+from benchmark.identity import DatasetIdentity
 from benchmark.modalities.camera.model import (
     CableState,
     CameraCalibration,
@@ -43,6 +44,7 @@ __all__ = [
     "CameraPose",
     "CameraTruth",
     "DataError",
+    "DatasetIdentity",
     "Frame",
     "Modality",
     "NoParams",

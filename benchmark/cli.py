@@ -17,9 +17,16 @@ stores each finished cell in ``DIR/results.sqlite`` and writes
 ``DIR``.  One line per finished cell goes to stderr as progress; the board
 goes to stdout.
 
-Every error trackbench reports to its user (an unknown name, a bad
-parameter, an unreadable file, a broken plugin) ends the command with a
-one-line ``Error: ...`` and exit status 2, without a traceback.
+Exit status, as pytest's:
+
+* 0: done, every cell ``ok``;
+* 1: done, the board written, but some cell ended in ``error`` or
+  ``timeout``, or a plugin could not be loaded (its trackers are
+  unavailable; ``--strict-plugins`` makes that an error instead);
+* 2: nothing ran: a usage or data error (an unknown name, a bad parameter,
+  an unreadable file, a broken plugin, a results folder in use), reported
+  as one line ``Error: ...`` without a traceback;
+* 130: the user's Ctrl-C; finished cells are kept and published.
 """
 
 from __future__ import annotations
@@ -49,29 +56,57 @@ class ReportedError(click.ClickException):
     exit_code = 2
 
 
+EXIT_FAILED = 1
+"""A cell failed or a plugin was left out; everything else was done."""
+EXIT_INTERRUPTED = 130
+"""The user's Ctrl-C (128 + SIGINT)."""
+
+
 class TrackbenchGroup(click.Group):
-    """A command group that reports trackbench's own errors without a traceback."""
+    """A command group that reports trackbench's own errors without a traceback.
+
+    It also sets the exit status for the user's Ctrl-C, and for plugins that
+    were left out while the command otherwise succeeded.
+    """
 
     def invoke(self, ctx: click.Context) -> Any:
         try:
-            return super().invoke(ctx)
+            result = super().invoke(ctx)
         except TrackbenchError as exc:
             raise ReportedError(str(exc)) from exc
+        except KeyboardInterrupt:
+            click.echo("Interrupted.", err=True)
+            ctx.exit(EXIT_INTERRUPTED)
+        session = ctx.obj
+        if isinstance(session, Session) and session.problems:
+            ctx.exit(EXIT_FAILED)
+        return result
 
 
 @dataclasses.dataclass
 class Session:
-    """State shared by the commands of one invocation: the plugins to block and the registry."""
+    """State shared by the commands of one invocation: plugin options and the registry."""
 
     disable: tuple[str, ...] = ()
+    strict_plugins: bool = False
     _registry: Registry | None = None
 
     @property
     def registry(self) -> Registry:
-        """Trackers and suites of every plugin not disabled, loaded on first use."""
+        """Trackers and suites of every plugin not disabled, loaded on first use.
+
+        Plugins left out are reported on stderr when the registry is loaded.
+        """
         if self._registry is None:
-            self._registry = plugins.load_registry(disable=self.disable)
+            self._registry = plugins.load_registry(disable=self.disable, strict=self.strict_plugins)
+            for problem in self._registry.problems:
+                click.echo(f"Warning: {problem}; its trackers are unavailable.", err=True)
         return self._registry
+
+    @property
+    def problems(self) -> list[str]:
+        """Plugins left out, if the registry was loaded."""
+        return self._registry.problems if self._registry is not None else []
 
 
 @click.group(cls=TrackbenchGroup)
@@ -82,11 +117,16 @@ class Session:
     metavar="NAME",
     help="Block the plugin with this entry-point name (repeatable).",
 )
+@click.option(
+    "--strict-plugins",
+    is_flag=True,
+    help="A plugin that fails to import is an error (exit 2), not a warning that leaves its trackers out.",
+)
 @click.version_option(package_name="subsea-trackbench", prog_name="trackbench")
 @click.pass_context
-def main(ctx: click.Context, disable: tuple[str, ...]) -> None:
+def main(ctx: click.Context, disable: tuple[str, ...], strict_plugins: bool) -> None:
     """trackbench: a benchmark for subsea cable and pipeline trackers."""
-    ctx.obj = Session(disable)
+    ctx.obj = Session(disable, strict_plugins)
 
 
 @main.command("list")
@@ -96,6 +136,8 @@ def list_trackers(session: Session) -> None:
     trackers = session.registry.trackers
     if not trackers:
         click.echo("No trackers registered.")
+    for problem in session.problems:
+        click.echo(f"unavailable: {problem}")
     for entry in trackers.values():
         click.echo(
             f"{entry.name} {entry.version}  modality {entry.modality}  "
@@ -128,14 +170,16 @@ def list_datasets(session: Session) -> None:
 def _show(publication: Publication) -> None:
     from benchmark.report import to_text
 
-    click.echo(to_text(publication.boards))
+    click.echo(to_text(publication.boards, problems=publication.problems))
     for path in publication.files:
         click.echo(f"wrote {path}", err=True)
 
 
 @main.command("run")
 @click.option("--suite", "suites", multiple=True, metavar="SUITE", help="Run every sequence of a suite (repeatable).")
-@click.option("--tracker", "trackers", multiple=True, metavar="NAME", help="Run this tracker (repeatable; default all).")
+@click.option(
+    "--tracker", "trackers", multiple=True, metavar="NAME", help="Run this tracker (repeatable; default all)."
+)
 @click.option(
     "--dataset",
     "datasets",
@@ -148,7 +192,13 @@ def _show(publication: Publication) -> None:
     "--jobs",
     type=click.IntRange(min=0),
     default=None,
-    help="Worker processes (default: all cores; 0 runs inline).",
+    help="Worker processes (default: all cores; 0 or 1: one worker, one cell at a time).",
+)
+@click.option(
+    "--in-process",
+    is_flag=True,
+    help="Run cells in this process, for debuggers and profilers: no time limit inside a step, "
+    "and a tracker that exits or crashes ends the run.",
 )
 @click.option(
     "--init",
@@ -182,13 +232,17 @@ def run(
     datasets: tuple[str, ...],
     seeds: int,
     jobs: int | None,
+    in_process: bool,
     init: str,
     out: Path,
     resume: bool,
     timeout: float,
     params: tuple[str, ...],
 ) -> None:
-    """Run trackers on datasets, store the cells and publish the leaderboard."""
+    """Run trackers on datasets, store the cells and publish the leaderboard.
+
+    Exits with 1 after publishing if a cell ended in error or timeout.
+    """
     from benchmark.harness import run_benchmark
     from benchmark.selection import Selection, select_cells
 
@@ -196,18 +250,27 @@ def run(
     registry = session.registry
     cells = select_cells(registry, Selection(trackers, suites, datasets, params, seeds, init))
     options = {key: list(value) if isinstance(value, tuple) else value for key, value in ctx.params.items()}
-    publication = run_benchmark(
+    summary = run_benchmark(
         cells,
         registry.modalities,
         out,
         jobs=jobs,
         timeout_s=timeout,
+        in_process=in_process,
         resume=resume,
         argv=sys.argv,
         options={**options, "out": str(out), "disable": list(session.disable)},
+        problems=registry.problems,
         log=lambda line: click.echo(line, err=True),
     )
-    _show(publication)
+    _show(summary.publication)
+    if summary.interrupted:
+        ctx.exit(EXIT_INTERRUPTED)
+    failed = summary.statuses.total() - summary.statuses["ok"]
+    if failed:
+        click.echo(f"{failed} of {summary.statuses.total()} cells did not end ok.", err=True)
+    if not summary.clean:
+        ctx.exit(EXIT_FAILED)
 
 
 def _results_store(out: Path) -> ResultStore:
@@ -263,6 +326,7 @@ def tables_command(session: Session, suite: str, out: Path, metrics: tuple[str, 
     as in Tables 6-8 of Sinisterra et al.  Also written to
     OUT/tables_SUITE.md.
     """
+    from benchmark.files import write_text_atomically
     from benchmark.leaderboard import load_leaderboards
     from benchmark.report.grid import grid_markdown, grid_tables
     from benchmark.selection import SelectionError
@@ -270,7 +334,7 @@ def tables_command(session: Session, suite: str, out: Path, metrics: tuple[str, 
     suites = session.registry.suites
     if suite not in suites:
         raise SelectionError(f"unknown suite {suite!r} (known: {', '.join(sorted(suites)) or 'none'})")
-    order = [sequence.info.name for sequence in suites[suite].sequences]
+    order = [sequence.identity.name for sequence in suites[suite].sequences]
     with _results_store(out) as store:
         boards = load_leaderboards(store, session.registry.modalities, store.latest_run())
     rows = [board[board["dataset"].isin(order)] for board in boards.values()]
@@ -283,8 +347,7 @@ def tables_command(session: Session, suite: str, out: Path, metrics: tuple[str, 
         raise SelectionError(f"no column {', '.join(unknown)} (known: {', '.join(board.columns)})")
     text = grid_markdown(grid_tables(board, shown, order), f"{suite}: results per case")
     click.echo(text)
-    path = out / f"tables_{suite}.md"
-    path.write_text(text, encoding="utf-8")
+    path = write_text_atomically(out / f"tables_{suite}.md", text, "tables")
     click.echo(f"wrote {path}", err=True)
 
 

@@ -3,14 +3,19 @@
 A benchmark run takes the cells a :class:`~benchmark.selection.Selection`
 asks for (:func:`benchmark.selection.select_cells`) and
 
-1. records the run in the results database ``OUT/results.sqlite``;
-2. with ``resume``, takes over every cell the database already finished
-   with status ``ok`` and runs only the others;
-3. runs the cells (:func:`benchmark.runner.run_cells`), storing each one in
+1. takes the lock of ``OUT`` (``OUT/results.sqlite.lock``), so that two
+   runs never write one database and compute the same cells twice;
+2. records the run in the results database ``OUT/results.sqlite``, with the
+   plugins that could not be loaded;
+3. with ``resume``, takes over every cell the database already finished
+   with status ``ok`` (same tracker key, dataset identity, seed and
+   initialisation) and runs only the others;
+4. runs the cells (:func:`benchmark.runner.run_cells`), storing each one in
    its own transaction as it finishes, so an interrupted run loses nothing
    finished;
-4. publishes the run's leaderboards (:func:`publish`): ranked per modality,
-   written to ``OUT/leaderboard.{csv,md,html}``.
+5. publishes the run's leaderboards (:func:`publish`): ranked per modality,
+   written atomically to ``OUT/leaderboard.{csv,md,html}``, also after the
+   user's Ctrl-C.
 
 Commands (``trackbench run``, ``trackbench leaderboard``) are thin layers
 over :func:`run_benchmark` and :func:`publish`; whatever they print goes
@@ -19,14 +24,18 @@ through a ``log`` callback, one line per event.
 
 from __future__ import annotations
 
+import collections
 import math
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import filelock
 import pandas as pd
 
+from benchmark.errors import DataError
+from benchmark.files import make_folder
 from benchmark.leaderboard import load_leaderboards
 from benchmark.modality import Modality
 from benchmark.report import write_leaderboards
@@ -55,6 +64,32 @@ class Publication:
     run_id: int | None
     boards: dict[str, pd.DataFrame]
     files: list[Path]
+    problems: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class RunSummary:
+    """How a benchmark run went.
+
+    Attributes
+    ----------
+    publication : Publication
+        The run's boards and files.
+    statuses : collections.Counter
+        Cells of the run by status, resumed cells counted as ``ok``.
+    interrupted : bool
+        The user stopped the run (Ctrl-C); the cells not finished are not in it.
+    """
+
+    publication: Publication
+    statuses: collections.Counter[str]
+    interrupted: bool = False
+
+    @property
+    def clean(self) -> bool:
+        """Every cell ran ``ok``, no plugin was left out and nothing was interrupted."""
+        failed = self.statuses.total() - self.statuses["ok"]
+        return not (failed or self.publication.problems or self.interrupted)
 
 
 def describe_result(result: CellResult) -> str:
@@ -94,10 +129,26 @@ def publish(
     """
     run_id = store.latest_run() if run_id is None and not all_runs else run_id
     boards = load_leaderboards(store, modalities, run_id, all_runs=all_runs)
+    problems = [] if all_runs else store.run_problems(run_id)
     caption = (
         f"All runs of {store.path}." if all_runs else f"Run {run_id} of {store.path}." if run_id else "No runs."
     )
-    return Publication(None if all_runs else run_id, boards, write_leaderboards(boards, out, caption))
+    files = write_leaderboards(boards, out, caption, problems=problems)
+    return Publication(None if all_runs else run_id, boards, files, problems)
+
+
+def _lock(out: Path) -> filelock.BaseFileLock:
+    """The lock of the results database in ``out``, taken; ``out`` is created if missing."""
+    lock = filelock.FileLock(make_folder(out) / f"{DATABASE_NAME}.lock")
+    try:
+        lock.acquire(timeout=0)
+    except filelock.Timeout:
+        raise DataError(
+            f"{out}: another trackbench run is writing this results folder; wait for it or choose another --out"
+        ) from None
+    except OSError as exc:
+        raise DataError(f"{out}: cannot write the results folder: {exc.strerror or exc}") from None
+    return lock
 
 
 def run_benchmark(
@@ -107,11 +158,13 @@ def run_benchmark(
     *,
     jobs: int | None = None,
     timeout_s: float | None = DEFAULT_TIMEOUT_S,
+    in_process: bool = False,
     resume: bool = False,
     argv: Sequence[str] = (),
     options: Mapping[str, Any] | None = None,
+    problems: Sequence[str] = (),
     log: Log = lambda line: None,
-) -> Publication:
+) -> RunSummary:
     """Run cells, store every one as it finishes, and publish the run's leaderboards.
 
     Parameters
@@ -122,33 +175,56 @@ def run_benchmark(
         The registered modalities by name.
     out : pathlib.Path
         Folder of the results database and the leaderboards; created if missing.
-    jobs, timeout_s
+    jobs, timeout_s, in_process
         As for :func:`benchmark.runner.run_cells`.
     resume : bool
         Take over the cells this database already finished with status
-        ``ok`` (same tracker key, dataset, seed and initialisation) instead
-        of running them again.
+        ``ok`` (same tracker key, dataset identity, seed and initialisation)
+        instead of running them again.
     argv, options
         The command line and its parsed options, recorded with the run.
+    problems : sequence of str
+        Plugins left out (:attr:`benchmark.registry.Registry.problems`),
+        recorded with the run and shown on its boards.
     log : callable
         Receives a line for the resumed cells and for every finished cell.
 
     Returns
     -------
-    Publication
-        The run's boards and the files written.
+    RunSummary
+        The run's boards, files and cell statuses.  On the user's Ctrl-C
+        the cells finished so far are published and ``interrupted`` is set.
+
+    Raises
+    ------
+    DataError
+        If ``out`` cannot be written, another run holds its lock, or its
+        database is not a trackbench database.
     """
     todo = list(cells)
-    out.mkdir(parents=True, exist_ok=True)
-    with ResultStore(out / DATABASE_NAME) as store:
-        run_id = store.start_run(argv, dict(options or {}))
-        if resume:
-            done = store.find_ok_cells(cell.key for cell in todo)
-            store.reuse_cells(run_id, done.values())
-            todo = [cell for cell in todo if cell.key not in done]
-            log(f"resume: {len(done)} cells already finished, {len(todo)} to run")
-        for result in run_cells(todo, jobs=jobs, timeout_s=timeout_s):
-            store.add_cell(run_id, result)
-            log(describe_result(result))
-        store.finish_run(run_id)
-        return publish(store, modalities, out, run_id)
+    statuses: collections.Counter[str] = collections.Counter()
+    ran = 0
+    interrupted = False
+    lock = _lock(out)
+    try:
+        with ResultStore(out / DATABASE_NAME) as store:
+            run_id = store.start_run(argv, dict(options or {}), problems=problems)
+            if resume:
+                done = store.find_ok_cells(cell.key for cell in todo)
+                store.reuse_cells(run_id, done.values())
+                todo = [cell for cell in todo if cell.key not in done]
+                statuses["ok"] += len(done)
+                log(f"resume: {len(done)} cells already finished, {len(todo)} to run")
+            try:
+                for result in run_cells(todo, jobs=jobs, timeout_s=timeout_s, in_process=in_process):
+                    store.add_cell(run_id, result)
+                    statuses[result.status] += 1
+                    ran += 1
+                    log(describe_result(result))
+                store.finish_run(run_id)
+            except KeyboardInterrupt:
+                interrupted = True
+                log(f"interrupted: {ran} cells finished and kept, {len(todo) - ran} not run")
+            return RunSummary(publish(store, modalities, out, run_id), statuses, interrupted)
+    finally:
+        lock.release()

@@ -11,16 +11,22 @@ a dataset made anywhere else.  In the other direction,
 (``trackbench make-dataset``), so that it can be used elsewhere and read
 back with :func:`open_sequence`.
 
-A path no reader claims, or a file its reader rejects, raises
-:class:`~benchmark.errors.DataError` naming the file.
+A path no reader claims, a path that is neither a regular file nor a
+folder (a FIFO, a device, a socket: reading one could block for ever), or a
+file its reader rejects, raises :class:`~benchmark.errors.DataError` naming
+the file.  Readers open their files with :func:`open_regular_file`, and
+exporters create their folders with :func:`benchmark.files.make_folder`, so
+that each refuses the same things with the same message.
 """
 
 from __future__ import annotations
 
 import os
 import re
+import stat
 from collections.abc import Iterable, Mapping
 from pathlib import Path
+from typing import BinaryIO
 
 from benchmark.errors import DataError
 from benchmark.modality import ANY_FILE, Modality, Reader
@@ -28,9 +34,76 @@ from benchmark.model import Sequence
 
 _SEPARATORS = re.compile(r"[/\\]")
 
+_KINDS = (
+    (stat.S_ISDIR, "a folder"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISSOCK, "a socket"),
+)
 
-def _choose_reader(target: Path, readers: list[Reader]) -> Reader | None:
-    if target.is_dir():
+
+def _kind(mode: int) -> str:
+    """What a file that is not a regular file is, for messages ("a FIFO (named pipe)")."""
+    return next((name for test, name in _KINDS if test(mode)), "not a regular file")
+
+
+def _reason(exc: OSError | ValueError) -> str:
+    return getattr(exc, "strerror", None) or str(exc)
+
+
+def open_regular_file(path: str | os.PathLike[str], what: str) -> BinaryIO:
+    """Open a dataset file to read its bytes, refusing anything but a regular file before opening it.
+
+    Opening a FIFO blocks until a writer appears, and a device or a socket
+    may never end, so these are refused from their ``stat`` alone.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file.
+    what : str
+        What the file should be, for messages ("swath file").
+
+    Returns
+    -------
+    BinaryIO
+        The open file; the caller closes it.
+
+    Raises
+    ------
+    DataError
+        If nothing is at ``path``, it is not a regular file (a folder, a
+        FIFO, a device, a socket), or it cannot be opened; naming it.
+    """
+    try:
+        mode = os.stat(path).st_mode
+        if not stat.S_ISREG(mode):
+            raise DataError(f"{path}: cannot read {what}: it is {_kind(mode)}, not a regular file")
+        return open(path, "rb")
+    except FileNotFoundError:
+        raise DataError(f"{path}: no such {what}") from None
+    except (OSError, ValueError) as exc:
+        raise DataError(f"{path}: cannot read {what}: {_reason(exc)}") from None
+
+
+def read_regular_file(path: str | os.PathLike[str], what: str) -> bytes:
+    """The bytes of a dataset file, read through :func:`open_regular_file`.
+
+    Raises
+    ------
+    DataError
+        As :func:`open_regular_file`, or if reading fails; naming the file.
+    """
+    with open_regular_file(path, what) as stream:
+        try:
+            return stream.read()
+        except OSError as exc:
+            raise DataError(f"{path}: cannot read {what}: {_reason(exc)}") from None
+
+
+def _choose_reader(target: Path, is_folder: bool, readers: list[Reader]) -> Reader | None:
+    if is_folder:
         return next((reader for reader in readers if reader.folders), None)
     suffix = target.suffix.lower()
     claimed = next((reader for reader in readers if suffix and suffix in reader.suffixes), None)
@@ -58,7 +131,8 @@ def open_sequence(path: str | os.PathLike[str], modalities: Iterable[Modality]) 
     Raises
     ------
     DataError
-        If nothing exists at ``path``, no reader takes it, or the reader
+        If nothing exists at ``path``, it is neither a regular file nor a
+        folder (it is not opened then), no reader takes it, or the reader
         chosen for it rejects it.
 
     References
@@ -68,9 +142,15 @@ def open_sequence(path: str | os.PathLike[str], modalities: Iterable[Modality]) 
     readers = [reader for modality in modalities for reader in modality.readers]
     expected = ", ".join(reader.description for reader in readers) or "no readers are registered"
     target = Path(path)
-    if not target.exists():
-        raise DataError(f"{target}: no such dataset (expected {expected})")
-    reader = _choose_reader(target, readers)
+    try:
+        mode = target.stat().st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        raise DataError(f"{target}: no such dataset (expected {expected})") from None
+    except (OSError, ValueError) as exc:
+        raise DataError(f"{target}: cannot open dataset: {_reason(exc)}") from None
+    if not (stat.S_ISREG(mode) or stat.S_ISDIR(mode)):
+        raise DataError(f"{target}: it is {_kind(mode)}, neither a file nor a folder; no reader opens it")
+    reader = _choose_reader(target, stat.S_ISDIR(mode), readers)
     if reader is None:
         raise DataError(f"{target}: no registered reader opens this (readers: {expected})")
     return reader.open(path)

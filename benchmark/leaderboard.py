@@ -6,7 +6,9 @@ frame counts), each RMSE is the square root of the mean squared error over
 all frames with an estimate and a truth, and ``fps`` is all frames over all
 ``step`` time (:func:`benchmark.results.summarise` applied to the pooled
 frames).  A row with dataset ``(all)`` pools each tracker over every dataset
-of the board and comes first.
+of the board and comes first.  A tracker name that ran with several
+parameter sets, or a dataset name that stood for several datasets (a file
+edited between runs), gets a row per key, labelled ``name [key prefix]``.
 
 Within each dataset trackers are ranked by ``correct_pct`` (higher first),
 then by the first RMSE column (``rmse_d_px`` for cameras, lower first), the
@@ -69,11 +71,16 @@ def pooled_status(cells: pd.DataFrame) -> str:
     return f"{kind} ({len(failed)}/{len(cells)} cells): {first['message']}"
 
 
-def _tracker_labels(cells: pd.DataFrame) -> pd.Series:
-    """Tracker names, with the cache key added where one name ran with several parameter sets."""
-    keys_per_name = cells.groupby("tracker")["tracker_key"].transform("nunique")
-    short_keys = cells["tracker_key"].astype(str).str.slice(0, 8)
-    return cells["tracker"].where(keys_per_name <= 1, cells["tracker"] + " [" + short_keys + "]")
+def _labels(cells: pd.DataFrame, name: str, key: str) -> pd.Series:
+    """The ``name`` column, with the start of ``key`` added where one name has several keys.
+
+    A tracker name run with several parameter sets, or a dataset name
+    standing for several datasets (a file edited between runs), is shown
+    once per key.
+    """
+    keys_per_name = cells.groupby(name)[key].transform("nunique")
+    short_keys = cells[key].astype(str).str.slice(0, 8)
+    return cells[name].where(keys_per_name <= 1, cells[name] + " [" + short_keys + "]")
 
 
 def _rank(board: pd.DataFrame, first_rmse: str | None) -> pd.DataFrame:
@@ -97,8 +104,9 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
     ----------
     cells : pandas.DataFrame
         Cells of one modality, with at least ``id``, ``tracker``,
-        ``tracker_key``, ``dataset``, ``seed``, ``init``, ``status`` and
-        ``message`` (as :meth:`benchmark.store.ResultStore.cells` returns).
+        ``tracker_key``, ``dataset``, ``dataset_key``, ``seed``, ``init``,
+        ``status`` and ``message`` (as :meth:`benchmark.store.ResultStore.cells`
+        returns).
     frames : pandas.DataFrame
         Their frame scores: ``cell_id``, ``outcome``, the error columns and
         ``step_ms`` (as :meth:`benchmark.store.ResultStore.frame_tables`).
@@ -121,7 +129,9 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
         return pd.DataFrame(columns=columns)
     if "cell_id" not in frames.columns:
         frames = pd.DataFrame(columns=["cell_id", "frame", "outcome", "step_ms"])
-    cells = cells.assign(label=_tracker_labels(cells))
+    cells = cells.assign(
+        label=_labels(cells, "tracker", "tracker_key"), dataset=_labels(cells, "dataset", "dataset_key")
+    )
     by_cell = {int(cell_id): group for cell_id, group in frames.groupby("cell_id", sort=False)}
     empty = frames.iloc[0:0]
 
@@ -184,8 +194,8 @@ def load_leaderboards(
 ) -> dict[str, pd.DataFrame]:
     """The boards of a run stored in ``store`` (default: its latest run).
 
-    With ``all_runs`` the boards take, for each tracker key, dataset, seed
-    and initialisation, the latest cell of any run.
+    With ``all_runs`` the boards take, for each tracker key, dataset key,
+    seed and initialisation, the latest cell of any run.
     """
     cells = store.cells(run_id, all_runs=all_runs)
     return leaderboards(cells, store.frame_tables(cells["id"]), modalities)

@@ -55,7 +55,15 @@ class Scorer(Protocol):
         """Raise :class:`EstimateError` unless the values of an estimate (already of the right type) are valid."""
 
     def score(self, estimate: Any, truth: Any, info: SequenceInfo) -> tuple[Outcome | None, tuple[float, ...]]:
-        """Outcome and errors (in ``error_columns`` order) of one frame; outcome None for an unscored frame."""
+        """Outcome and errors (in ``error_columns`` order) of one frame; outcome None for an unscored frame.
+
+        Errors are finite, or ``nan`` where there is no estimate or no truth.
+        The store drops non-finite errors and :func:`benchmark.results.summarise`
+        ignores them, so an error too large for a float (overflow of the
+        scorer's arithmetic on a finite but absurd estimate) is reported as
+        ``+-sys.float_info.max`` and its frame as false: an ``inf`` would
+        leave out of the RMSE exactly the frames that should weigh most.
+        """
 
 
 @dataclass(frozen=True)

@@ -22,6 +22,8 @@ from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Generic, TypeVar
 
+from benchmark.identity import DatasetIdentity, digest
+
 
 class Outcome(enum.StrEnum):
     """Per-frame detection outcome (seeds/004, section VI-C, Table V)."""
@@ -113,8 +115,22 @@ class Sequence(ABC):
     def frames(self) -> Iterator[Frame]:
         """Yield the frames in order, one at a time."""
 
+    @property
+    def identity(self) -> DatasetIdentity:
+        """What the sequence is, known without reading a frame (:mod:`benchmark.identity`).
+
+        Cells are keyed, resumed and seeded by it.  This default knows only
+        the sequence's class and name, taken from :attr:`info`; sequences
+        read from files or simulated from a spec override it with their
+        resolved path and file fingerprint, or their generator and spec, and
+        so never read data to name themselves.
+        """
+        info = self.info
+        generator = f"{type(self).__module__}.{type(self).__qualname__}"
+        return DatasetIdentity(info.name, info.modality, source=generator, fingerprint=digest(info.name))
+
     def __iter__(self) -> Iterator[Frame]:
         return self.frames()
 
     def __repr__(self) -> str:
-        return f"<{type(self).__name__} {self.info.name!r}>"
+        return f"<{type(self).__name__} {self.identity.name!r}>"

@@ -11,7 +11,12 @@ loudly, and each ``trackbench_register_*`` hook is one pluggy hook call, so
 for pytest's plugins.
 
 Two distributions that offer an entry point of the same name are an error
-naming both: one would otherwise silently shadow the other.  A plugin is
+naming both: one would otherwise silently shadow the other.  A plugin that
+fails to import or does not validate against the hook specifications is
+left out: its trackers are unavailable, the registry lists the problem
+(:attr:`benchmark.registry.Registry.problems`) and every other plugin works.
+With ``strict=True`` (``trackbench --strict-plugins``, for CI) it is an
+error instead.  A plugin is
 blocked with ``--disable NAME`` or by listing it, comma separated, in the
 environment variable ``TRACKBENCH_DISABLE_PLUGINS``.
 
@@ -69,30 +74,52 @@ def entry_points() -> dict[str, dict[str, importlib.metadata.EntryPoint]]:
     return found
 
 
-def make_plugin_manager(disable: Iterable[str] = ()) -> tuple[pluggy.PluginManager, dict[str, Origin]]:
+class PluginManager(pluggy.PluginManager):
+    """pluggy's manager, which also remembers the plugins it had to leave out."""
+
+    def __init__(self) -> None:
+        super().__init__(hookspecs.PROJECT_NAME)
+        self.add_hookspecs(hookspecs)
+        self.problems: list[str] = []
+
+    def leave_out(self, name: str, error: PluginError, strict: bool) -> None:
+        """Unregister and block plugin ``name`` and note why, or raise ``error`` when ``strict``."""
+        if strict:
+            raise error
+        self.set_blocked(name)
+        self.problems.append(str(error))
+
+
+def make_plugin_manager(
+    disable: Iterable[str] = (), *, strict: bool = False
+) -> tuple[PluginManager, dict[str, Origin]]:
     """Load every plugin of the ``trackbench`` entry-point group.
 
     Parameters
     ----------
     disable : iterable of str
         Entry-point names to block, in addition to those in the environment.
+    strict : bool
+        Raise for a plugin that fails to import or to validate, instead of
+        leaving it out and noting it in ``manager.problems``.
 
     Returns
     -------
-    manager : pluggy.PluginManager
-        With the hook specifications added and the plugins registered.
+    manager : PluginManager
+        With the hook specifications added, the plugins registered and the
+        problems of those left out.
     origins : dict
         For each registered plugin name, where it came from.
 
     Raises
     ------
     PluginError
-        If two distributions offer the same entry-point name, a plugin fails
-        to import, does not validate against the hook specifications, or
-        implements a hook that does not exist.
+        If two distributions offer the same entry-point name; with
+        ``strict``, also if a plugin fails to import, does not validate
+        against the hook specifications, or implements a hook that does not
+        exist.
     """
-    manager = pluggy.PluginManager(hookspecs.PROJECT_NAME)
-    manager.add_hookspecs(hookspecs)
+    manager = PluginManager()
     for name in set(disable) | disabled_from_environment():
         manager.set_blocked(name)
     origins: dict[str, Origin] = {}
@@ -108,17 +135,25 @@ def make_plugin_manager(disable: Iterable[str] = ()) -> tuple[pluggy.PluginManag
         try:
             manager.load_setuptools_entrypoints(ENTRY_POINT_GROUP, name=name)
         except pluggy.PluginValidationError as exc:
-            raise PluginError(f"plugin {name!r} ({distribution}): {exc}") from exc
+            manager.leave_out(name, PluginError(f"plugin {name!r} ({distribution}): {exc}"), strict)
+            continue
         except Exception as exc:
-            raise PluginError(
+            error = PluginError(
                 f"plugin {name!r} ({distribution}) failed to import {ep.value!r}: "
-                f"{type(exc).__name__}: {exc}. Disable it with --disable {name} or {DISABLE_ENV}={name}"
-            ) from exc
+                f"{type(exc).__name__}: {' '.join(str(exc).split())}. "
+                f"Disable it with --disable {name} or {DISABLE_ENV}={name}"
+            )
+            manager.leave_out(name, error, strict)
+            continue
         origins[name] = Origin(name, distribution)
-    try:
-        manager.check_pending()
-    except pluggy.PluginValidationError as exc:
-        raise PluginError(f"plugin {manager.get_name(exc.plugin)!r}: {exc}") from exc
+    while True:
+        try:
+            manager.check_pending()
+            break
+        except pluggy.PluginValidationError as exc:
+            name = manager.get_name(exc.plugin) or "?"
+            origin = origins.pop(name, Origin(name))
+            manager.leave_out(name, PluginError(f"plugin {name!r} ({origin.distribution}): {exc}"), strict)
     return manager, origins
 
 
@@ -203,6 +238,12 @@ def fill_registry(manager: pluggy.PluginManager, origins: Mapping[str, Origin]) 
     return registry
 
 
-def load_registry(disable: Iterable[str] = ()) -> Registry:
-    """Discover all plugins and return the registry they filled."""
-    return fill_registry(*make_plugin_manager(disable))
+def load_registry(disable: Iterable[str] = (), *, strict: bool = False) -> Registry:
+    """Discover all plugins and return the registry they filled, with the problems of those left out.
+
+    ``strict`` makes a plugin that fails to import or validate an error (:func:`make_plugin_manager`).
+    """
+    manager, origins = make_plugin_manager(disable, strict=strict)
+    registry = fill_registry(manager, origins)
+    registry.problems.extend(manager.problems)
+    return registry

@@ -90,6 +90,8 @@ class Registry:
         self.modalities: dict[str, Modality] = {}
         self.trackers: dict[str, TrackerEntry] = {}
         self.suites: dict[str, SuiteEntry] = {}
+        self.problems: list[str] = []
+        """Plugins that could not be loaded, one line each (naming plugin, distribution and exception)."""
         self._origin: Origin | None = None
         self._find_origin: Callable[[], Origin] | None = None
 
@@ -202,7 +204,8 @@ class Registry:
     def add_suite(self, name: str, sequences: Iterable[Sequence]) -> SuiteEntry:
         """Register a suite of sequences under ``name``.
 
-        Sequence names (``info.name``) must be unique across all suites.
+        Sequence names (``identity.name``) must be unique across all suites.
+        Nothing is read from the sequences but their identities.
 
         Raises
         ------
@@ -213,18 +216,19 @@ class Registry:
         if name in self.suites:
             raise self._fail(f"suite {name!r} is already registered by plugin {self.suites[name].origin.plugin!r}")
         items = tuple(sequences)
-        taken = {seq.info.name for suite in self.suites.values() for seq in suite.sequences}
+        taken = {seq.identity.name for suite in self.suites.values() for seq in suite.sequences}
         for item in items:
             if not isinstance(item, Sequence):
                 raise self._fail(f"suite {name!r}: {item!r} is not a benchmark.model.Sequence")
-            if item.info.name in taken:
-                raise self._fail(f"suite {name!r}: sequence name {item.info.name!r} is already registered")
-            if item.info.modality not in self.modalities:
+            identity = item.identity
+            if identity.name in taken:
+                raise self._fail(f"suite {name!r}: sequence name {identity.name!r} is already registered")
+            if identity.modality not in self.modalities:
                 raise self._fail(
-                    f"suite {name!r}: sequence {item.info.name!r} has modality {item.info.modality!r}, "
+                    f"suite {name!r}: sequence {identity.name!r} has modality {identity.modality!r}, "
                     f"which no plugin registered (registered: {', '.join(self.modalities) or 'none'})"
                 )
-            taken.add(item.info.name)
+            taken.add(identity.name)
         entry = SuiteEntry(name, items, self.origin)
         self.suites[name] = entry
         return entry
@@ -239,7 +243,7 @@ class Registry:
         """
         for suite in self.suites.values():
             for seq in suite.sequences:
-                if seq.info.name == name:
+                if seq.identity.name == name:
                     return seq
-        known = ", ".join(seq.info.name for suite in self.suites.values() for seq in suite.sequences)
+        known = ", ".join(seq.identity.name for suite in self.suites.values() for seq in suite.sequences)
         raise KeyError(f"no registered sequence {name!r} (known: {known or 'none'})")

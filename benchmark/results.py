@@ -81,6 +81,16 @@ def summarise(frames: pd.DataFrame, error_columns: Iterable[str]) -> dict[str, f
         ``missed_pct`` (percentages of scored frames, summing to 100),
         ``rmse_*`` over frames with both an estimate and a truth, and ``fps``
         (frames processed per second of ``step`` time).
+
+    Notes
+    -----
+    A non-finite error is no error and is ignored, as the store does not
+    keep it; scorers report an error too large for a float as
+    ``+-sys.float_info.max`` (:meth:`benchmark.modality.Scorer.score`).
+    The RMSE ``sqrt(mean(e**2))`` is computed as ``m * sqrt(mean((e/m)**2))``
+    with ``m = max |e|``: equal to the plain formula up to rounding wherever
+    that does not overflow, and never above ``m``, so it is finite for any
+    finite errors.
     """
     columns = list(error_columns)
     outcomes = frames["outcome"].dropna() if "outcome" in frames else pd.Series(dtype=object)
@@ -92,18 +102,24 @@ def summarise(frames: pd.DataFrame, error_columns: Iterable[str]) -> dict[str, f
     for column in columns:
         values = frames[column].to_numpy(dtype=float) if column in frames else np.array([])
         values = values[np.isfinite(values)]
-        name = "rmse_" + column.removeprefix("err_")
-        summary[name] = float(np.sqrt(np.mean(values**2))) if values.size else math.nan
+        scale = float(np.max(np.abs(values), initial=0.0))
+        rmse = scale * float(np.sqrt(np.mean((values / scale) ** 2))) if scale > 0 else 0.0
+        summary["rmse_" + column.removeprefix("err_")] = rmse if values.size else math.nan
     step_s = frames["step_ms"].sum() / 1000.0 if "step_ms" in frames else 0.0
     summary["fps"] = len(frames) / step_s if step_s > 0 else math.nan
     return summary
 
 
 class CellKey(NamedTuple):
-    """What makes two cells the same computation (``--resume`` matches on it)."""
+    """What makes two cells the same computation (``--resume`` matches on it).
+
+    ``dataset_key`` is the dataset's :attr:`benchmark.identity.DatasetIdentity.key`,
+    not its name: an edited file is another dataset, and two paths naming
+    the same file are one.
+    """
 
     tracker_key: str
-    dataset: str
+    dataset_key: str
     seed: int
     init: str
 
@@ -118,8 +134,9 @@ class CellResult:
         The tracker's name, version and cache key.
     params : dict
         The tracker's parameters by name.
-    dataset, modality : str
-        The sequence's name and modality.
+    dataset, dataset_key, modality : str
+        The sequence's name as shown, its identity's key
+        (:class:`benchmark.identity.DatasetIdentity`) and its modality.
     seed : int
         The cell's seed.
     init : str
@@ -144,6 +161,7 @@ class CellResult:
     tracker_key: str
     params: dict[str, Any]
     dataset: str
+    dataset_key: str
     modality: str
     seed: int
     init: str
@@ -157,7 +175,7 @@ class CellResult:
     @property
     def key(self) -> CellKey:
         """Identity of the computation (see :class:`CellKey`)."""
-        return CellKey(self.tracker_key, self.dataset, self.seed, self.init)
+        return CellKey(self.tracker_key, self.dataset_key, self.seed, self.init)
 
     @property
     def frames(self) -> pd.DataFrame:

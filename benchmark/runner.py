@@ -3,27 +3,37 @@
 A *cell* is the unit of work of the benchmark: a registered tracker (with
 its parameters), a sequence of the tracker's modality and a seed,
 initialised either from the first frame's ground truth or from nothing.
-:func:`run_cell` creates a fresh tracker, reads the first frame, calls
-``reset(info, rng, init)`` and then ``step`` once per frame, scoring each
-frame as it goes with the scorer of the cell's modality
+:func:`run_cell` creates a fresh tracker, reads the sequence's info and
+first frame, calls ``reset(info, rng, init)`` and then ``step`` once per
+frame, scoring each frame as it goes with the scorer of the cell's modality
 (:class:`benchmark.modality.Modality`; the camera rule is seeds/004,
 section VI-C, Table V).  A frame whose observation or truth is not of the
 modality's types is a data error, so trackers can rely on them.  Timing
 covers ``step`` only, so frames per second compare trackers rather than
 image decoders, as in the thesis' Table 5.3 (seeds/000, section 5.2.5).
 
-The generator of a cell is seeded from the seed and the CRC-32 of the
-tracker's and the dataset's names, so that a seed replays a cell bit for bit
-and different cells draw independent streams.
+A cell is identified by its dataset's identity (:mod:`benchmark.identity`),
+which is known without reading a frame: all reading of the cell's data
+happens in :func:`run_cell`, inside the cell's time limit.  The generator of
+a cell is seeded from the seed, the CRC-32 of the tracker's name and the
+dataset's fingerprint, so that a seed replays a cell bit for bit and
+different cells draw independent streams.
 
-Nothing a cell does stops the others.  Whatever a tracker raises, whatever
-invalid estimate it returns, and any error reading a frame, turns the cell
-into a result with status ``"error"`` and a message
-``"ExceptionType: message (frame k)"``; a cell that runs past its time limit
-gets status ``"timeout"``.  Frames scored before the failure stay in the
-result.  :func:`run_cells` runs cells inline or in a pebble process pool; in
-the pool, a worker that hangs inside ``step`` is killed shortly after the
-limit and only that cell is lost.
+Nothing a cell does stops the others.  Whatever a tracker raises, of any
+class (``SystemExit`` and ``KeyboardInterrupt`` included), whatever invalid
+estimate it returns, and any error reading a frame, turns the cell into a
+result with status ``"error"`` and a message ``"ExceptionType: message
+(frame k)"``; a cell that runs past its time limit gets status
+``"timeout"``.  Frames scored before the failure stay in the result.
+
+:func:`run_cells` runs every cell in a worker process of a pebble pool
+(:mod:`benchmark.workers`): a worker still busy a grace period after the
+limit is killed, and one that exits or crashes (``os._exit``, a
+segmentation fault) costs only its cell.  ``in_process=True`` runs the cells
+in the calling process instead, for debuggers and profilers: there a
+``step`` that never returns cannot be stopped, and a tracker that ends the
+process ends the run.  Only the user's own Ctrl-C (:class:`UserInterrupt`)
+stops a run.
 """
 
 from __future__ import annotations
@@ -33,17 +43,21 @@ import dataclasses
 import functools
 import math
 import os
+import signal
+import threading
 import time
 import traceback
 import zlib
 from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any, Literal
 
 import numpy as np
 
+from benchmark.identity import DatasetIdentity
 from benchmark.modality import EstimateError, Modality
-from benchmark.model import Sequence, SequenceInfo
+from benchmark.model import Sequence
 from benchmark.registry import TrackerEntry
 from benchmark.results import CellKey, CellResult, FrameScore, Status
 
@@ -86,19 +100,19 @@ class Cell:
             )
 
     @functools.cached_property
-    def info(self) -> SequenceInfo:
-        """The sequence's description, read once and carried to worker processes."""
-        return self.sequence.info
+    def identity(self) -> DatasetIdentity:
+        """The dataset's identity, known without reading a frame, computed once and carried to workers."""
+        return self.sequence.identity
 
     @property
     def dataset(self) -> str:
         """The sequence's name in results."""
-        return self.info.name
+        return self.identity.name
 
     @property
     def key(self) -> CellKey:
-        """Identity of the computation: tracker cache key, dataset, seed, init."""
-        return CellKey(self.tracker.cache_key, self.dataset, self.seed, self.init)
+        """Identity of the computation: tracker cache key, dataset identity, seed, init."""
+        return CellKey(self.tracker.cache_key, self.identity.key, self.seed, self.init)
 
     def label(self) -> str:
         """Short human-readable name: ``tracker on dataset, seed s``."""
@@ -108,9 +122,9 @@ class Cell:
 def cell_result(cell: Cell, status: Status, message: str = "", **fields: Any) -> CellResult:
     """A result carrying ``cell``'s identity; ``fields`` fill the rest (scores, elapsed_s, detail)."""
     try:
-        dataset, modality = cell.info.name, cell.info.modality
+        dataset, dataset_key = cell.identity.name, cell.identity.key
     except Exception:
-        dataset, modality = repr(cell.sequence), cell.modality.name
+        dataset, dataset_key = _safe_text(repr, cell.sequence), ""
     values: dict[str, Any] = {"scores": (), "elapsed_s": 0.0, **fields}
     return CellResult(
         tracker=cell.tracker.name,
@@ -118,7 +132,8 @@ def cell_result(cell: Cell, status: Status, message: str = "", **fields: Any) ->
         tracker_key=cell.tracker.cache_key,
         params=dataclasses.asdict(cell.tracker.params),
         dataset=dataset,
-        modality=modality,
+        dataset_key=dataset_key,
+        modality=cell.modality.name,
         seed=cell.seed,
         init=cell.init,
         status=status,
@@ -128,20 +143,54 @@ def cell_result(cell: Cell, status: Status, message: str = "", **fields: Any) ->
     )
 
 
-def cell_rng(seed: int, tracker_name: str, dataset_name: str) -> np.random.Generator:
+def cell_rng(seed: int, tracker_name: str, dataset: DatasetIdentity) -> np.random.Generator:
     """The generator of a cell.
 
-    Seeded with ``[seed, crc32(tracker_name), crc32(dataset_name)]``, so the
-    same triple gives the same stream in any process and different cells
-    get independent streams.
+    Seeded with ``[seed, crc32(tracker_name), dataset.seed_material]``, so
+    the same cell gives the same stream in any process, the same data under
+    another path gives the same stream, and different cells get independent
+    streams.
     """
-    return np.random.default_rng([seed, zlib.crc32(tracker_name.encode()), zlib.crc32(dataset_name.encode())])
+    return np.random.default_rng([seed, zlib.crc32(tracker_name.encode()), dataset.seed_material])
+
+
+class UserInterrupt(KeyboardInterrupt):
+    """The user's Ctrl-C, as told apart from a ``KeyboardInterrupt`` a tracker raises itself."""
+
+
+@contextmanager
+def _sigint_is_user_interrupt() -> Iterator[None]:
+    """While the block runs, the user's Ctrl-C raises :class:`UserInterrupt` (main thread only)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def interrupt(signum: int, frame: object) -> None:
+        raise UserInterrupt
+
+    previous = signal.signal(signal.SIGINT, interrupt)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _safe_text(render: Any, value: Any) -> str:
+    """``render(value)``, or a placeholder when rendering itself raises (a tracker's broken ``__str__``)."""
+    try:
+        return str(render(value))
+    except Exception:
+        return f"<{type(value).__name__} that cannot be shown>"
 
 
 def _describe(exc: BaseException) -> str:
     """``ExceptionType: message`` on one line."""
-    text = " ".join(str(exc).split())
+    text = " ".join(_safe_text(str, exc).split())
     return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+
+
+def _traceback(exc: BaseException) -> str:
+    return _safe_text(lambda e: "".join(traceback.format_exception(e)), exc)
 
 
 def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
@@ -154,8 +203,8 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
     timeout_s : float, optional
         Time limit of the cell, checked between frames: once exceeded, the
         cell stops with status ``"timeout"`` and keeps the frames so far.
-        A ``step`` that never returns cannot be stopped here; run such
-        cells through :func:`run_cells` with a pool.
+        A ``step`` or a read that never returns cannot be stopped here;
+        :func:`run_cells` kills the worker running it.
 
     Returns
     -------
@@ -175,9 +224,11 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
     status: Status = "ok"
     message = detail = ""
     try:
-        info = cell.info
         modality = cell.modality
         scorer = modality.scorer
+        where = "reading the sequence's info"
+        info = cell.sequence.info
+        where = "creating the tracker"
         tracker = cell.tracker.create()
         frames = iter(cell.sequence.frames())
         where = "reading frame 0"
@@ -186,7 +237,7 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
             raise ValueError(f"sequence {info.name!r} has no frames")
         modality.check_frame(first, f"sequence {info.name!r}, frame {first.index}")
         where = "reset, frame 0"
-        rng = cell_rng(cell.seed, cell.tracker.name, info.name)
+        rng = cell_rng(cell.seed, cell.tracker.name, cell.identity)
         tracker.reset(info, rng, init=first.truth if cell.init == "truth" else None)
         frame = first
         while True:
@@ -210,10 +261,12 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
                 message = f"exceeded the {timeout_s:g} s limit after {len(scores)} frames (frame {following.index})"
                 break
             frame = following
-    except Exception as exc:
+    except UserInterrupt:
+        raise
+    except BaseException as exc:  # whatever a tracker raises, SystemExit included, ends only its cell
         status = "error"
         message = f"{_describe(exc)} ({where})"
-        detail = traceback.format_exc()
+        detail = _traceback(exc)
     return cell_result(
         cell, status, message, scores=tuple(scores), elapsed_s=time.perf_counter() - started, detail=detail
     )
@@ -224,7 +277,18 @@ def _grace_s(timeout_s: float) -> float:
     return max(1.0, 0.05 * timeout_s)
 
 
+def _exit_reason(code: int | None) -> str:
+    if code is not None and code < 0:
+        try:
+            return f"killed by {signal.Signals(-code).name}"
+        except ValueError:
+            return f"killed by signal {-code}"
+    return f"exit status {code}"
+
+
 def _from_future(cell: Cell, future: concurrent.futures.Future, timeout_s: float | None) -> CellResult:
+    from pebble import ProcessExpired
+
     try:
         return future.result()
     except TimeoutError:
@@ -234,33 +298,51 @@ def _from_future(cell: Cell, future: concurrent.futures.Future, timeout_s: float
             f"no result within the {timeout_s:g} s limit; the worker was stopped and the frames are lost",
             elapsed_s=float(timeout_s or 0.0),
         )
-    except Exception as exc:
+    except ProcessExpired as exc:
         return cell_result(
-            cell, "error", f"{_describe(exc)} (worker process)", detail="".join(traceback.format_exception(exc))
+            cell,
+            "error",
+            f"the worker process ended ({_exit_reason(exc.exitcode)}) while running the cell; its frames are lost",
+            detail=_traceback(exc),
         )
+    except Exception as exc:
+        return cell_result(cell, "error", f"{_describe(exc)} (worker process)", detail=_traceback(exc))
 
 
 def run_cells(
-    cells: Iterable[Cell], *, jobs: int | None = None, timeout_s: float | None = DEFAULT_TIMEOUT_S
+    cells: Iterable[Cell],
+    *,
+    jobs: int | None = None,
+    timeout_s: float | None = DEFAULT_TIMEOUT_S,
+    in_process: bool = False,
 ) -> Iterator[CellResult]:
-    """Run cells inline or in a process pool and yield each result as it finishes.
+    """Run cells in worker processes and yield each result as it finishes.
 
     Parameters
     ----------
     cells : iterable of Cell
         The cells to run.
     jobs : int, optional
-        Worker processes; None uses every core (``os.cpu_count()``) and 0
-        runs the cells one after another in this process.
+        Worker processes; None uses every core (``os.cpu_count()``), and 0
+        or 1 run one cell at a time in one worker.
     timeout_s : float, optional
-        Time limit of each cell (None: no limit).  In the pool a worker
-        still busy a grace period after the limit is killed and its cell
-        becomes a ``"timeout"`` result without frames.
+        Time limit of each cell (None: no limit).  A worker still busy a
+        grace period after the limit is killed and its cell becomes a
+        ``"timeout"`` result without frames.
+    in_process : bool
+        Run the cells one after another in this process, for debuggers and
+        profilers: the limit is then checked between frames only, and a
+        tracker that ends the process ends the run.
 
     Yields
     ------
     CellResult
-        One per cell, in order of completion (input order when inline).
+        One per cell, in order of completion (input order in process).
+
+    Raises
+    ------
+    UserInterrupt
+        On the user's Ctrl-C; the pool and its workers are stopped first.
 
     Notes
     -----
@@ -271,18 +353,23 @@ def run_cells(
         jobs = os.cpu_count() or 1
     if jobs < 0:
         raise ValueError(f"jobs must be >= 0, not {jobs}")
-    if jobs == 0:
-        for cell in todo:
-            yield run_cell(cell, timeout_s)
-        return
-    if not todo:
-        return
+    with _sigint_is_user_interrupt():
+        if in_process:
+            for cell in todo:
+                yield run_cell(cell, timeout_s)
+        elif todo:
+            yield from _run_in_pool(todo, max(jobs, 1), timeout_s)
+
+
+def _run_in_pool(cells: list[Cell], jobs: int, timeout_s: float | None) -> Iterator[CellResult]:
     from pebble import ProcessPool
 
+    from benchmark.workers import init_worker
+
     hard_limit = None if timeout_s is None else timeout_s + _grace_s(timeout_s)
-    pool = ProcessPool(max_workers=min(jobs, len(todo)))
+    pool = ProcessPool(max_workers=min(jobs, len(cells)), initializer=init_worker, initargs=(os.getpid(),))
     try:
-        futures = {pool.schedule(run_cell, args=(cell, timeout_s), timeout=hard_limit): cell for cell in todo}
+        futures = {pool.schedule(run_cell, args=(cell, timeout_s), timeout=hard_limit): cell for cell in cells}
         for future in concurrent.futures.as_completed(futures):
             yield _from_future(futures[future], future, timeout_s)
     finally:

@@ -12,7 +12,10 @@ A ``--dataset`` is either the name of a registered sequence (``camera/S3``)
 or the path of a file or folder a registered modality reads (an image
 sequence file, an image folder, a video, a swath file), opened with
 :func:`benchmark.io.open_sequence` and named in the results by the path as
-the user wrote it.  A tracker meets a sequence when both name the same
+the user wrote it.  Sequences are told apart by their identity
+(:mod:`benchmark.identity`), not their names: ``seq.txt`` and
+``../dir/seq.txt`` naming the same file are one dataset, run once under the
+first name given.  A tracker meets a sequence when both name the same
 modality; :func:`select_cells` does all of it for a :class:`Selection`.
 """
 
@@ -23,6 +26,7 @@ import os
 from collections.abc import Iterable, Iterator, Mapping
 
 from benchmark.errors import ParameterError, TrackbenchError
+from benchmark.identity import DatasetIdentity
 from benchmark.io import open_sequence
 from benchmark.modality import Modality
 from benchmark.model import Frame, Sequence, SequenceInfo
@@ -64,8 +68,9 @@ def select_trackers(registry: Registry, names: Iterable[str] = ()) -> list[Track
         return list(registry.trackers.values())
     unknown = [name for name in wanted if name not in registry.trackers]
     if unknown:
+        unavailable = "".join(f"; unavailable: {problem}" for problem in registry.problems)
         raise SelectionError(
-            f"unknown tracker {', '.join(map(repr, unknown))} (known: {_known(registry.trackers)})"
+            f"unknown tracker {', '.join(map(repr, unknown))} (known: {_known(registry.trackers)}{unavailable})"
         )
     return [registry.trackers[name] for name in wanted]
 
@@ -137,6 +142,10 @@ class NamedSequence(Sequence):
     def info(self) -> SequenceInfo:
         return dataclasses.replace(self.inner.info, name=self.name)
 
+    @property
+    def identity(self) -> DatasetIdentity:
+        return self.inner.identity.renamed(self.name)
+
     def frames(self) -> Iterator[Frame]:
         return self.inner.frames()
 
@@ -150,7 +159,7 @@ def open_dataset_path(path: str, modalities: Iterable[Modality]) -> Sequence:
         If nothing readable is at ``path`` (from :func:`benchmark.io.open_sequence`).
     """
     sequence = open_sequence(path, modalities)
-    return sequence if sequence.info.name == path else NamedSequence(sequence, path)
+    return sequence if sequence.identity.name == path else NamedSequence(sequence, path)
 
 
 def select_sequences(registry: Registry, suites: Iterable[str] = (), datasets: Iterable[str] = ()) -> list[Sequence]:
@@ -169,7 +178,8 @@ def select_sequences(registry: Registry, suites: Iterable[str] = (), datasets: I
     Returns
     -------
     list of Sequence
-        Suites first, then datasets, each sequence once (by name).
+        Suites first, then datasets, each dataset once (by identity, under
+        the first name given).
 
     Raises
     ------
@@ -189,18 +199,19 @@ def select_sequences(registry: Registry, suites: Iterable[str] = (), datasets: I
     chosen: dict[str, Sequence] = {}
     for name in suite_names:
         for sequence in registry.suites[name].sequences:
-            chosen.setdefault(sequence.info.name, sequence)
-    registered = {seq.info.name: seq for suite in registry.suites.values() for seq in suite.sequences}
+            chosen.setdefault(sequence.identity.key, sequence)
+    registered = {seq.identity.name: seq for suite in registry.suites.values() for seq in suite.sequences}
     for name in dataset_names:
         if name in registered:
-            chosen.setdefault(name, registered[name])
-        elif os.path.exists(name):
-            chosen.setdefault(name, open_dataset_path(name, registry.modalities.values()))
+            sequence = registered[name]
+        elif os.path.lexists(name):
+            sequence = open_dataset_path(name, registry.modalities.values())
         else:
             raise SelectionError(
                 f"unknown dataset {name!r}: not a registered sequence and no such file or folder "
                 f"(registered: {_known(registered)})"
             )
+        chosen.setdefault(sequence.identity.key, sequence)
     return list(chosen.values())
 
 
@@ -243,12 +254,12 @@ def make_cells(
         Cell(tracker, sequence, seed, init, modality=modalities[tracker.modality])
         for tracker in tracker_list
         for sequence in sequence_list
-        if sequence.info.modality == tracker.modality
+        if sequence.identity.modality == tracker.modality
         for seed in seed_list
     ]
     if not cells and seed_list:
         tracker_modalities = _known({f"{t.name} ({t.modality})" for t in tracker_list})
-        sequence_modalities = _known({f"{s.info.name} ({s.info.modality})" for s in sequence_list})
+        sequence_modalities = _known({f"{s.identity.name} ({s.identity.modality})" for s in sequence_list})
         raise SelectionError(
             "nothing to run: no selected tracker reads the modality of a selected sequence "
             f"(trackers: {tracker_modalities}; sequences: {sequence_modalities})"

@@ -8,14 +8,19 @@ back to it.
 
 Schema (``PRAGMA user_version`` = :data:`SCHEMA_VERSION`)::
 
-    runs(id, started, finished, argv JSON, options JSON, version)
+    runs(id, started, finished, argv JSON, options JSON, version, problems JSON)
     cells(id, run_id -> runs, tracker, tracker_version, tracker_key, params JSON,
-          dataset, modality, seed, init, status, message, detail, frames,
-          elapsed_s, finished)
+          dataset, dataset_key, modality, seed, init, status, message, detail,
+          frames, elapsed_s, finished)
     run_cells(run_id -> runs, cell_id -> cells)
     frames(cell_id -> cells, position, frame, outcome, step_ms)
     frame_errors(cell_id, position, name, value)
 
+``problems`` lists, one line each, what went wrong in a run outside any
+cell, such as a plugin that failed to import.  A cell is identified by
+``(tracker_key, dataset_key, seed, init)`` (:class:`benchmark.results.CellKey`):
+``dataset_key`` is the key of the dataset's identity
+(:mod:`benchmark.identity`), ``dataset`` only the name it was shown under.
 ``status`` is ``ok``, ``error`` or ``timeout``; ``message`` is the one-line
 reason and ``detail`` the traceback.  ``position`` numbers a cell's frames
 in the order they were processed (``frame`` is the sequence's own index).
@@ -27,18 +32,25 @@ fit the same table; a non-finite error is simply not stored.
 
 ``run_cells`` lists the cells that make up a run's results: those it ran
 and those it took over from earlier runs with ``--resume``.
+
+A database of schema version 1 (no ``problems``, no ``dataset_key``) is
+upgraded in place when opened; its cells get their ``dataset`` as
+``dataset_key``, which no identity's key equals, so they are shown but
+never resumed.  Any SQLite error, such as a file damaged on disk, is
+reported as a :class:`~benchmark.errors.DataError` naming the file.
 """
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import os
 import sqlite3
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from datetime import UTC, datetime
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Concatenate, ParamSpec, TypeVar
 
 import pandas as pd
 
@@ -47,7 +59,7 @@ from benchmark.errors import DataError
 if TYPE_CHECKING:
     from benchmark.results import CellKey, CellResult
 
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
 DATABASE_NAME = "results.sqlite"
 
 _SCHEMA = """
@@ -57,7 +69,8 @@ CREATE TABLE IF NOT EXISTS runs (
     finished TEXT,
     argv TEXT NOT NULL,
     options TEXT NOT NULL,
-    version TEXT NOT NULL
+    version TEXT NOT NULL,
+    problems TEXT NOT NULL DEFAULT '[]'
 );
 CREATE TABLE IF NOT EXISTS cells (
     id INTEGER PRIMARY KEY,
@@ -67,6 +80,7 @@ CREATE TABLE IF NOT EXISTS cells (
     tracker_key TEXT NOT NULL,
     params TEXT NOT NULL,
     dataset TEXT NOT NULL,
+    dataset_key TEXT NOT NULL,
     modality TEXT NOT NULL,
     seed INTEGER NOT NULL,
     init TEXT NOT NULL,
@@ -77,7 +91,7 @@ CREATE TABLE IF NOT EXISTS cells (
     elapsed_s REAL NOT NULL,
     finished TEXT NOT NULL
 );
-CREATE INDEX IF NOT EXISTS cells_by_key ON cells (tracker_key, dataset, seed, init);
+CREATE INDEX IF NOT EXISTS cells_by_key ON cells (tracker_key, dataset_key, seed, init);
 CREATE TABLE IF NOT EXISTS run_cells (
     run_id INTEGER NOT NULL REFERENCES runs(id),
     cell_id INTEGER NOT NULL REFERENCES cells(id),
@@ -101,6 +115,16 @@ CREATE TABLE IF NOT EXISTS frame_errors (
 );
 """
 
+_UPGRADES = {
+    1: """
+ALTER TABLE runs ADD COLUMN problems TEXT NOT NULL DEFAULT '[]';
+ALTER TABLE cells ADD COLUMN dataset_key TEXT NOT NULL DEFAULT '';
+UPDATE cells SET dataset_key = dataset;
+DROP INDEX cells_by_key;
+""",
+}
+"""Schema version to the SQL that brings it to :data:`SCHEMA_VERSION` (``_SCHEMA`` then adds what is missing)."""
+
 CELL_COLUMNS = (
     "id",
     "run_id",
@@ -109,6 +133,7 @@ CELL_COLUMNS = (
     "tracker_key",
     "params",
     "dataset",
+    "dataset_key",
     "modality",
     "seed",
     "init",
@@ -124,6 +149,37 @@ CELL_COLUMNS = (
 
 def _now() -> str:
     return datetime.now(UTC).isoformat(timespec="seconds")
+
+
+def _database_error(path: Path, exc: sqlite3.DatabaseError) -> DataError:
+    """The error to report for an SQLite error on the database ``path``."""
+    code = (getattr(exc, "sqlite_errorcode", None) or 0) & 0xFF  # the primary code of an extended one
+    if code in (sqlite3.SQLITE_CORRUPT, sqlite3.SQLITE_NOTADB):
+        return DataError(f"{path}: the results database is damaged ({exc}); move it aside to start a new one")
+    if code == sqlite3.SQLITE_CANTOPEN:
+        return DataError(
+            f"{path}: cannot open the results database ({exc}); check that its folder exists and is writable"
+        )
+    return DataError(f"{path}: cannot use the results database ({exc})")
+
+
+_P = ParamSpec("_P")
+_T = TypeVar("_T")
+
+
+def _reports_database_errors(
+    method: Callable[Concatenate[ResultStore, _P], _T],
+) -> Callable[Concatenate[ResultStore, _P], _T]:
+    """``method`` with any :class:`sqlite3.DatabaseError` raised as a :class:`DataError` naming the file."""
+
+    @functools.wraps(method)
+    def wrapper(self: ResultStore, /, *args: _P.args, **kwargs: _P.kwargs) -> _T:
+        try:
+            return method(self, *args, **kwargs)
+        except sqlite3.DatabaseError as exc:
+            raise _database_error(self.path, exc) from exc
+
+    return wrapper
 
 
 def _chunks(values: Sequence[int], size: int = 500) -> Iterable[Sequence[int]]:
@@ -142,7 +198,9 @@ class ResultStore:
     Raises
     ------
     DataError
-        If the file is not a trackbench database of this schema version.
+        If the file cannot be opened, is damaged, is another program's
+        database, or has a schema version this trackbench does not know;
+        every method raises it, naming the file, for any SQLite error.
 
     Examples
     --------
@@ -151,24 +209,38 @@ class ResultStore:
     ...     store.add_cell(run, result)
     """
 
+    @_reports_database_errors
     def __init__(self, path: str | os.PathLike[str]) -> None:
         self.path = Path(path)
+        self._db = sqlite3.connect(self.path)
         try:
-            self._db = sqlite3.connect(self.path)
-            self._db.execute("PRAGMA foreign_keys = ON")
-            version = self._db.execute("PRAGMA user_version").fetchone()[0]
-            if version not in (0, SCHEMA_VERSION):
-                raise DataError(
-                    f"{self.path}: results database of schema version {version}; "
-                    f"this trackbench reads version {SCHEMA_VERSION}"
-                )
-            self._db.execute("PRAGMA journal_mode = WAL")
-            with self._db:
-                self._db.executescript(_SCHEMA)
-                self._db.execute(f"PRAGMA user_version = {SCHEMA_VERSION}")
-        except sqlite3.DatabaseError as exc:
-            raise DataError(f"{self.path}: not a trackbench results database ({exc})") from exc
+            self._prepare()
+        except BaseException:
+            self._db.close()
+            raise
 
+    def _prepare(self) -> None:
+        """Refuse a file that is not ours, then upgrade or create the schema in one transaction."""
+        self._db.execute("PRAGMA foreign_keys = ON")
+        version = self._db.execute("PRAGMA user_version").fetchone()[0]
+        if version == 0:
+            tables = [row[0] for row in self._db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")]
+            if tables:
+                raise DataError(
+                    f"{self.path}: not a trackbench results database (it holds the tables {', '.join(tables)}) "
+                    "and was left unchanged; move it or write the results elsewhere"
+                )
+        elif version != SCHEMA_VERSION and version not in _UPGRADES:
+            raise DataError(
+                f"{self.path}: results database of schema version {version}; "
+                f"this trackbench reads versions up to {SCHEMA_VERSION}"
+            )
+        self._db.execute("PRAGMA journal_mode = WAL")
+        self._db.executescript(
+            f"BEGIN; {_UPGRADES.get(version, '')} {_SCHEMA} PRAGMA user_version = {SCHEMA_VERSION}; COMMIT;"
+        )
+
+    @_reports_database_errors
     def close(self) -> None:
         """Close the connection; everything written is already committed."""
         self._db.close()
@@ -179,7 +251,14 @@ class ResultStore:
     def __exit__(self, *exc: object) -> None:
         self.close()
 
-    def start_run(self, argv: Sequence[str], options: Mapping[str, Any], version: str | None = None) -> int:
+    @_reports_database_errors
+    def start_run(
+        self,
+        argv: Sequence[str],
+        options: Mapping[str, Any],
+        version: str | None = None,
+        problems: Sequence[str] = (),
+    ) -> int:
         """Record the start of a run and return its id.
 
         Parameters
@@ -190,29 +269,40 @@ class ResultStore:
             The parsed options, stored as JSON (non-JSON values as their repr).
         version : str, optional
             trackbench's version; defaults to the installed one.
+        problems : sequence of str
+            What went wrong outside any cell, one line each (a plugin that
+            failed to import); :meth:`run_problems` returns them.
         """
         if version is None:
             from benchmark import __version__ as version
         with self._db:
             cursor = self._db.execute(
-                "INSERT INTO runs (started, argv, options, version) VALUES (?, ?, ?, ?)",
-                (_now(), json.dumps(list(argv)), json.dumps(dict(options), default=repr), version),
+                "INSERT INTO runs (started, argv, options, version, problems) VALUES (?, ?, ?, ?, ?)",
+                (
+                    _now(),
+                    json.dumps(list(argv)),
+                    json.dumps(dict(options), default=repr),
+                    version,
+                    json.dumps([str(problem) for problem in problems]),
+                ),
             )
         return int(cursor.lastrowid)
 
+    @_reports_database_errors
     def finish_run(self, run_id: int) -> None:
         """Mark a run as finished (a run killed early keeps ``finished`` NULL)."""
         with self._db:
             self._db.execute("UPDATE runs SET finished = ? WHERE id = ?", (_now(), run_id))
 
+    @_reports_database_errors
     def add_cell(self, run_id: int, result: CellResult) -> int:
         """Store a cell and all its frames in one transaction; return the cell id."""
         n_frames = len(result.scores)
         with self._db:
             cursor = self._db.execute(
-                "INSERT INTO cells (run_id, tracker, tracker_version, tracker_key, params, dataset, modality, "
-                "seed, init, status, message, detail, frames, elapsed_s, finished) "
-                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                "INSERT INTO cells (run_id, tracker, tracker_version, tracker_key, params, dataset, dataset_key, "
+                "modality, seed, init, status, message, detail, frames, elapsed_s, finished) "
+                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                 (
                     run_id,
                     result.tracker,
@@ -220,6 +310,7 @@ class ResultStore:
                     result.tracker_key,
                     json.dumps(result.params, sort_keys=True, default=repr),
                     result.dataset,
+                    result.dataset_key,
                     result.modality,
                     int(result.seed),
                     result.init,
@@ -252,13 +343,14 @@ class ResultStore:
             self._db.execute("INSERT INTO run_cells (run_id, cell_id) VALUES (?, ?)", (run_id, cell_id))
         return cell_id
 
+    @_reports_database_errors
     def find_ok_cells(self, keys: Iterable[CellKey]) -> dict[CellKey, int]:
         """The latest cell with status ``ok`` for each key that has one.
 
         Parameters
         ----------
         keys : iterable of CellKey
-            ``(tracker_key, dataset, seed, init)`` of the wanted cells.
+            ``(tracker_key, dataset_key, seed, init)`` of the wanted cells.
 
         Returns
         -------
@@ -268,14 +360,15 @@ class ResultStore:
         found: dict[CellKey, int] = {}
         for key in keys:
             row = self._db.execute(
-                "SELECT max(id) FROM cells WHERE tracker_key = ? AND dataset = ? AND seed = ? AND init = ? "
+                "SELECT max(id) FROM cells WHERE tracker_key = ? AND dataset_key = ? AND seed = ? AND init = ? "
                 "AND status = 'ok'",
-                (key.tracker_key, key.dataset, int(key.seed), key.init),
+                (key.tracker_key, key.dataset_key, int(key.seed), key.init),
             ).fetchone()
             if row[0] is not None:
                 found[key] = int(row[0])
         return found
 
+    @_reports_database_errors
     def reuse_cells(self, run_id: int, cell_ids: Iterable[int]) -> None:
         """Make earlier cells part of a run's results (``--resume``)."""
         with self._db:
@@ -284,21 +377,42 @@ class ResultStore:
                 ((run_id, int(cell_id)) for cell_id in cell_ids),
             )
 
+    @_reports_database_errors
     def runs(self) -> pd.DataFrame:
-        """All runs, oldest first, with the number of cells in each."""
+        """All runs, oldest first, with the number of cells in each (``problems`` as stored, JSON)."""
         rows = self._db.execute(
-            "SELECT runs.id, started, finished, argv, options, version, count(run_cells.cell_id) "
+            "SELECT runs.id, started, finished, argv, options, version, problems, count(run_cells.cell_id) "
             "FROM runs LEFT JOIN run_cells ON run_cells.run_id = runs.id GROUP BY runs.id ORDER BY runs.id"
         ).fetchall()
         return pd.DataFrame.from_records(
-            rows, columns=["id", "started", "finished", "argv", "options", "version", "cells"]
+            rows, columns=["id", "started", "finished", "argv", "options", "version", "problems", "cells"]
         )
 
+    @_reports_database_errors
     def latest_run(self) -> int | None:
         """Id of the latest run that has at least one cell, or None."""
         row = self._db.execute("SELECT max(run_id) FROM run_cells").fetchone()
         return None if row[0] is None else int(row[0])
 
+    @_reports_database_errors
+    def run_problems(self, run_id: int | None = None) -> list[str]:
+        """The problems recorded with a run (see :meth:`start_run`).
+
+        Parameters
+        ----------
+        run_id : int, optional
+            The run; defaults to :meth:`latest_run`.
+
+        Returns
+        -------
+        list of str
+            One line each; empty for a run without problems or no run at all.
+        """
+        run_id = self.latest_run() if run_id is None else run_id
+        row = self._db.execute("SELECT problems FROM runs WHERE id = ?", (run_id,)).fetchone()
+        return [] if row is None else [str(problem) for problem in json.loads(row[0])]
+
+    @_reports_database_errors
     def cells(self, run_id: int | None = None, *, all_runs: bool = False) -> pd.DataFrame:
         """The cells that make up a leaderboard.
 
@@ -313,8 +427,8 @@ class ResultStore:
         Returns
         -------
         pandas.DataFrame
-            Columns :data:`CELL_COLUMNS`; for each ``(tracker_key, dataset,
-            seed, init)`` only the latest cell, whatever its status.
+            Columns :data:`CELL_COLUMNS`; for each ``(tracker_key,
+            dataset_key, seed, init)`` only the latest cell, whatever its status.
         """
         select = ", ".join(f"cells.{column}" for column in CELL_COLUMNS)
         if all_runs:
@@ -327,8 +441,9 @@ class ResultStore:
                 (run_id,),
             ).fetchall()
         table = pd.DataFrame.from_records(rows, columns=list(CELL_COLUMNS))
-        return table.drop_duplicates(["tracker_key", "dataset", "seed", "init"], keep="last").reset_index(drop=True)
+        return table.drop_duplicates(["tracker_key", "dataset_key", "seed", "init"], keep="last").reset_index(drop=True)
 
+    @_reports_database_errors
     def frame_tables(self, cell_ids: Iterable[int]) -> pd.DataFrame:
         """Frame scores of the given cells, one row per frame.
 

@@ -11,6 +11,11 @@ import math
 import pandas as pd
 
 
+def one_line(text: object) -> str:
+    """``text`` on one line: every run of whitespace, newlines included, becomes one space."""
+    return " ".join(str(text).split())
+
+
 def format_value(column: str, value: object) -> str:
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return ""

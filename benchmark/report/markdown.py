@@ -1,40 +1,77 @@
-"""Boards as Markdown: a page for ``leaderboard.md``, and the same tables for a terminal."""
+"""Boards as Markdown: a page for ``leaderboard.md``, and the same tables for a terminal.
+
+Names, statuses, the caption and problems come from plugins and users, so
+the page escapes them (:func:`escape_markdown`): whatever they hold shows
+as literal text, never as a link, an image, emphasis, HTML or a broken table
+(GitHub still makes a bare URL or e-mail address clickable, shown as written).
+"""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import html
+import re
+from collections.abc import Mapping, Sequence
 
 import pandas as pd
 
-from benchmark.report.display import alignment, display_table
+from benchmark.report.display import alignment, display_table, one_line
+
+_INLINE_MARKUP = re.compile(r"[\\`*_\[\]|~$]")
+"""Characters that mean something anywhere in a line: code, emphasis, links, table cells, strikethrough, math."""
+
+_LINE_START_MARKUP = re.compile(r"^(\d+(?=[.)](?: |$))|)([#+\-=.)])")
+"""A heading, list or underline marker opening a line; ``1.`` only before a space, so that ``66.7`` stays as it is."""
+
+
+def escape_markdown(text: object) -> str:
+    r"""``text`` as literal Markdown on one line.
+
+    Runs of whitespace, newlines included, become one space; ``&``, ``<``
+    and ``>`` become entities; Markdown punctuation gets a backslash.
+    Digits and ``.`` inside a number are left alone.
+
+    Examples
+    --------
+    >>> print(escape_markdown("[x](y) <b>*z*</b> | 1.5"))
+    \[x\](y) &lt;b&gt;\*z\*&lt;/b&gt; \| 1.5
+    """
+    escaped = _INLINE_MARKUP.sub(r"\\\g<0>", html.escape(one_line(text), quote=False))
+    return _LINE_START_MARKUP.sub(r"\1\\\2", escaped)
 
 
 def _shorten(text: str, width: int) -> str:
     return text if len(text) <= width else text[: width - 3] + "..."
 
 
-def to_text(boards: Mapping[str, pd.DataFrame], status_width: int = 60) -> str:
-    """The boards for a terminal, one block per modality, long statuses shortened."""
-    if not boards:
-        return "No results."
-    blocks = []
+def to_text(boards: Mapping[str, pd.DataFrame], status_width: int = 60, problems: Sequence[str] = ()) -> str:
+    """The boards for a terminal, one block per modality, long statuses shortened, then any ``problems``."""
+    blocks = [] if boards else ["No results."]
     for modality, board in boards.items():
         shown = display_table(board)
         shown["status"] = [_shorten(text, status_width) for text in shown["status"]]
         table = shown.to_markdown(index=False, tablefmt="simple", disable_numparse=True, colalign=alignment(board))
         blocks.append(f"{modality}\n\n{table}")
+    if problems:
+        blocks.append("\n".join(["Problems", "", *(f"- {one_line(problem)}" for problem in problems)]))
     return "\n\n".join(blocks)
 
 
-def to_markdown(boards: Mapping[str, pd.DataFrame], caption: str = "") -> str:
-    """The boards as a Markdown page, one section per modality."""
+def to_markdown(boards: Mapping[str, pd.DataFrame], caption: str = "", problems: Sequence[str] = ()) -> str:
+    """The boards as a Markdown page, one section per modality, then a section listing ``problems``.
+
+    Every text taken from the boards, the caption and the problems is
+    escaped (:func:`escape_markdown`).
+    """
     parts = ["# trackbench leaderboard", ""]
     if caption:
-        parts += [caption, ""]
+        parts += [escape_markdown(caption), ""]
     if not boards:
         parts += ["No results.", ""]
     for modality, board in boards.items():
-        shown = display_table(board).map(lambda text: text.replace("|", "\\|"))
+        shown = display_table(board).map(escape_markdown)
+        shown.columns = [escape_markdown(column) for column in shown.columns]
         table = shown.to_markdown(index=False, disable_numparse=True, colalign=alignment(board))
-        parts += [f"## {modality}", "", table, ""]
+        parts += [f"## {escape_markdown(modality)}", "", table, ""]
+    if problems:
+        parts += ["## Problems", "", *(f"- {escape_markdown(problem)}" for problem in problems), ""]
     return "\n".join(parts)

@@ -32,6 +32,7 @@ from typing import Any, ClassVar, Generic, Protocol, Self, TypeVar
 
 import numpy as np
 
+from benchmark.identity import DatasetIdentity, digest, generator_source
 from benchmark.model import Frame, Sequence
 
 
@@ -77,6 +78,13 @@ class SimulatedScene(Sequence, Generic[SpecT, CacheT]):
     def spec(self) -> SpecT:
         """The definition of this sequence."""
         return self._spec
+
+    @property
+    def identity(self) -> DatasetIdentity:
+        """The scene's identity: its generator and version as source, its spec's digest as fingerprint."""
+        return DatasetIdentity(
+            self._spec.name, self.info.modality, source=generator_source(type(self)), fingerprint=digest(self._spec)
+        )
 
     def __getstate__(self) -> dict[str, Any]:
         return {"_spec": self._spec}

@@ -9,11 +9,12 @@ before the trackers as the plugin manager does.
 from __future__ import annotations
 
 import dataclasses
+import importlib.metadata
 import math
 import sys
 import time
 import types
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, ClassVar
@@ -221,6 +222,44 @@ def make_cell(entry: TrackerEntry, sequence: Sequence, seed: int = 0, init: str 
     """A cell of a fake tracker, carrying the built-in modality the tracker reads."""
     modality = {modality.name: modality for modality in MODALITIES}[entry.modality]
     return Cell(entry, sequence, seed, init, modality=modality)  # type: ignore[arg-type]
+
+
+class FakeDistribution(importlib.metadata.Distribution):
+    """An installed distribution as importlib.metadata sees one: its METADATA and its ``trackbench`` entry points."""
+
+    def __init__(
+        self, name: str, entry_points: Mapping[str, str] | Iterable[tuple[str, str]], version: str = "0.3"
+    ) -> None:
+        pairs = entry_points.items() if isinstance(entry_points, Mapping) else entry_points
+        self.files_text = {
+            "METADATA": f"Metadata-Version: 2.1\nName: {name}\nVersion: {version}\n",
+            "entry_points.txt": "[trackbench]\n" + "".join(f"{ep} = {value}\n" for ep, value in pairs),
+        }
+
+    def read_text(self, filename: str) -> str | None:
+        return self.files_text.get(filename)
+
+    def locate_file(self, path: str | Path) -> Path:
+        return Path(path)
+
+
+Install = Callable[..., FakeDistribution]
+
+
+@pytest.fixture
+def installed(monkeypatch: pytest.MonkeyPatch) -> Install:
+    """``install(name, entry_points, version="0.3")`` adds a fake distribution next to the real ones."""
+    real = list(importlib.metadata.distributions())
+    extra: list[FakeDistribution] = []
+    monkeypatch.setattr(importlib.metadata, "distributions", lambda: [*real, *extra])
+
+    def install(
+        name: str, entry_points: Mapping[str, str] | Iterable[tuple[str, str]], version: str = "0.3"
+    ) -> FakeDistribution:
+        extra.append(FakeDistribution(name, entry_points, version))
+        return extra[-1]
+
+    return install
 
 
 @pytest.fixture(scope="session")

@@ -25,7 +25,7 @@ def loads(fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch) -> list[tupl
     """Serve the fake registry to the CLI; records the ``disable`` argument of every load."""
     calls: list[tuple[str, ...]] = []
 
-    def load_registry(disable: tuple[str, ...] = ()) -> Registry:
+    def load_registry(disable: tuple[str, ...] = (), strict: bool = False) -> Registry:
         calls.append(tuple(disable))
         return fakes.make_registry()
 
@@ -74,7 +74,7 @@ def test_disable_reaches_the_plugin_loader(invoke: Invoke, loads: list[tuple[str
 
 
 def test_a_broken_plugin_is_a_one_line_error(monkeypatch: pytest.MonkeyPatch) -> None:
-    def broken(disable: tuple[str, ...] = ()) -> Registry:
+    def broken(disable: tuple[str, ...] = (), strict: bool = False) -> Registry:
         raise PluginError("plugin 'bad' (bad-dist 1.0) failed to import 'bad': ImportError: nope")
 
     monkeypatch.setattr(benchmark.plugins, "load_registry", broken)
@@ -85,7 +85,7 @@ def test_a_broken_plugin_is_a_one_line_error(monkeypatch: pytest.MonkeyPatch) ->
 
 def test_run_writes_the_three_files_and_prints_the_board(invoke: Invoke, tmp_path: Path) -> None:
     out = tmp_path / "out"
-    result = invoke("run", "--tracker", "perfect", "--tracker", "blind", "--seeds", "2", "--jobs", "0",
+    result = invoke("run", "--tracker", "perfect", "--tracker", "blind", "--seeds", "2", "--in-process",
                     "--out", str(out))
     assert result.exit_code == 0, result.output
     for name in ("leaderboard.csv", "leaderboard.md", "leaderboard.html", "results.sqlite"):
@@ -105,7 +105,7 @@ def test_run_writes_the_three_files_and_prints_the_board(invoke: Invoke, tmp_pat
 def test_run_selects_suites_datasets_and_matching_modalities(invoke: Invoke, tmp_path: Path) -> None:
     out = tmp_path / "out"
     result = invoke("run", "--dataset", "fake/S2", "--tracker", "perfect", "--tracker", "sonar-only",
-                    "--jobs", "0", "--out", str(out))
+                    "--in-process", "--out", str(out))
     assert result.exit_code == 0, result.output
     assert [(row[2], row[3]) for row in cell_rows(out)] == [("perfect", "fake/S2")]
 
@@ -113,8 +113,9 @@ def test_run_selects_suites_datasets_and_matching_modalities(invoke: Invoke, tmp
 def test_run_reports_failures_as_rows_and_finishes_the_rest(invoke: Invoke, tmp_path: Path) -> None:
     out = tmp_path / "out"
     result = invoke("run", "--tracker", "raising", "--tracker", "garbage", "--tracker", "perfect",
-                    "--dataset", "fake/S1", "--jobs", "0", "--out", str(out))
-    assert result.exit_code == 0, result.output
+                    "--dataset", "fake/S1", "--in-process", "--out", str(out))
+    assert result.exit_code == 1, result.output
+    assert "2 of 3 cells did not end ok." in result.stderr
     table = board(out).set_index(["tracker", "dataset"])
     assert table.loc[("raising", "fake/S1"), "status"] == "error (1/1 cells): RuntimeError: lost the cable (frame 3)"
     assert table.loc[("garbage", "fake/S1"), "status"].startswith("error (1/1 cells): EstimateError")
@@ -126,8 +127,8 @@ def test_run_reports_failures_as_rows_and_finishes_the_rest(invoke: Invoke, tmp_
 def test_param_overrides_reach_the_tracker(invoke: Invoke, tmp_path: Path) -> None:
     out = tmp_path / "out"
     result = invoke("run", "--tracker", "raising", "--dataset", "fake/S1", "--param", "raising.fail_at=7",
-                    "--jobs", "0", "--out", str(out))
-    assert result.exit_code == 0, result.output
+                    "--in-process", "--out", str(out))
+    assert result.exit_code == 1, result.output
     assert "(frame 7)" in board(out).set_index("dataset").loc["fake/S1", "status"]
 
 
@@ -147,7 +148,7 @@ def test_param_overrides_reach_the_tracker(invoke: Invoke, tmp_path: Path) -> No
 def test_bad_selections_exit_2_with_a_clear_message(
     invoke: Invoke, tmp_path: Path, args: list[str], words: list[str]
 ) -> None:
-    result = invoke("run", *args, "--jobs", "0", "--out", str(tmp_path / "out"))
+    result = invoke("run", *args, "--in-process", "--out", str(tmp_path / "out"))
     assert result.exit_code == 2
     message = result.stderr.strip()
     assert message.startswith("Error: ") and "\n" not in message and "Traceback" not in result.output
@@ -160,15 +161,15 @@ def test_resume_skips_ok_cells_and_redoes_failed_ones(
 ) -> None:
     out = tmp_path / "out"
     args = ["run", "--tracker", "counting", "--tracker", "raising", "--dataset", "fake/S1", "--seeds", "2",
-            "--jobs", "0", "--out", str(out)]
+            "--in-process", "--out", str(out)]
     monkeypatch.setattr(fakes.Counting, "created", 0)
-    assert invoke(*args).exit_code == 0
+    assert invoke(*args).exit_code == 1
     assert fakes.Counting.created == 2
     first = cell_rows(out)
     first_board = board(out)
 
     result = invoke(*args, "--resume")
-    assert result.exit_code == 0, result.output
+    assert result.exit_code == 1, result.output
     assert fakes.Counting.created == 2
     assert "resume: 2 cells already finished, 2 to run" in result.stderr
     second = cell_rows(out)
@@ -176,7 +177,7 @@ def test_resume_skips_ok_cells_and_redoes_failed_ones(
     assert [(row[1], row[2], row[5]) for row in added] == [(2, "raising", "error"), (2, "raising", "error")]
     pd.testing.assert_frame_equal(board(out).drop(columns="fps"), first_board.drop(columns="fps"))
 
-    assert invoke(*args).exit_code == 0
+    assert invoke(*args).exit_code == 1
     assert fakes.Counting.created == 4
 
 
@@ -197,7 +198,7 @@ def test_an_interrupted_run_keeps_its_cells_for_resume(
 
     monkeypatch.setattr(benchmark.runner, "run_cell", stop_after_two)
     monkeypatch.setattr(fakes.Counting, "created", 0)
-    args = ["run", "--tracker", "counting", "--seeds", "3", "--jobs", "0", "--out", str(out)]
+    args = ["run", "--tracker", "counting", "--seeds", "3", "--in-process", "--out", str(out)]
     assert invoke(*args).exit_code != 0
     assert len(cell_rows(out)) == 2
 
@@ -210,7 +211,7 @@ def test_an_interrupted_run_keeps_its_cells_for_resume(
 
 def test_leaderboard_command_republishes_the_latest_run(invoke: Invoke, tmp_path: Path) -> None:
     out = tmp_path / "out"
-    assert invoke("run", "--tracker", "noisy", "--seeds", "2", "--jobs", "0", "--out", str(out)).exit_code == 0
+    assert invoke("run", "--tracker", "noisy", "--seeds", "2", "--in-process", "--out", str(out)).exit_code == 0
     expected = board(out)
     for name in ("leaderboard.csv", "leaderboard.md", "leaderboard.html"):
         (out / name).unlink()
@@ -230,7 +231,7 @@ def test_leaderboard_without_a_database_is_a_clear_error(invoke: Invoke, tmp_pat
 def test_run_in_a_pool(invoke: Invoke, tmp_path: Path) -> None:
     out = tmp_path / "out"
     result = invoke("run", "--tracker", "perfect", "--tracker", "raising", "--jobs", "2", "--out", str(out))
-    assert result.exit_code == 0, result.output
+    assert result.exit_code == 1, result.output
     statuses = {(row[2], row[3]): row[5] for row in cell_rows(out)}
     assert statuses == {
         ("perfect", "fake/S1"): "ok",
@@ -254,7 +255,7 @@ def test_dataset_path_runs_a_sequence_file(invoke: Invoke, fakes: types.ModuleTy
     path = str(folder / "seq.txt")
     out = tmp_path / "out"
 
-    result = invoke("run", "--tracker", "perfect", "--dataset", path, "--jobs", "0", "--out", str(out))
+    result = invoke("run", "--tracker", "perfect", "--dataset", path, "--in-process", "--out", str(out))
     assert result.exit_code == 0, result.output
     row = board(out).set_index("dataset").loc[path]
     assert row["frames"] == 4 and row["correct_pct"] == 100.0
@@ -272,7 +273,7 @@ def test_make_dataset_exports_every_sequence_of_a_suite(invoke: Invoke, tmp_path
 
 
 def test_tables_lays_out_a_suite_per_case(fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch, tmp_path: Path):
-    def load_registry(disable: tuple[str, ...] = ()) -> Registry:
+    def load_registry(disable: tuple[str, ...] = (), strict: bool = False) -> Registry:
         registry = fakes.make_registry((fakes.Perfect, fakes.Blind))
         names = ["grid/a-slow", "grid/a-fast", "grid/b-slow", "grid/b-fast"]
         registry.add_suite("grid", [fakes.FakeSequence(name, 5) for name in names])
@@ -280,7 +281,7 @@ def test_tables_lays_out_a_suite_per_case(fakes: types.ModuleType, monkeypatch: 
 
     monkeypatch.setattr(benchmark.plugins, "load_registry", load_registry)
     out = str(tmp_path)
-    assert CliRunner().invoke(main, ["run", "--suite", "grid", "--jobs", "0", "--out", out]).exit_code == 0
+    assert CliRunner().invoke(main, ["run", "--suite", "grid", "--in-process", "--out", out]).exit_code == 0
     result = CliRunner().invoke(main, ["tables", "grid", "--out", out, "--metric", "correct_pct"])
     assert result.exit_code == 0, result.output
     text = (tmp_path / "tables_grid.md").read_text()
@@ -304,10 +305,11 @@ def test_tables_lays_out_a_suite_per_case(fakes: types.ModuleType, monkeypatch: 
 def test_a_bad_param_exits_2_before_any_cell_runs(
     fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch, tmp_path: Path, param: str, words: list[str]
 ) -> None:
-    monkeypatch.setattr(benchmark.plugins, "load_registry", lambda disable=(): fakes.make_registry((fakes.Bounded,)))
+    bounded_only = fakes.make_registry((fakes.Bounded,))
+    monkeypatch.setattr(benchmark.plugins, "load_registry", lambda disable=(), strict=False: bounded_only)
     monkeypatch.setattr(fakes.Bounded, "created", 0)
     out = tmp_path / "out"
-    args = ["run", "--tracker", "bounded", "--jobs", "0", "--out", str(out)]
+    args = ["run", "--tracker", "bounded", "--in-process", "--out", str(out)]
     assert CliRunner().invoke(main, [*args, "--param", "bounded.window=2"]).exit_code == 0
     before, created = cell_rows(out), fakes.Bounded.created
     assert len(before) == 2 and created == 2
@@ -327,9 +329,9 @@ def test_leaderboard_boards_a_modality_whose_plugin_is_gone_by_its_name(
     invoke: Invoke, monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> None:
     out = tmp_path / "out"
-    assert invoke("run", "--tracker", "noisy", "--jobs", "0", "--out", str(out)).exit_code == 0
+    assert invoke("run", "--tracker", "noisy", "--in-process", "--out", str(out)).exit_code == 0
     expected = board(out)
-    monkeypatch.setattr(benchmark.plugins, "load_registry", lambda disable=(): Registry())
+    monkeypatch.setattr(benchmark.plugins, "load_registry", lambda disable=(), strict=False: Registry())
     result = invoke("leaderboard", "--out", str(out))
     assert result.exit_code == 0, result.output
     assert result.stdout.startswith("camera\n")

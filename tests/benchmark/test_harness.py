@@ -8,6 +8,8 @@ from pathlib import Path
 
 import pytest
 
+from benchmark import harness
+from benchmark.errors import DataError
 from benchmark.harness import describe_result, publish, run_benchmark
 from benchmark.registry import Registry
 from benchmark.runner import run_cell
@@ -28,7 +30,8 @@ def stored(out: Path) -> list[tuple]:
 def test_a_run_stores_every_cell_and_publishes_one_board_per_modality(registry: Registry, tmp_path: Path) -> None:
     cells = select_cells(registry, Selection(trackers=("perfect", "blind", "raising"), suites=("fake",)))
     lines: list[str] = []
-    publication = run_benchmark(cells, registry.modalities, tmp_path, jobs=0, argv=["test"], log=lines.append)
+    summary = run_benchmark(cells, registry.modalities, tmp_path, jobs=0, argv=["test"], log=lines.append)
+    publication = summary.publication
     assert len(stored(tmp_path)) == 6 and len(lines) == 6
     assert sorted(publication.boards) == ["camera"]
     board = publication.boards["camera"]
@@ -44,7 +47,9 @@ def test_resume_takes_over_finished_cells_and_runs_only_the_rest(registry: Regis
     cells = select_cells(registry, Selection(trackers=("perfect", "raising"), suites=("fake",)))
     run_benchmark(cells, registry.modalities, tmp_path, jobs=0)
     lines: list[str] = []
-    publication = run_benchmark(cells, registry.modalities, tmp_path, jobs=0, resume=True, log=lines.append)
+    summary = run_benchmark(cells, registry.modalities, tmp_path, jobs=0, resume=True, log=lines.append)
+    publication = summary.publication
+    assert summary.statuses == {"ok": 2, "error": 2} and not summary.clean
     assert lines[0] == "resume: 2 cells already finished, 2 to run"
     assert [row[1] for row in stored(tmp_path) if row[0] == 2] == ["raising", "raising"]
     board = publication.boards["camera"]
@@ -69,3 +74,58 @@ def test_a_finished_cell_is_described_in_one_line(registry: Registry, fakes: typ
     line = describe_result(run_cell(cell))
     assert line.startswith("raising  fake/S2  seed 0  error  correct 100.0%")
     assert "(3 frames," in line and line.endswith("RuntimeError: lost the cable (frame 3)")
+
+
+def write_sequence_file(folder: Path, make_image, n_frames: int = 3) -> Path:
+    for index in range(n_frames):
+        make_image(folder / "frames" / f"f{index}.png")
+    rows = "".join(f"{index}.0 0.0 6.0 0.0 # frames/f{index}.png\n" for index in range(n_frames))
+    (folder / "seq.txt").write_text(rows)
+    return folder / "seq.txt"
+
+
+def test_resume_matches_a_dataset_by_identity_not_by_the_path_typed(
+    registry: Registry, tmp_path: Path, make_image, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    sequence_file = write_sequence_file(tmp_path / "data", make_image)
+    out = tmp_path / "out"
+
+    def run(path: str) -> list[str]:
+        lines: list[str] = []
+        cells = select_cells(registry, Selection(trackers=("perfect",), datasets=(path,)))
+        run_benchmark(cells, registry.modalities, out, jobs=0, resume=True, log=lines.append)
+        return lines
+
+    assert run(str(sequence_file))[0] == "resume: 0 cells already finished, 1 to run"
+    monkeypatch.chdir(tmp_path / "data" / "frames")
+    assert run("../seq.txt")[0] == "resume: 1 cells already finished, 0 to run"
+    sequence_file.write_text(sequence_file.read_text().replace("0.0 6.0", "0.1 6.0", 1))
+    assert run("../seq.txt")[0] == "resume: 0 cells already finished, 1 to run"
+    make_image(tmp_path / "data" / "frames" / "f2.png", width=13)
+    assert run("../seq.txt")[0] == "resume: 0 cells already finished, 1 to run"
+
+
+def test_the_user_s_ctrl_c_keeps_and_publishes_the_finished_cells(
+    registry: Registry, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    def interrupted_after_one(cells, **options):
+        yield run_cell(list(cells)[0])
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(harness, "run_cells", interrupted_after_one)
+    cells = select_cells(registry, Selection(trackers=("perfect", "blind"), suites=("fake",)))
+    lines: list[str] = []
+    summary = run_benchmark(cells, registry.modalities, tmp_path, log=lines.append)
+    assert summary.interrupted and not summary.clean
+    assert lines[-1] == "interrupted: 1 cells finished and kept, 3 not run"
+    assert [row[1:] for row in stored(tmp_path)] == [("perfect", "fake/S1", "ok")]
+    assert "perfect" in (tmp_path / "leaderboard.md").read_text()
+    with ResultStore(tmp_path / DATABASE_NAME) as store:
+        assert store.runs()["finished"].isna().all()
+
+
+def test_an_output_folder_that_cannot_be_made_is_an_error_naming_it(registry: Registry, tmp_path: Path) -> None:
+    (tmp_path / "file").write_text("not a folder")
+    cells = select_cells(registry, Selection(trackers=("perfect",), suites=("fake",)))
+    with pytest.raises(DataError, match=r"file/sub: cannot create folder"):
+        run_benchmark(cells, registry.modalities, tmp_path / "file" / "sub")

@@ -1,10 +1,19 @@
-"""Tests of benchmark.io: choosing a modality's reader for a dataset path, exporting by modality, file stems."""
+"""Tests of benchmark.io: choosing a modality's reader for a dataset path, exporting by modality, file stems.
+
+Also the identity of every file-backed sequence the built-in readers open,
+and their refusal of paths that are not regular files.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import os
+import pickle
+import stat
+import threading
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import cv2
 import numpy as np
@@ -13,9 +22,11 @@ import pytest
 from benchmark.errors import DataError
 from benchmark.io import default_stem, export_sequence, open_sequence
 from benchmark.modalities.camera.io.image_folder import ImageFolder
-from benchmark.modalities.camera.io.sequence_file import ImageSequenceFile
+from benchmark.modalities.camera.io.sequence_file import ImageSequenceFile, read_sequence_file, write_sequence_file
 from benchmark.modalities.camera.io.video import VideoFile
 from benchmark.modalities.camera.modality import CAMERA
+from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState
+from benchmark.modalities.sonar.io import SwathFile
 from benchmark.modalities.sonar.modality import SONAR
 from benchmark.modalities.stereo.modality import STEREO
 from benchmark.modality import ANY_FILE, Modality, Reader
@@ -32,13 +43,17 @@ def test_a_folder_opens_as_image_folder(tmp_path, make_image):
 
 @pytest.mark.parametrize("name", ["clip.avi", "CLIP.AVI"])
 def test_a_video_name_opens_as_video(tmp_path, name):
-    path = tmp_path / name
+    path = write_video(tmp_path / name)
+    assert isinstance(open_sequence(path, BUILT_IN), VideoFile)
+
+
+def write_video(path: Path) -> Path:
     writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 5.0, (16, 8), True)
     if not writer.isOpened():
         pytest.skip("this OpenCV build cannot write MJPG into .avi")
     writer.write(np.zeros((8, 16, 3), dtype=np.uint8))
     writer.release()
-    assert isinstance(open_sequence(path, BUILT_IN), VideoFile)
+    return path
 
 
 @pytest.mark.parametrize("name", ["seq.txt", "S1.seq", "labels", "ground truth.dat"])
@@ -180,3 +195,192 @@ def test_default_stem_replaces_path_separators():
     assert default_stem("a\\b/c") == "a_b_c"
     assert default_stem("") == "sequence"
     assert default_stem("..") == "sequence"
+
+
+# ------------------------------------------------------------- paths that are not regular files
+needs_fifo = pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no named pipes on this platform")
+
+
+def within(seconds: float, action: Callable[[], Any]) -> Any:
+    """``action()``, in a daemon thread, so that a call that blocks fails the test instead of hanging it."""
+    outcome: list[tuple[bool, Any]] = []
+
+    def run() -> None:
+        try:
+            outcome.append((True, action()))
+        except BaseException as exc:
+            outcome.append((False, exc))
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    thread.join(seconds)
+    assert outcome, f"still blocked after {seconds} s"
+    ok, value = outcome[0]
+    if not ok:
+        raise value
+    return value
+
+
+@needs_fifo
+@pytest.mark.parametrize("name", ["seq.txt", "labels", "pings.swaths", "clip.avi", "looks_like_a_folder"])
+def test_open_sequence_refuses_a_fifo_without_opening_it(tmp_path, name):
+    os.mkfifo(tmp_path / name)
+    with pytest.raises(DataError, match=rf"{name}: it is a FIFO \(named pipe\), neither a file nor a folder"):
+        within(5, lambda: open_sequence(tmp_path / name, BUILT_IN))
+
+
+has_dev_null = os.path.exists("/dev/null") and stat.S_ISCHR(os.stat("/dev/null").st_mode)
+
+
+@pytest.mark.skipif(not has_dev_null, reason="no /dev/null")
+def test_open_sequence_refuses_a_device():
+    with pytest.raises(DataError, match=r"/dev/null: it is a character device, neither a file nor a folder"):
+        open_sequence("/dev/null", BUILT_IN)
+
+
+@needs_fifo
+@pytest.mark.parametrize(
+    ("reader", "what"),
+    [
+        (ImageSequenceFile, "image sequence file"),
+        (read_sequence_file, "image sequence file"),
+        (SwathFile, "swath file"),
+    ],
+)
+def test_file_readers_refuse_a_fifo_and_a_folder_without_opening_them(tmp_path, reader, what):
+    os.mkfifo(tmp_path / "pipe")
+    with pytest.raises(DataError, match=rf"pipe: cannot read {what}: it is a FIFO \(named pipe\), not a regular file"):
+        within(5, lambda: reader(tmp_path / "pipe"))
+    with pytest.raises(DataError, match=rf"cannot read {what}: it is a folder, not a regular file"):
+        reader(tmp_path)
+
+
+# ------------------------------------------------------------- identity of the sequences read from files
+SWATHS = "# n_beams = 2\n# swath_angle_deg = 90\n# pipe_diameter_m = 0.5\n0.0 nan nan nan nan -1 1 10 10\n"
+
+
+def sequence_file(folder: Path, make_image) -> Path:
+    for name in ("a.png", "b.png"):
+        make_image(folder / "frames" / name)
+    path = folder / "seq.txt"
+    write_sequence_file(path, [(CableState(1.5, 0.0, 20.0, 0.0), "frames/a.png"), (UNKNOWN_CABLE, "frames/b.png")])
+    return path
+
+
+def image_folder(folder: Path, make_image) -> Path:
+    for name in ("a.png", "b.png"):
+        make_image(folder / "frames" / name)
+    return folder / "frames"
+
+
+def swath_file(folder: Path, make_image) -> Path:
+    path = folder / "pings.swaths"
+    path.write_text(SWATHS, encoding="utf-8")
+    return path
+
+
+def video(folder: Path, make_image) -> Path:
+    return write_video(folder / "clip.avi")
+
+
+DATASETS = {"sequence file": sequence_file, "image folder": image_folder, "swath file": swath_file, "video": video}
+
+
+@pytest.fixture(params=list(DATASETS))
+def dataset(request, tmp_path, make_image) -> Path:
+    """One dataset of each file-backed kind, in ``tmp_path/dir``."""
+    folder = tmp_path / "dir"
+    folder.mkdir()
+    return DATASETS[request.param](folder, make_image)
+
+
+def key_of(path: Path | str) -> str:
+    return open_sequence(path, BUILT_IN).identity.key
+
+
+def shift_mtime(path: Path, seconds: int = 10) -> None:
+    status = path.stat()
+    os.utime(path, ns=(status.st_atime_ns, status.st_mtime_ns + seconds * 1_000_000_000))
+
+
+def test_two_spellings_of_a_dataset_have_one_key_and_their_own_names(dataset, monkeypatch):
+    monkeypatch.chdir(dataset.parent)
+    here = open_sequence(dataset.name, BUILT_IN)
+    there = open_sequence(f"../dir/{dataset.name}", BUILT_IN)
+    assert here.identity.key == there.identity.key
+    for sequence, name in ((here, dataset.name), (there, f"../dir/{dataset.name}")):
+        identity, info = sequence.identity, sequence.info
+        assert (identity.name, identity.modality) == (info.name, info.modality) == (name, info.modality)
+        assert identity.source == dataset.resolve().as_posix()
+
+
+CHANGES: dict[str, Callable[[Path], object]] = {
+    "sequence file": lambda path: shift_mtime(path.parent / "frames" / "a.png"),
+    "image folder": lambda path: shift_mtime(path / "a.png"),
+    "swath file": lambda path: path.write_text(SWATHS.replace("-1 1 10", "-1 2 10"), encoding="utf-8"),
+    "video": lambda path: shift_mtime(path),
+}
+"""Per kind of dataset, a change that gives it a new identity."""
+
+
+@pytest.mark.parametrize("kind", list(DATASETS))
+def test_a_copy_keeps_the_identity_taken_when_the_dataset_was_opened(tmp_path, make_image, kind):
+    path = DATASETS[kind](tmp_path, make_image)
+    sequence = open_sequence(path, BUILT_IN)
+    CHANGES[kind](path)
+    copy = pickle.loads(pickle.dumps(sequence))
+    assert copy.identity == sequence.identity
+    assert key_of(path) != sequence.identity.key
+
+
+@pytest.mark.parametrize("kind", ["sequence file", "swath file"])
+def test_editing_the_file_changes_the_key_even_with_its_size_and_time_kept(tmp_path, make_image, kind):
+    path = DATASETS[kind](tmp_path, make_image)
+    before = key_of(path)
+    status = path.stat()
+    text = path.read_text(encoding="utf-8")
+    edited = text.replace("1.5", "2.5") if kind == "sequence file" else text.replace("-1 1 10", "-1 2 10")
+    assert edited != text and len(edited) == len(text)
+    path.write_text(edited, encoding="utf-8")
+    os.utime(path, ns=(status.st_atime_ns, status.st_mtime_ns))
+    assert key_of(path) != before
+
+
+@pytest.mark.parametrize("kind", ["sequence file", "image folder"])
+def test_touching_or_replacing_an_image_changes_the_key(tmp_path, make_image, kind):
+    path = DATASETS[kind](tmp_path, make_image)
+    image = tmp_path / "frames" / "b.png"
+    keys = [key_of(path)]
+    shift_mtime(image)
+    keys.append(key_of(path))
+    status = image.stat()
+    make_image(image, width=20)
+    os.utime(image, ns=(status.st_atime_ns, status.st_mtime_ns))
+    assert image.stat().st_size != status.st_size
+    keys.append(key_of(path))
+    assert len(set(keys)) == 3
+
+
+@pytest.mark.parametrize("kind", ["sequence file", "image folder"])
+def test_files_beside_the_images_do_not_change_the_key(tmp_path, make_image, kind):
+    path = DATASETS[kind](tmp_path, make_image)
+    before = key_of(path)
+    (tmp_path / "frames" / "notes.txt").write_text("seen on the dive", encoding="utf-8")
+    assert key_of(path) == before
+
+
+def test_a_video_is_known_by_its_size_and_modification_time(tmp_path, make_image):
+    path = video(tmp_path, make_image)
+    before = key_of(path)
+    shift_mtime(path)
+    assert key_of(path) != before
+
+
+@needs_fifo
+def test_opening_and_naming_a_sequence_open_no_image(tmp_path):
+    os.mkfifo(tmp_path / "pipe.png")
+    path = tmp_path / "seq.txt"
+    write_sequence_file(path, [(UNKNOWN_CABLE, "pipe.png")])
+    sequence = within(5, lambda: open_sequence(path, BUILT_IN))
+    identity = within(5, lambda: sequence.identity)
+    assert (identity.name, identity.modality, identity.source) == (str(path), "camera", path.resolve().as_posix())

@@ -38,6 +38,7 @@ class Cells:
         message: str = "",
         key: str | None = None,
         modality: str = "camera",
+        dataset_key: str | None = None,
     ) -> None:
         cell_id = len(self.cells) + 1
         self.cells.append(
@@ -46,6 +47,7 @@ class Cells:
                 "tracker": tracker,
                 "tracker_key": key or f"key-{tracker}",
                 "dataset": dataset,
+                "dataset_key": dataset_key or f"data-{dataset}",
                 "modality": modality,
                 "seed": seed,
                 "init": "truth",
@@ -174,6 +176,17 @@ def test_one_name_with_two_parameter_sets_is_shown_twice() -> None:
     data.add("a", "s/1", 0, ["false"], key="2222222222")
     trackers = set(rows(data.boards()["camera"], "s/1").index)
     assert trackers == {"a [11111111]", "a [22222222]"}
+
+
+def test_one_dataset_name_standing_for_two_datasets_is_shown_twice() -> None:
+    data = Cells()
+    data.add("a", "seq.txt", 0, ["correct"], dataset_key="aaaaaaaaaaaa")
+    data.add("a", "seq.txt", 0, ["false"], dataset_key="bbbbbbbbbbbb")
+    data.add("a", "s/1", 0, ["false"])
+    board = data.boards()["camera"]
+    assert board["dataset"].tolist() == [ALL_DATASETS, "s/1", "seq.txt [aaaaaaaa]", "seq.txt [bbbbbbbb]"]
+    assert rows(board, "seq.txt [aaaaaaaa]").loc["a", "correct_pct"] == 100.0
+    assert rows(board, ALL_DATASETS).loc["a", "frames"] == 3
 
 
 def test_cells_without_any_frame_still_get_a_row() -> None:

@@ -2,6 +2,7 @@
 
 import dataclasses
 import math
+import sys
 
 import numpy as np
 import pandas as pd
@@ -61,6 +62,7 @@ def result(**changes) -> CellResult:
         tracker_key="abc",
         params={},
         dataset="suite/seq",
+        dataset_key="d41d8cd98f00b204",
         modality="sonar",
         seed=3,
         init="none",
@@ -73,8 +75,9 @@ def result(**changes) -> CellResult:
     return dataclasses.replace(base, **changes)
 
 
-def test_a_cell_result_is_keyed_by_tracker_key_dataset_seed_and_init():
-    assert result().key == CellKey("abc", "suite/seq", 3, "none")
+def test_a_cell_result_is_keyed_by_tracker_key_dataset_identity_seed_and_init():
+    assert result().key == CellKey("abc", "d41d8cd98f00b204", 3, "none")
+    assert result(dataset="elsewhere/seq").key == result().key
     assert result(tracker="other", status="error").key == result().key
     assert result(seed=4).key != result().key
 
@@ -86,3 +89,37 @@ def test_a_cell_result_summarises_with_its_modality_s_error_columns():
     assert "rmse_d_px" not in summary
     assert result().frames["frame"].tolist() == [0, 1]
     assert not any(key.startswith("rmse_") for key in result(error_columns=()).summary())
+
+
+ordinary = st.one_of(st.just(0.0), st.floats(1e-100, 1e100), st.floats(-1e100, -1e-100))
+
+
+@given(st.lists(ordinary, min_size=1, max_size=50))
+def test_rmse_equals_the_plain_formula_where_that_does_not_overflow(errors):
+    scores = [FrameScore(i, Outcome.FALSE, {"err_x_m": e}, 0.01) for i, e in enumerate(errors)]
+    plain = np.sqrt(np.mean(np.square(errors)))
+    np.testing.assert_allclose(summarise(frame_table(scores), ("err_x_m",))["rmse_x_m"], plain, rtol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "errors, expected",
+    [
+        ((1e308, -1e308, 1e308), 1e308),
+        ((sys.float_info.max,) * 3, sys.float_info.max),
+        ((1e200, 0.0), 1e200 / math.sqrt(2.0)),
+        ((1e308, math.inf, math.nan, -math.inf), 1e308),
+        ((0.0, -0.0), 0.0),
+    ],
+)
+def test_rmse_of_huge_errors_is_finite_and_ignores_non_finite_values(errors, expected):
+    scores = [FrameScore(i, Outcome.FALSE, {"err_x_m": e}, 0.01) for i, e in enumerate(errors)]
+    rmse = summarise(frame_table(scores), ("err_x_m",))["rmse_x_m"]
+    assert math.isfinite(rmse)
+    np.testing.assert_allclose(rmse, expected, rtol=1e-12)
+
+
+@given(st.lists(st.floats(allow_nan=False, allow_infinity=False), min_size=1, max_size=50))
+def test_rmse_of_any_finite_errors_is_finite_and_at_most_the_largest(errors):
+    scores = [FrameScore(i, Outcome.FALSE, {"err_x_m": e}, 0.01) for i, e in enumerate(errors)]
+    rmse = summarise(frame_table(scores), ("err_x_m",))["rmse_x_m"]
+    assert 0.0 <= rmse <= max(abs(e) for e in errors)

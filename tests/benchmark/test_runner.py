@@ -13,6 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from benchmark.identity import DatasetIdentity, digest
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.modalities.camera.model import CameraTruth
 from benchmark.modalities.sonar.model import SonarTruth
@@ -124,11 +125,16 @@ def test_same_seed_replays_bit_for_bit_and_other_seeds_differ(make_cell: MakeCel
     assert not without_timing(first).equals(without_timing(other))
 
 
-def test_cell_generators_are_independent_per_seed_tracker_and_dataset() -> None:
+def test_cell_generators_are_independent_per_seed_tracker_and_dataset_fingerprint() -> None:
+    def identity(fingerprint: str, name: str = "x") -> DatasetIdentity:
+        return DatasetIdentity(name, "camera", "here", digest(fingerprint))
+
     keys = [(0, "a", "x"), (0, "b", "x"), (0, "a", "y"), (1, "a", "x")]
-    draws = {key: tuple(cell_rng(*key).random(4)) for key in keys}
+    draws = {key: tuple(cell_rng(key[0], key[1], identity(key[2])).random(4)) for key in keys}
     assert len(set(draws.values())) == len(keys)
-    assert tuple(cell_rng(0, "a", "x").random(4)) == draws[(0, "a", "x")]
+    assert tuple(cell_rng(0, "a", identity("x")).random(4)) == draws[(0, "a", "x")]
+    renamed = identity("x", name="../elsewhere/x")
+    assert tuple(cell_rng(0, "a", renamed).random(4)) == draws[(0, "a", "x")]
 
 
 def test_inline_timeout_is_checked_between_frames_and_keeps_frames(make_cell: MakeCell) -> None:
@@ -140,7 +146,7 @@ def test_inline_timeout_is_checked_between_frames_and_keeps_frames(make_cell: Ma
 
 def test_inline_run_keeps_input_order_and_finishes_after_failures(make_cell: MakeCell) -> None:
     cells = [make_cell("raising"), make_cell("perfect"), make_cell("garbage")]
-    results = list(run_cells(cells, jobs=0))
+    results = list(run_cells(cells, in_process=True))
     assert [r.tracker for r in results] == ["raising", "perfect", "garbage"]
     assert [r.status for r in results] == ["error", "ok", "error"]
 
@@ -274,5 +280,5 @@ def test_a_cell_whose_sequence_cannot_describe_itself_still_gets_a_result(fake_r
     cell = Cell(fake_registry.trackers["perfect"], Unreadable(), 0, modality=CAMERA)
     result = run_cell(cell)
     assert (result.status, result.dataset, result.modality) == ("error", "<Unreadable>", "camera")
-    assert result.message == "OSError: disk gone (before frame 0)"
+    assert result.message == "OSError: disk gone (reading the sequence's info)"
     assert math.isnan(result.summary()["correct_pct"])

@@ -102,3 +102,15 @@ def test_a_dataset_path_selects_a_cell_next_to_registered_sequences(
     cells = select_cells(fake_registry, Selection(trackers=("blind",), datasets=("fake/S1", path)))
     assert [cell.dataset for cell in cells] == ["fake/S1", path]
     assert all(cell.modality is CAMERA for cell in cells)
+
+
+def test_two_paths_naming_one_file_are_one_dataset_under_the_first_name(
+    fake_registry: Registry, tmp_path: Path, make_image, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    make_image(tmp_path / "data" / "a.png")
+    (tmp_path / "data" / "seq.txt").write_text("1 0 6 0 # a.png\n")
+    (tmp_path / "work").mkdir()
+    monkeypatch.chdir(tmp_path / "work")
+    datasets = ("../data/seq.txt", str(tmp_path / "data" / "seq.txt"), "../work/../data/seq.txt")
+    cells = select_cells(fake_registry, Selection(trackers=("blind",), datasets=datasets))
+    assert [cell.dataset for cell in cells] == ["../data/seq.txt"]

@@ -1,10 +1,11 @@
-"""Tests of benchmark.store: one transaction per cell, nothing finished is lost."""
+"""Tests of benchmark.store: one transaction per cell, nothing finished is lost, damage is reported."""
 
 from __future__ import annotations
 
 import dataclasses
+import math
+import os
 import sqlite3
-import types
 from pathlib import Path
 
 import numpy as np
@@ -13,19 +14,61 @@ import pytest
 
 from benchmark.errors import DataError
 from benchmark.model import Outcome
-from benchmark.registry import Registry
-from benchmark.results import CellResult, FrameScore
-from benchmark.runner import run_cell
-from benchmark.store import ResultStore
+from benchmark.results import CellKey, CellResult, FrameScore
+from benchmark.store import CELL_COLUMNS, SCHEMA_VERSION, ResultStore
+
+ERRORS = ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
+DATASET_KEY = "0123456789abcdef0123456789abcdef"
+
+
+def make_result(
+    tracker: str,
+    outcomes: list[Outcome | None],
+    status: str = "ok",
+    message: str = "",
+    dataset: str = "fake/S1",
+    dataset_key: str = DATASET_KEY,
+    seed: int = 1,
+) -> CellResult:
+    """A camera cell whose frame ``i`` has errors ``i + 1`` (``nan`` where the frame was missed)."""
+    scores = tuple(
+        FrameScore(
+            index,
+            outcome,
+            {name: math.nan if outcome is Outcome.MISSED else (index + 1) / (position + 1)
+             for position, name in enumerate(ERRORS)},
+            0.002 * (index + 1),
+        )
+        for index, outcome in enumerate(outcomes)
+    )
+    return CellResult(
+        tracker=tracker,
+        tracker_version="1.0",
+        tracker_key=f"key-{tracker}",
+        params={"sigma_px": 4.0},
+        dataset=dataset,
+        dataset_key=dataset_key,
+        modality="camera",
+        seed=seed,
+        init="truth",
+        status=status,  # type: ignore[arg-type]
+        message=message,
+        scores=scores,
+        elapsed_s=0.5,
+        error_columns=ERRORS,
+    )
 
 
 @pytest.fixture
-def results(fakes: types.ModuleType, fake_registry: Registry) -> dict[str, CellResult]:
-    """Results of a noisy (ok), a raising (error) and a blind (ok) cell."""
-    sequence = fakes.FakeSequence()
+def results() -> dict[str, CellResult]:
+    """A noisy (ok), a raising (error) and a blind (ok, nothing detected) cell."""
+    correct, false, missed = Outcome.CORRECT, Outcome.FALSE, Outcome.MISSED
     return {
-        name: run_cell(fakes.make_cell(fake_registry.trackers[name], sequence, 1))
-        for name in ("noisy", "raising", "blind")
+        "noisy": make_result("noisy", [correct, false, missed, correct, None, correct, correct, missed, false, false]),
+        "raising": make_result(
+            "raising", [correct, correct, correct], status="error", message="RuntimeError: lost the cable (frame 3)"
+        ),
+        "blind": make_result("blind", [missed] * 10),
     }
 
 
@@ -36,13 +79,16 @@ def test_a_cell_round_trips_with_its_frames(tmp_path: Path, results: dict[str, C
         cell_id = store.add_cell(run, noisy)
         cells = store.cells(run)
         frames = store.frame_tables([cell_id])
+    assert list(cells.columns) == list(CELL_COLUMNS)
     row = cells.iloc[0]
-    assert (row["tracker"], row["dataset"], row["seed"], row["status"]) == ("noisy", "fake/S1", 1, "ok")
+    assert (row["tracker"], row["dataset"], row["dataset_key"], row["seed"], row["status"]) == (
+        "noisy", "fake/S1", DATASET_KEY, 1, "ok"
+    )
     assert row["tracker_key"] == noisy.tracker_key and row["frames"] == len(noisy.scores)
     expected = noisy.frames
     assert frames["frame"].tolist() == expected["frame"].tolist()
     assert frames["outcome"].tolist() == expected["outcome"].tolist()
-    for column in ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg", "step_ms"):
+    for column in (*ERRORS, "step_ms"):
         np.testing.assert_allclose(frames[column].to_numpy(float), expected[column].to_numpy(float), equal_nan=True)
 
 
@@ -116,16 +162,206 @@ def test_resume_lookup_prefers_the_latest_ok_cell_and_ignores_failures(
     assert found == {results["noisy"].key: latest}
 
 
+def test_cells_are_matched_and_kept_by_the_datasets_key_not_its_name(
+    tmp_path: Path, results: dict[str, CellResult]
+) -> None:
+    noisy = results["noisy"]
+    edited = dataclasses.replace(noisy, dataset_key="f" * 32)
+    elsewhere = dataclasses.replace(noisy, dataset="../fake/S1")
+    with ResultStore(tmp_path / "r.sqlite") as store:
+        run = store.start_run([], {})
+        original_id = store.add_cell(run, noisy)
+        edited_id = store.add_cell(run, edited)
+        assert store.find_ok_cells([elsewhere.key, edited.key._replace(dataset_key="e" * 32)]) == {
+            elsewhere.key: original_id
+        }
+        assert store.cells(run)["id"].tolist() == [original_id, edited_id]
+        elsewhere_id = store.add_cell(run, elsewhere)
+        kept = store.cells(run)
+    assert kept["id"].tolist() == [edited_id, elsewhere_id]
+    assert kept["dataset"].tolist() == ["fake/S1", "../fake/S1"]
+
+
+def test_run_problems_are_stored_with_their_run(tmp_path: Path, results: dict[str, CellResult]) -> None:
+    problem = "plugin 'acme' (acme-dist 1.0) failed to import: ImportError: No module named 'acme'"
+    with ResultStore(tmp_path / "r.sqlite") as store:
+        assert store.run_problems() == []
+        troubled = store.start_run([], {}, problems=[problem])
+        store.add_cell(troubled, results["noisy"])
+        killed = store.start_run([], {})  # no cell yet: not the latest run with cells
+        assert store.run_problems() == [problem]
+        assert store.run_problems(troubled) == [problem]
+        assert store.run_problems(killed) == []
+        assert store.runs()["problems"].tolist() == [f'["{problem}"]', "[]"]
+
+
 def test_a_foreign_file_or_schema_is_a_clear_error(tmp_path: Path) -> None:
     junk = tmp_path / "junk.sqlite"
     junk.write_bytes(b"this is not a database at all" * 100)
-    with pytest.raises(DataError, match="junk.sqlite"):
+    with pytest.raises(DataError, match="junk.sqlite: the results database is damaged"):
         ResultStore(junk)
     future = tmp_path / "future.sqlite"
     with sqlite3.connect(future) as connection:
         connection.execute("PRAGMA user_version = 99")
     with pytest.raises(DataError, match="schema version 99"):
         ResultStore(future)
+
+
+def test_another_programs_database_is_refused_and_left_untouched(tmp_path: Path) -> None:
+    foreign = tmp_path / "notes.sqlite"
+    connection = sqlite3.connect(foreign)
+    with connection:
+        connection.execute("CREATE TABLE notes (id INTEGER PRIMARY KEY, text TEXT)")
+        connection.execute("INSERT INTO notes (text) VALUES ('keep me')")
+    connection.close()
+    before = foreign.read_bytes()
+    refused = r"notes\.sqlite: not a trackbench results database \(it holds the tables notes\) and was left unchanged"
+    with pytest.raises(DataError, match=refused):
+        ResultStore(foreign)
+    assert foreign.read_bytes() == before
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["notes.sqlite"]
+
+
+def test_an_empty_file_becomes_a_new_database(tmp_path: Path, results: dict[str, CellResult]) -> None:
+    path = tmp_path / "r.sqlite"
+    path.touch()
+    with ResultStore(path) as store:
+        assert store.cells().empty
+        store.add_cell(store.start_run([], {}), results["noisy"])
+    with ResultStore(path) as store:
+        assert len(store.cells()) == 1
+
+
+V1_SCHEMA = """
+CREATE TABLE runs (
+    id INTEGER PRIMARY KEY, started TEXT NOT NULL, finished TEXT, argv TEXT NOT NULL, options TEXT NOT NULL,
+    version TEXT NOT NULL
+);
+CREATE TABLE cells (
+    id INTEGER PRIMARY KEY,
+    run_id INTEGER NOT NULL REFERENCES runs(id),
+    tracker TEXT NOT NULL, tracker_version TEXT NOT NULL, tracker_key TEXT NOT NULL, params TEXT NOT NULL,
+    dataset TEXT NOT NULL, modality TEXT NOT NULL, seed INTEGER NOT NULL, init TEXT NOT NULL,
+    status TEXT NOT NULL CHECK (status IN ('ok', 'error', 'timeout')),
+    message TEXT NOT NULL, detail TEXT NOT NULL, frames INTEGER NOT NULL, elapsed_s REAL NOT NULL,
+    finished TEXT NOT NULL
+);
+CREATE INDEX cells_by_key ON cells (tracker_key, dataset, seed, init);
+CREATE TABLE run_cells (
+    run_id INTEGER NOT NULL REFERENCES runs(id),
+    cell_id INTEGER NOT NULL REFERENCES cells(id),
+    PRIMARY KEY (run_id, cell_id)
+);
+CREATE TABLE frames (
+    cell_id INTEGER NOT NULL REFERENCES cells(id), position INTEGER NOT NULL, frame INTEGER NOT NULL,
+    outcome TEXT, step_ms REAL NOT NULL,
+    PRIMARY KEY (cell_id, position)
+);
+CREATE TABLE frame_errors (
+    cell_id INTEGER NOT NULL, position INTEGER NOT NULL, name TEXT NOT NULL, value REAL NOT NULL,
+    PRIMARY KEY (cell_id, position, name),
+    FOREIGN KEY (cell_id, position) REFERENCES frames(cell_id, position)
+);
+INSERT INTO runs VALUES (1, '2024-01-01T00:00:00+00:00', '2024-01-01T00:01:00+00:00', '[]', '{}', '0.1.0');
+INSERT INTO cells VALUES (7, 1, 'noisy', '1.0', 'key-noisy', '{}', 'fake/S1', 'camera', 1, 'truth', 'ok', '', '',
+                          1, 0.5, '2024-01-01T00:00:30+00:00');
+INSERT INTO run_cells VALUES (1, 7);
+INSERT INTO frames VALUES (7, 0, 0, 'correct', 2.0);
+INSERT INTO frame_errors VALUES (7, 0, 'err_d_px', 1.5);
+PRAGMA user_version = 1;
+"""
+"""A database as trackbench wrote it at schema version 1: one run with one cell of one frame."""
+
+
+def test_a_version_1_database_is_upgraded_in_place(tmp_path: Path, results: dict[str, CellResult]) -> None:
+    path = tmp_path / "r.sqlite"
+    connection = sqlite3.connect(path)
+    connection.executescript(V1_SCHEMA)
+    connection.close()
+    old_key = CellKey("key-noisy", "fake/S1", 1, "truth")
+
+    with ResultStore(path) as store:
+        old = store.cells(1)
+        assert old[["id", "dataset", "dataset_key"]].values.tolist() == [[7, "fake/S1", "fake/S1"]]
+        assert store.frame_tables([7])["err_d_px"].tolist() == [1.5]
+        assert store.run_problems(1) == []
+        assert store.find_ok_cells([results["noisy"].key, old_key]) == {old_key: 7}
+        run = store.start_run([], {}, problems=["a problem"])
+        new_id = store.add_cell(run, results["noisy"])
+    with ResultStore(path) as reopened:
+        assert reopened.cells(all_runs=True)["id"].tolist() == [7, new_id]
+        assert reopened.find_ok_cells([results["noisy"].key]) == {results["noisy"].key: new_id}
+        assert reopened.run_problems() == ["a problem"]
+    connection = sqlite3.connect(path)
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION
+    index = [row[2] for row in connection.execute("PRAGMA index_info(cells_by_key)")]
+    connection.close()
+    assert index == ["tracker_key", "dataset_key", "seed", "init"]
+
+
+def test_a_database_damaged_mid_file_is_a_data_error_naming_it(tmp_path: Path) -> None:
+    path = tmp_path / "results.sqlite"
+    with ResultStore(path) as store:
+        run = store.start_run([], {})
+        for seed in range(40):
+            store.add_cell(run, make_result("noisy", [Outcome.CORRECT, Outcome.FALSE] * 100, seed=seed))
+    assert not (tmp_path / "results.sqlite-wal").exists()  # all of it is in the file
+    connection = sqlite3.connect(path)
+    cells_page = connection.execute("SELECT rootpage FROM sqlite_master WHERE name = 'cells'").fetchone()[0]
+    connection.close()
+    original = path.read_bytes()
+    page_size = int.from_bytes(original[16:18], "big")
+    n_pages = len(original) // page_size
+    assert n_pages > 50
+    expected = (
+        f"{path}: the results database is damaged (database disk image is malformed); "
+        "move it aside to start a new one"
+    )
+
+    def damage(page: int) -> None:
+        """Overwrite page ``page`` (numbered from 1, as SQLite does) of the original file."""
+        damaged = bytearray(original)
+        damaged[(page - 1) * page_size : page * page_size] = b"\xa5" * page_size
+        path.write_bytes(damaged)
+
+    damage(cells_page)
+    with ResultStore(path) as store, pytest.raises(DataError) as raised:
+        store.cells()
+    assert str(raised.value) == expected and isinstance(raised.value.__cause__, sqlite3.DatabaseError)
+
+    # Frames fill the middle of the file: damage a page after another until reading them meets one.
+    for page in range(n_pages // 2, n_pages + 1):
+        damage(page)
+        with ResultStore(path) as store:
+            ids = store.cells()["id"]
+            try:
+                store.frame_tables(ids)
+            except DataError as exc:
+                assert str(exc) == expected
+                break
+    else:
+        pytest.fail("no damaged page was noticed")
+
+
+def test_a_database_that_cannot_be_opened_or_used_is_a_data_error(tmp_path: Path) -> None:
+    missing = tmp_path / "no such folder" / "r.sqlite"
+    with pytest.raises(DataError, match=r"no such folder/r\.sqlite: cannot open the results database \(unable to open"):
+        ResultStore(missing)
+    store = ResultStore(tmp_path / "r.sqlite")
+    store.close()
+    with pytest.raises(DataError, match=r"r\.sqlite: cannot use the results database \(Cannot operate on a closed"):
+        store.start_run([], {})
+
+
+@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() == 0, reason="needs a user whom permissions bind")
+def test_an_unwritable_folder_is_a_data_error(tmp_path: Path) -> None:
+    folder = tmp_path / "locked"
+    folder.mkdir(mode=0o500)
+    try:
+        with pytest.raises(DataError, match=r"locked/r\.sqlite: cannot open the results database"):
+            ResultStore(folder / "r.sqlite")
+    finally:
+        folder.chmod(0o700)
 
 
 def test_run_options_are_stored_as_json(tmp_path: Path) -> None:

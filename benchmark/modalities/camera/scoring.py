@@ -4,13 +4,17 @@ A frame is correct when, for each ground-truth border of the cable, the
 matched reported line has its mid-point within 5 px and its orientation
 within 3 degrees (seeds/004, section VI-C, Table V; ``conventions.md``
 section 3); the errors are those of ``(d, alpha, w, beta)``, angles in
-degrees (seeds/000, section 5.2.3).
+degrees (seeds/000, section 5.2.3).  A finite but absurd estimate is false
+(:meth:`CameraScorer.score`).
 """
 
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
+
+import numpy as np
 
 from benchmark.modalities.camera.geometry import DetectionRule, cable_borders, score_line_pair, state_errors
 from benchmark.modalities.camera.model import CableState, CameraTruth
@@ -43,6 +47,28 @@ class CameraScorer:
     def score(
         self, estimate: CableState | None, truth: CameraTruth | None, info: SequenceInfo
     ) -> tuple[Outcome | None, tuple[float, ...]]:
+        """Outcome and ``(d, alpha, w, beta)`` errors of one frame (px, deg, px, deg).
+
+        A finite but absurd estimate is false whatever its line pair looks
+        like, and its errors stay finite so that the store keeps them and the
+        RMSEs show it:
+
+        * an error too large for a float (``degrees(beta)`` beyond about
+          ``3e306`` rad) is reported as ``+-sys.float_info.max``;
+        * an angle so large that neighbouring floats are farther apart than
+          the rule's orientation tolerance names no direction: the float
+          ``2 pi`` wrapping of ``alpha`` and the exact reduction inside
+          ``cos`` and ``sin`` then disagree, and either may match the truth
+          by chance.  An ``alpha`` like that is charged 90 deg, the largest
+          error an orientation modulo 180 deg has; ``beta`` keeps its
+          (huge) difference;
+        * a border whose points overflow (``|d| + |w|/2`` beyond the float
+          range) is nowhere near the image.
+
+        Otherwise the line-pair rule decides (seeds/004, section VI-C,
+        Table V); its mid-point distances may overflow to ``inf``, which it
+        reads as far.
+        """
         nan = (math.nan,) * len(self.error_columns)
         if truth is None or not truth.cable.is_known:
             return None, nan
@@ -50,6 +76,19 @@ class CameraScorer:
             return Outcome.MISSED, nan
         if info.frame_size is None:
             raise ValueError(f"sequence {info.name!r} has no frame size; cannot score line pairs")
-        outcome = score_line_pair(cable_borders(estimate), cable_borders(truth.cable), info.frame_size, self.rule)
+        max_angle = math.radians(self.rule.max_angle_deg)
+        alpha_names_a_direction = math.ulp(estimate.alpha) <= max_angle
         d, alpha, w, beta = state_errors(estimate, truth.cable)
-        return outcome, (d, math.degrees(alpha), w, math.degrees(beta))
+        errors = (d, math.degrees(alpha) if alpha_names_a_direction else 90.0, w, math.degrees(beta))
+        if not all(math.isfinite(e) for e in errors):
+            largest = sys.float_info.max
+            return Outcome.FALSE, tuple(e if math.isfinite(e) else math.copysign(largest, e) for e in errors)
+        if not (alpha_names_a_direction and math.ulp(estimate.beta) <= max_angle):
+            return Outcome.FALSE, errors
+        try:
+            reported = cable_borders(estimate)
+        except ValueError:
+            return Outcome.FALSE, errors
+        with np.errstate(over="ignore", invalid="ignore"):
+            outcome = score_line_pair(reported, cable_borders(truth.cable), info.frame_size, self.rule)
+        return outcome, errors

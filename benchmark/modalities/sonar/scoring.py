@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 
 from benchmark.modalities.sonar.model import PipeEstimate, SonarTruth
@@ -42,10 +43,18 @@ class SonarScorer:
     def score(
         self, estimate: PipeEstimate | None, truth: SonarTruth | None, info: SequenceInfo
     ) -> tuple[Outcome | None, tuple[float, ...]]:
+        """Outcome and across-track error (m) of one ping.
+
+        An error too large for a float (``1e308 - (-1e308)``) is false
+        whatever the tolerance and is reported as ``+-sys.float_info.max``,
+        so that the store keeps it and the RMSE shows it.
+        """
         if truth is None or not math.isfinite(truth.across_m):
             return None, (math.nan,)
         if estimate is None:
             return Outcome.MISSED, (math.nan,)
         error = estimate.across_m - truth.across_m
+        if not math.isfinite(error):
+            return Outcome.FALSE, (math.copysign(sys.float_info.max, error),)
         correct = abs(error) <= self.tolerance_beams * truth.resolution_m
         return (Outcome.CORRECT if correct else Outcome.FALSE), (error,)

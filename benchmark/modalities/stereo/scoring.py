@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 
 from benchmark.modalities.stereo.model import StereoTruth, TargetEstimate
@@ -42,6 +43,15 @@ class StereoScorer:
     def score(
         self, estimate: TargetEstimate | None, truth: StereoTruth | None, info: SequenceInfo
     ) -> tuple[Outcome | None, tuple[float, ...]]:
+        """Outcome and position (m), speed (m/s) and heading (deg) errors of one frame.
+
+        Only the position decides the outcome, so a correct position with an
+        absurd but finite velocity stays correct and its speed error shows
+        on the board.  An error too large for a float (a distance or a speed
+        beyond the largest float, e.g. a velocity of ``(1.7e308, 1.7e308)``)
+        makes the frame false and is reported as ``sys.float_info.max``, so
+        that the store keeps it and the RMSE shows it.
+        """
         nan = (math.nan,) * len(self.error_columns)
         if truth is None:
             return None, nan
@@ -50,5 +60,9 @@ class StereoScorer:
         true = truth.target
         position = math.dist(estimate.position_m, true.position_m)
         heading = math.remainder(estimate.heading - true.heading, 2.0 * math.pi)
+        errors = (position, estimate.speed_mps - true.speed_mps, math.degrees(heading))
+        if not all(math.isfinite(e) for e in errors):
+            largest = sys.float_info.max
+            return Outcome.FALSE, tuple(e if math.isfinite(e) else math.copysign(largest, e) for e in errors)
         outcome = Outcome.CORRECT if position <= self.tolerance_m else Outcome.FALSE
-        return outcome, (position, estimate.speed_mps - true.speed_mps, math.degrees(heading))
+        return outcome, errors

@@ -9,11 +9,10 @@ scorer, file reader, exporter and scene kind.
 
 from __future__ import annotations
 
-import importlib.metadata
 import math
 import sys
 import types
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -168,34 +167,15 @@ def register_datasets(registry):
     registry.add_suite("altimeter", runs)
 
 
-class FakeDistribution(importlib.metadata.Distribution):
-    """An installed distribution as importlib.metadata sees one: its METADATA and entry_points.txt."""
-
-    def __init__(self, name: str, version: str, entry_points: dict[str, str]) -> None:
-        points = "".join(f"{key} = {value}\n" for key, value in entry_points.items())
-        self._files = {
-            "METADATA": f"Metadata-Version: 2.1\nName: {name}\nVersion: {version}\n",
-            "entry_points.txt": f"[trackbench]\n{points}",
-        }
-
-    def read_text(self, filename: str) -> str | None:
-        return self._files.get(filename)
-
-    def locate_file(self, path: str) -> Path:
-        return Path(path)
-
-
 @pytest.fixture
-def altimeter_installed(monkeypatch: pytest.MonkeyPatch) -> None:
+def altimeter_installed(monkeypatch: pytest.MonkeyPatch, installed: Callable[..., object]) -> None:
     """The distribution ``acme-altimeter`` installed, offering one plugin module with all three hooks."""
     module = types.ModuleType("acme_altimeter")
     module.trackbench_register_modalities = hookimpl(register_modalities)
     module.trackbench_register_trackers = hookimpl(register_trackers)
     module.trackbench_register_datasets = hookimpl(register_datasets)
     monkeypatch.setitem(sys.modules, "acme_altimeter", module)
-    real = list(importlib.metadata.distributions())
-    fake = FakeDistribution("acme-altimeter", "2.1", {"altimeter": "acme_altimeter"})
-    monkeypatch.setattr(importlib.metadata, "distributions", lambda: [*real, fake])
+    installed("acme-altimeter", {"altimeter": "acme_altimeter"}, version="2.1")
 
 
 def test_the_modality_arrives_through_its_entry_point_like_the_built_in_ones(altimeter_installed: None) -> None:

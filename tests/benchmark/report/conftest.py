@@ -21,6 +21,7 @@ def boards() -> dict[str, pd.DataFrame]:
                 "tracker": "a",
                 "tracker_key": "key-a",
                 "dataset": "s/1",
+                "dataset_key": "data-s/1",
                 "modality": "camera",
                 "seed": 0,
                 "init": "truth",

@@ -20,3 +20,10 @@ def test_text_is_escaped_and_empty_results_say_so(boards: dict[str, pd.DataFrame
     assert "<script>" not in page and "&lt;script&gt;" in page
     assert "<h2>a&lt;b</h2>" in page and "R&amp;D" in page
     assert "No results." in to_html({})
+
+
+def test_problems_get_an_escaped_section(boards: dict[str, pd.DataFrame]) -> None:
+    page = to_html(boards, problems=["plugin 'acme' failed to import: <script>", "second"])
+    assert "<h2>Problems</h2>" in page and "<script>" not in page
+    assert "<ul><li>plugin &#x27;acme&#x27; failed to import: &lt;script&gt;</li><li>second</li></ul>" in page
+    assert "Problems" not in to_html(boards)

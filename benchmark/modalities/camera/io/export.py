@@ -24,6 +24,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 from benchmark.errors import DataError
+from benchmark.files import make_folder
 from benchmark.modalities.camera.io.images import size_of, write_png
 from benchmark.modalities.camera.io.sequence_file import write_sequence_file
 from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState, CameraTruth
@@ -60,19 +61,17 @@ def export_camera_sequence(sequence: Sequence, out: Path, stem: str) -> Path:
     ------
     DataError
         If a frame is not a grey ``uint8`` image or differs in size from
-        the first, a truth is not a camera truth, or a file cannot be written.  Errors from reading the
-        sequence itself pass through.
+        the first, a truth is not a camera truth, or a folder (``out``
+        itself, say, with a file in its way) or a file cannot be created or
+        written, naming it.  Errors from reading the sequence itself pass
+        through.
 
     References
     ----------
     seeds/000, section 4.7.3; ``conventions.md`` section 2.
     """
     info = sequence.info
-    image_dir = out / stem
-    try:
-        image_dir.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise DataError(f"{image_dir}: cannot create folder: {exc.strerror or exc}") from None
+    image_dir = make_folder(make_folder(out) / stem)
 
     def rows() -> Iterator[tuple[CableState, str]]:
         first_size: tuple[int, int] | None = None

@@ -8,6 +8,9 @@ name ends in an image format OpenCV reads
 order, so that ``frame2.png`` comes before ``frame10.png``.  Sub-folders are
 not searched.  Every frame's truth is
 :data:`benchmark.modalities.camera.model.UNKNOWN_CABLE`.
+
+The folder's identity is its resolved path and the names, sizes and
+modification times of its images; other files may come and go.
 """
 
 from __future__ import annotations
@@ -78,4 +81,6 @@ class ImageFolder(ImageListSequence):
             images=images,
             cables=[UNKNOWN_CABLE] * len(images),
             frame_interval_s=frame_interval_s,
+            # The folder's own size and mtime change with any file added to it; its images are its content.
+            content=b"",
         )

@@ -13,6 +13,12 @@ image is read once to fill :attr:`SequenceInfo.frame_size` and its size is
 cached.  The files carry no time stamps: a frame's ``time_s`` is its index
 times ``frame_interval_s`` when one is given, and otherwise the index itself
 (time counted in frames).
+
+The sequence's :attr:`~ImageListSequence.identity` is fixed when it is made,
+from the list's source and the size and modification time of every image
+(:func:`benchmark.identity.file_fingerprint`): no image is opened for it,
+so that naming a sequence never blocks on an image, and a copy sent to a
+worker process keeps it.
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from benchmark.errors import DataError
+from benchmark.identity import DatasetIdentity, file_fingerprint, resolved_source
 from benchmark.modalities.camera.io.images import read_grey, size_of
 from benchmark.modalities.camera.model import CableState, CameraTruth
 from benchmark.model import Frame, Sequence, SequenceInfo
@@ -56,6 +63,10 @@ class ImageListSequence(Sequence):
         unlabelled), as many as ``images``.
     frame_interval_s : float, optional
         Time between frames in s, where the caller knows it.
+    content : bytes, optional
+        The bytes of ``source`` where it is a file the caller has read (an
+        image sequence file); its identity hashes them.  Without them the
+        size and modification time of ``source`` stand in.
 
     References
     ----------
@@ -69,6 +80,8 @@ class ImageListSequence(Sequence):
         images: Iterable[Path],
         cables: Iterable[CableState],
         frame_interval_s: float | None = None,
+        *,
+        content: bytes | None = None,
     ) -> None:
         self._name = name
         self._source = source
@@ -78,6 +91,12 @@ class ImageListSequence(Sequence):
             raise ValueError(f"{len(self._images)} images but {len(self._cables)} cable states")
         self._frame_interval_s = check_frame_interval(frame_interval_s)
         self._frame_size: tuple[int, int] | None = None
+        self._identity = DatasetIdentity(
+            name,
+            "camera",
+            source=resolved_source(source),
+            fingerprint=file_fingerprint(source, content=content, named=self._images),
+        )
 
     def _where(self, index: int) -> str:
         """Prefix for error messages about frame ``index``; subclasses add their location."""
@@ -90,6 +109,11 @@ class ImageListSequence(Sequence):
     def images(self) -> tuple[Path, ...]:
         """The image paths, in frame order."""
         return self._images
+
+    @property
+    def identity(self) -> DatasetIdentity:
+        """The source resolved and the fingerprint of its content and images, as when the sequence was made."""
+        return self._identity
 
     @property
     def info(self) -> SequenceInfo:

@@ -29,12 +29,13 @@ from __future__ import annotations
 
 import math
 import os
-import uuid
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
 from benchmark.errors import DataError
+from benchmark.files import atomic_writer
+from benchmark.io import read_regular_file
 from benchmark.modalities.camera.io.image_list import ImageListSequence
 from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState
 
@@ -121,24 +122,25 @@ def read_sequence_file(path: str | os.PathLike[str]) -> list[SequenceRow]:
     Raises
     ------
     DataError
-        If the file is missing or unreadable, holds no data row, or a row is
-        malformed (wrong count of numbers, a word that is not a number, an
-        infinite value, ``nan`` mixed with numbers, no ``#``, no file name).
-        The message starts with ``path:line:``.
+        If the file is missing, not a regular file or unreadable, holds no
+        data row, or a row is malformed (wrong count of numbers, a word that
+        is not a number, an infinite value, ``nan`` mixed with numbers, no
+        ``#``, no file name).  The message starts with ``path:line:``.
 
     References
     ----------
     seeds/000, section 4.7.3; ``conventions.md`` section 2.
     """
     file = Path(path)
+    return _parse(file, read_regular_file(file, "image sequence file"))
+
+
+def _parse(file: Path, content: bytes) -> list[SequenceRow]:
+    """The data rows of the bytes ``content`` of the image sequence file ``file``."""
     try:
-        text = file.read_text(encoding="utf-8-sig")
-    except FileNotFoundError:
-        raise DataError(f"{file}: no such image sequence file") from None
+        text = content.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         raise DataError(f"{file}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
-    except OSError as exc:
-        raise DataError(f"{file}: cannot read image sequence file: {exc.strerror or exc}") from None
     folder = file.absolute().parent
     rows = []
     for number, line in enumerate(text.splitlines(), start=1):
@@ -221,24 +223,10 @@ def write_sequence_file(
     """
     file = Path(path)
     folder = file.absolute().parent.resolve()
-    # A uniquely named sibling, created with the default permissions, becomes the file only when complete.
-    temporary = folder / f".{file.name}.{uuid.uuid4().hex[:12]}.tmp"
-    try:
-        handle = temporary.open("x", encoding="utf-8", newline="\n")
-    except OSError as exc:
-        raise DataError(f"{file}: cannot write image sequence file: {exc.strerror or exc}") from None
-    try:
-        with handle:
-            handle.write(HEADER + "\n")
-            for number, (cable, image) in enumerate(rows, start=1):
-                handle.write(_format_row(cable, image, folder, f"{file}: row {number}: "))
-        os.replace(temporary, file)
-    except OSError as exc:
-        temporary.unlink(missing_ok=True)
-        raise DataError(f"{file}: cannot write image sequence file: {exc.strerror or exc}") from None
-    except BaseException:
-        temporary.unlink(missing_ok=True)
-        raise
+    with atomic_writer(file, "image sequence file") as handle:
+        handle.write(HEADER + "\n")
+        for number, (cable, image) in enumerate(rows, start=1):
+            handle.write(_format_row(cable, image, folder, f"{file}: row {number}: "))
 
 
 class ImageSequenceFile(ImageListSequence):
@@ -247,7 +235,9 @@ class ImageSequenceFile(ImageListSequence):
     The text file is parsed when the object is made, so a malformed row
     fails at once; images are decoded only while frames are produced
     (:class:`~benchmark.modalities.camera.io.image_list.ImageListSequence`).  The object holds
-    the path and the parsed rows and pickles cheaply.
+    the path and the parsed rows and pickles cheaply.  Its identity hashes
+    the file's bytes as read here, with the size and modification time of
+    each image it lists.
 
     Parameters
     ----------
@@ -260,9 +250,10 @@ class ImageSequenceFile(ImageListSequence):
     Raises
     ------
     DataError
-        As :func:`read_sequence_file`; later, while iterating, for a
-        missing, corrupt or differently sized image, naming the image and
-        the line of the sequence file it is listed on.
+        As :func:`read_sequence_file` (a FIFO or a device is refused
+        unopened); later, while iterating, for a missing, corrupt or
+        differently sized image, naming the image and the line of the
+        sequence file it is listed on.
 
     References
     ----------
@@ -271,13 +262,15 @@ class ImageSequenceFile(ImageListSequence):
 
     def __init__(self, path: str | os.PathLike[str], *, frame_interval_s: float | None = None) -> None:
         self._path = Path(path)
-        self._rows: tuple[SequenceRow, ...] = tuple(read_sequence_file(self._path))
+        content = read_regular_file(self._path, "image sequence file")
+        self._rows: tuple[SequenceRow, ...] = tuple(_parse(self._path, content))
         super().__init__(
             name=os.fspath(path),
             source=self._path,
             images=(row.image for row in self._rows),
             cables=(row.cable for row in self._rows),
             frame_interval_s=frame_interval_s,
+            content=content,
         )
 
     @property

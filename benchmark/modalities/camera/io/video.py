@@ -9,7 +9,8 @@ frame's truth is :data:`benchmark.modalities.camera.model.UNKNOWN_CABLE`.
 The file is opened once when the object is made, to check that a first frame
 decodes and to read the frame size, the frame rate and the container's frame
 count; each call to :meth:`VideoFile.frames` opens it again.  The object
-holds only the path and these numbers, so it pickles cheaply.
+holds only the path and these numbers, so it pickles cheaply.  Its identity
+is the resolved path and the file's size and modification time, taken then.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ import cv2
 import numpy as np
 
 from benchmark.errors import DataError
+from benchmark.identity import DatasetIdentity, file_fingerprint, resolved_source
 from benchmark.modalities.camera.io.images import size_of
 from benchmark.modalities.camera.model import UNKNOWN_CABLE, CameraTruth
 from benchmark.model import Frame, Sequence, SequenceInfo
@@ -98,11 +100,19 @@ class VideoFile(Sequence):
         self._frame_size = size_of(first)
         self._n_frames = int(round(count)) if math.isfinite(count) and count > 0 else None
         self._frame_interval_s = 1.0 / fps if math.isfinite(fps) and fps > 0 else None
+        self._identity = DatasetIdentity(
+            self._name, "camera", source=resolved_source(self._path), fingerprint=file_fingerprint(self._path)
+        )
 
     @property
     def path(self) -> Path:
         """The video file, absolute."""
         return self._path
+
+    @property
+    def identity(self) -> DatasetIdentity:
+        """The video's resolved path, and its size and modification time when it was opened."""
+        return self._identity
 
     @property
     def info(self) -> SequenceInfo:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import pickle
+import re
 from collections.abc import Iterator
 
 import numpy as np
@@ -32,7 +33,8 @@ class PingSequence(Sequence):
 
     @property
     def info(self) -> SequenceInfo:
-        return SequenceInfo("sonar/tiny", self.modality, len(self.pings), frame_interval_s=0.25, calibration=CALIBRATION)
+        n_pings = len(self.pings)
+        return SequenceInfo("sonar/tiny", self.modality, n_pings, frame_interval_s=0.25, calibration=CALIBRATION)
 
     def frames(self) -> Iterator[Frame]:
         for index, (across, depth, truth) in enumerate(self.pings):
@@ -88,7 +90,7 @@ def test_a_written_sequence_reads_back_with_its_calibration(tmp_path_factory, se
 def test_export_writes_a_sonar_sequence_as_one_swath_file(tmp_path):
     path = export_sequence(PingSequence(random_pings(1)), tmp_path, MODALITIES)
     assert path == tmp_path / "sonar_tiny.swaths" and path.is_file()
-    assert not list(tmp_path.glob("*.partial"))
+    assert [item.name for item in tmp_path.iterdir()] == ["sonar_tiny.swaths"]
     assert isinstance(open_sequence(path, [SONAR]), SwathFile)
 
 
@@ -99,10 +101,14 @@ def test_the_sonar_exporter_writes_stem_dot_swaths_into_a_new_folder(tmp_path):
     assert_same_frames(SwathFile(path), PingSequence(random_pings(1)))
 
 
-def write(tmp_path, body: str, header: str | None = None) -> SwathFile:
-    header = header if header is not None else "# n_beams = 2\n# swath_angle_deg = 90\n# pipe_diameter_m = 0.5\n"
+HEADER = "# n_beams = 2\n# swath_angle_deg = 90\n# pipe_diameter_m = 0.5\n"
+ROW = "0.0 nan nan nan nan -1 1 10 10\n"
+
+
+def write(tmp_path, body: str | bytes, header: str | bytes = HEADER) -> SwathFile:
+    """Open ``data.swaths`` made of ``header`` and ``body`` (text, or bytes taken as they are)."""
     path = tmp_path / "data.swaths"
-    path.write_text(header + body, encoding="utf-8")
+    path.write_bytes(b"".join(part.encode() if isinstance(part, str) else part for part in (header, body)))
     return SwathFile(path)
 
 
@@ -120,31 +126,95 @@ def test_the_ping_interval_defaults_to_the_first_time_step(tmp_path):
         ("0.0 nan nan nan nan -1 1 10\n", r"data.swaths:4: expected 9 numbers"),
         ("0.0 nan nan nan nan -1 1 ten 10\n", r"data.swaths:4: field 8 is not a number: 'ten'"),
         ("0.0 1.0 nan nan nan -1 1 10 10\n", r"data.swaths:4: the four truth fields must all be numbers or all be nan"),
+        ("0.0 nan nan nan nan -1 inf 10 10\n", r"data.swaths:4: field 7 is infinite \('inf'\)"),
+        ("0.0 nan nan nan nan -1 1 10 -inf\n", r"data.swaths:4: field 9 is infinite \('-inf'\)"),
+        ("0.0 inf 1 1 1 -1 1 10 10\n", r"data.swaths:4: field 2 is infinite"),
+        ("0.0 nan nan nan nan 1e400 1 10 10\n", r"data.swaths:4: field 6 is infinite \('1e400'\)"),
+        ("nan nan nan nan nan -1 1 10 10\n", r"data.swaths:4: the time \(field 1\) is nan"),
     ],
 )
-def test_malformed_rows_are_named_by_file_and_line(tmp_path, body, message):
-    sequence = write(tmp_path, body)
+def test_malformed_rows_are_refused_when_the_file_is_opened_naming_file_and_line(tmp_path, body, message):
     with pytest.raises(DataError, match=message):
-        list(sequence.frames())
+        write(tmp_path, body)
+
+
+def test_a_row_that_does_not_match_n_beams_is_refused_at_open_wherever_it_is(tmp_path):
+    with pytest.raises(DataError, match=r"data.swaths:7: expected 9 numbers.*got 11"):
+        write(tmp_path, ROW + ROW + "# a comment\n" + "0.0 nan nan nan nan -1 0 1 10 10 10\n" + ROW)
+
+
+@pytest.mark.parametrize(
+    ("header", "body", "message"),
+    [
+        (HEADER.encode() + b"# made by \xe9quipe 3\n", ROW.encode(), r"data.swaths:4: not UTF-8 text"),
+        (HEADER.encode(), b"0.0 nan nan nan nan -1 1 10 1\xff0\n", r"data.swaths:4: not UTF-8 text"),
+        (HEADER.encode(), (ROW + ROW).encode() + b"# end \x80\n", r"data.swaths:6: not UTF-8 text"),
+    ],
+)
+def test_a_byte_that_is_not_utf8_anywhere_is_named_by_file_and_line(tmp_path, header, body, message):
+    with pytest.raises(DataError, match=message):
+        write(tmp_path, body, header=header)
 
 
 @pytest.mark.parametrize(
     ("header", "message"),
     [
         ("# n_beams = 2\n# swath_angle_deg = 90\n", "header lacks pipe_diameter_m"),
-        ("# n_beams = 2.5\n# swath_angle_deg = 90\n# pipe_diameter_m = 1\n", "n_beams must be a whole number"),
-        ("# n_beams = 2\n# swath_angle_deg = -90\n# pipe_diameter_m = 1\n", "swath_angle_deg must be positive"),
+        ("# n_beams = 2.5\n", r"data.swaths:1: header value n_beams must be a whole number >= 1, got '2.5'"),
+        ("# n_beams = inf\n", r"data.swaths:1: header value n_beams must be a whole number >= 1, got 'inf'"),
+        ("# n_beams = nan\n", r"data.swaths:1: header value n_beams must be a whole number"),
+        ("# n_beams = -2\n", r"data.swaths:1: header value n_beams must be a whole number"),
+        ("# n_beams = 0\n", r"data.swaths:1: header value n_beams must be a whole number"),
+        ("# n_beams = 1e400\n", r"data.swaths:1: header value n_beams must be a whole number"),
         ("# n_beams = two\n", r"data.swaths:1: n_beams is not a number"),
+        ("# n_beams = 2\n# swath_angle_deg = -90\n", r"data.swaths:2: header value swath_angle_deg must be a finite"),
+        ("# n_beams = 2\n# swath_angle_deg = inf\n", r"data.swaths:2: header value swath_angle_deg must be a finite"),
+        (HEADER + "# range_sigma_m = nan\n", r"data.swaths:4: header value range_sigma_m must be a finite .* >= 0"),
+        (HEADER + "# ping_interval_s = 0\n", r"data.swaths:4: header value ping_interval_s must be a finite .* > 0"),
+        (HEADER + "# n_beams = 2\n", r"data.swaths:4: header value n_beams is given twice \(also on line 1\)"),
     ],
 )
-def test_bad_headers_are_named(tmp_path, header, message):
+def test_bad_headers_are_named_by_file_and_line(tmp_path, header, message):
     with pytest.raises(DataError, match=message):
-        write(tmp_path, "", header=header)
+        write(tmp_path, ROW, header=header)
+
+
+def test_a_huge_n_beams_is_refused_by_the_first_row(tmp_path):
+    with pytest.raises(DataError, match=r"data.swaths:4: expected 2000000000005 numbers"):
+        write(tmp_path, ROW, header=HEADER.replace("n_beams = 2", "n_beams = 1e12"))
+
+
+def test_a_file_without_pings_is_refused(tmp_path):
+    with pytest.raises(DataError, match=r"data.swaths: no pings"):
+        write(tmp_path, "# only a comment\n")
 
 
 def test_a_missing_file_is_named(tmp_path):
     with pytest.raises(DataError, match="nothing.swaths"):
         open_sequence(tmp_path / "nothing.swaths", MODALITIES.values())
+
+
+def test_exporting_under_a_file_is_a_data_error_naming_the_output_folder(tmp_path):
+    blocker = tmp_path / "blocker"
+    blocker.write_text("mine", encoding="utf-8")
+    for out in (blocker / "sub", blocker):
+        with pytest.raises(DataError, match=rf"^{re.escape(str(out))}: cannot create folder"):
+            export_sequence(PingSequence(random_pings(1)), out, MODALITIES)
+    assert [item.name for item in tmp_path.iterdir()] == ["blocker"]
+    assert blocker.read_text(encoding="utf-8") == "mine"
+
+
+@pytest.mark.parametrize(
+    ("pings", "message"),
+    [
+        ([], "sonar/tiny: the sequence has no pings to write"),
+        ([(np.zeros(5), np.ones(5), SonarTruth(1.0, math.inf, 0.0, 0.1))], "ping 0: truth .* is not all finite"),
+    ],
+)
+def test_writing_refuses_what_the_reader_would_refuse(tmp_path, pings, message):
+    with pytest.raises(DataError, match=message):
+        write_swath_file(PingSequence(pings), tmp_path / "x.swaths")
+    assert not list(tmp_path.iterdir())
 
 
 def test_writing_refuses_other_modalities_and_leaves_no_partial_file(tmp_path):

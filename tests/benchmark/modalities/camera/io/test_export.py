@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -107,6 +108,16 @@ def test_png_write_failure_is_a_data_error_and_leaves_no_sequence_file(tmp_path)
     with pytest.raises(DataError, match="frame 1.*frame_00001.png"):
         export_sequence(TinySequence(), tmp_path, stem="S1")
     assert not (tmp_path / "S1.txt").exists()
+
+
+def test_exporting_under_a_file_is_a_data_error_naming_the_output_folder(tmp_path):
+    blocker = tmp_path / "blocker"
+    blocker.write_text("mine", encoding="utf-8")
+    for out in (blocker / "sub", blocker):
+        with pytest.raises(DataError, match=rf"^{re.escape(str(out))}: cannot create folder"):
+            export_sequence(TinySequence(), out)
+    assert [item.name for item in tmp_path.iterdir()] == ["blocker"]
+    assert blocker.read_text(encoding="utf-8") == "mine"
 
 
 def test_sequences_of_a_modality_without_exporter_are_refused(tmp_path):

@@ -28,7 +28,8 @@ def test_natural_key_is_a_total_order_on_distinct_names():
 
 
 def test_images_come_in_natural_order_and_other_files_are_skipped(tmp_path):
-    for number, name in [(10, "frame10.png"), (2, "frame2.png"), (1, "frame1.tif"), (3, "Frame3.PNG"), (4, "frame4.DIB")]:
+    names = [(10, "frame10.png"), (2, "frame2.png"), (1, "frame1.tif"), (3, "Frame3.PNG"), (4, "frame4.DIB")]
+    for number, name in names:
         writable = tmp_path / (name if not name.endswith(".DIB") else "tmp.bmp")
         assert cv2.imwrite(str(writable), np.full((5, 7), number, dtype=np.uint8))
         writable.rename(tmp_path / name)

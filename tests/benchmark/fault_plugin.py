@@ -1,0 +1,166 @@
+"""``acme_faults``: a third-party plugin whose trackers misbehave in every way a plugin can.
+
+The fault-injection tests (``test_fault_injection.py``) install this file as
+the module ``acme_faults`` of a real distribution, ``acme-faults 1.0``, in a
+temporary site folder (a ``.dist-info`` with its entry point), so that
+trackbench finds it as it finds any plugin, in the test process and in the
+``trackbench`` processes the tests start.
+
+Every faulty tracker returns the true cable state until frame
+:data:`FAULT_AT`, then misbehaves: so each cell has finished frames that
+must survive the fault.  The suite ``faults`` holds one short sequence.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import sys
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from benchmark import CableState, CameraFrame, CameraTruth, Frame, Sequence, SequenceInfo, Tracker, hookimpl
+
+FAULT_AT = 2
+"""The frame at which a faulty tracker misbehaves; frames before it are scored."""
+N_FRAMES = 6
+PID_FILE_ENV = "ACME_FAULTS_PID_FILE"
+"""Where the spinning tracker writes its process id before it spins, if set."""
+
+
+@dataclass(frozen=True)
+class Corridor(Sequence):
+    """A short camera sequence: a cable drifting right over a flat grey seabed."""
+
+    name: str = "faults/corridor"
+    n_frames: int = N_FRAMES
+
+    @property
+    def info(self) -> SequenceInfo:
+        return SequenceInfo(self.name, "camera", n_frames=self.n_frames, frame_size=(32, 24), frame_interval_s=0.04)
+
+    def frames(self) -> Iterator[Frame]:
+        for index in range(self.n_frames):
+            truth = CameraTruth(CableState(d=-4.0 + index, alpha=0.01 * index, w=6.0, beta=0.02))
+            yield Frame(index, np.full((24, 32), 60, dtype=np.uint8), truth, time_s=0.04 * index)
+
+
+class Faulty(Tracker[CameraTruth, CableState]):
+    """Right until frame :data:`FAULT_AT`, then :meth:`fault`."""
+
+    version = "1.0"
+    modality = "camera"
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: CameraTruth | None = None) -> None:
+        pass
+
+    def step(self, frame: CameraFrame) -> CableState | None:
+        if frame.index >= FAULT_AT:
+            return self.fault(frame)
+        return frame.truth.cable
+
+    def fault(self, frame: CameraFrame) -> Any:
+        return frame.truth.cable
+
+
+class Honest(Faulty):
+    name = "honest"
+
+
+class Exits(Faulty):
+    name = "exits"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        sys.exit(3)
+
+
+class Interrupts(Faulty):
+    name = "interrupts"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        raise KeyboardInterrupt
+
+
+class Unprintable(BaseException):
+    """A BaseException of the plugin's own, whose message cannot even be shown."""
+
+    def __str__(self) -> str:
+        raise RuntimeError("no message")
+
+
+class RaisesOddly(Faulty):
+    name = "raises-oddly"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        raise Unprintable
+
+
+class Spins(Faulty):
+    name = "spins"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        pid_file = os.environ.get(PID_FILE_ENV)
+        if pid_file:
+            Path(pid_file).write_text(str(os.getpid()))
+        while True:
+            pass
+
+
+class ExitsHard(Faulty):
+    name = "exits-hard"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        os._exit(7)
+
+
+class Segfaults(Faulty):
+    name = "segfaults"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        ctypes.string_at(0)
+
+
+class ReturnsNan(Faulty):
+    name = "returns-nan"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        return CableState(float("nan"), 0.0, 6.0, 0.0)
+
+
+class ReturnsAbsurd(Faulty):
+    name = "returns-absurd"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        return CableState(1e308, 1e308, 1e308, 1e308)
+
+
+class Slow(Faulty):
+    """Right on every frame, but 0.5 s per frame: something to interrupt."""
+
+    name = "slow"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        time.sleep(0.5)
+        return frame.truth.cable
+
+
+SAFE = (Honest, Exits, Interrupts, RaisesOddly, ReturnsNan, ReturnsAbsurd)
+"""Trackers whose faults a run in the test process survives even without worker processes."""
+PROCESS_KILLERS = (Spins, ExitsHard, Segfaults)
+"""Trackers that only a worker process can contain."""
+
+
+@hookimpl
+def trackbench_register_trackers(registry: Any) -> None:
+    for tracker in (*SAFE, *PROCESS_KILLERS, Slow):
+        registry.add_tracker(tracker)
+
+
+@hookimpl
+def trackbench_register_datasets(registry: Any) -> None:
+    registry.add_suite("faults", [Corridor()])

@@ -1,0 +1,227 @@
+"""Fault injection: a third-party plugin whose trackers raise, exit, interrupt, spin, crash and lie.
+
+The plugin (``fault_plugin.py``) is installed as a real distribution in a
+temporary site folder.  Whatever its trackers do, a run must end with one
+error or timeout row per faulty cell (frames before the fault kept), the
+honest tracker's cell ``ok``, a board, exit status 1 and no traceback; only
+the user's Ctrl-C stops a run (exit 130, finished cells kept), and workers
+die with the run.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import filelock
+import pandas as pd
+import pytest
+from click.testing import CliRunner, Result
+
+from benchmark.cli import main
+from benchmark.store import DATABASE_NAME, ResultStore
+
+PLUGIN_SOURCE = Path(__file__).with_name("fault_plugin.py")
+FAULT_AT = 2
+TIMEOUT_S = 3.0
+
+EXPECTED = {
+    # tracker: (status, message start, frames kept)
+    "honest": ("ok", "", 6),
+    "exits": ("error", "SystemExit: 3 (frame 2)", 2),
+    "interrupts": ("error", "KeyboardInterrupt (frame 2)", 2),
+    "raises-oddly": ("error", "Unprintable: <Unprintable that cannot be shown> (frame 2)", 2),
+    "returns-nan": ("error", "EstimateError: tracker 'returns-nan' returned an invalid estimate", 2),
+    "returns-absurd": ("ok", "", 6),
+    "spins": ("timeout", f"no result within the {TIMEOUT_S:g} s limit", 0),
+    "exits-hard": ("error", "the worker process ended (exit status 7)", 0),
+    "segfaults": ("error", "the worker process ended (killed by SIGSEGV)", 0),
+}
+IN_PROCESS_SAFE = ["honest", "exits", "interrupts", "raises-oddly", "returns-nan", "returns-absurd"]
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A site folder holding the distribution ``acme-faults 1.0`` with its ``trackbench`` entry point."""
+    folder = tmp_path_factory.mktemp("site")
+    shutil.copy(PLUGIN_SOURCE, folder / "acme_faults.py")
+    info = folder / "acme_faults-1.0.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: acme-faults\nVersion: 1.0\n")
+    (info / "entry_points.txt").write_text("[trackbench]\nfaults = acme_faults\n")
+    return folder
+
+
+@pytest.fixture
+def faults_installed(site: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
+    monkeypatch.syspath_prepend(str(site))
+    yield
+    sys.modules.pop("acme_faults", None)
+
+
+def invoke(*arguments: str) -> Result:
+    return CliRunner().invoke(main, list(arguments))
+
+
+def stored_cells(out: Path) -> pd.DataFrame:
+    with ResultStore(out / DATABASE_NAME) as store:
+        return store.cells().set_index("tracker")
+
+
+def assert_rows_as_expected(cells: pd.DataFrame, trackers: list[str]) -> None:
+    assert sorted(cells.index) == sorted(trackers)
+    for tracker in trackers:
+        status, message, frames = EXPECTED[tracker]
+        row = cells.loc[tracker]
+        assert (row["status"], row["frames"]) == (status, frames), (tracker, row["message"])
+        assert row["message"].startswith(message), (tracker, row["message"])
+
+
+@pytest.mark.parametrize("jobs", ["0", "2"])
+def test_every_fault_becomes_its_cell_s_row_and_the_run_exits_1(
+    faults_installed: None, tmp_path: Path, jobs: str
+) -> None:
+    trackers = list(EXPECTED)
+    selected = [word for tracker in trackers for word in ("--tracker", tracker)]
+    limit = ["--timeout", f"{TIMEOUT_S}"]
+    result = invoke("run", "--suite", "faults", *selected, "--jobs", jobs, *limit, "--out", str(tmp_path))
+    assert result.exit_code == 1, result.output
+    assert "Traceback" not in result.output
+    assert "7 of 9 cells did not end ok" in result.output
+    assert_rows_as_expected(stored_cells(tmp_path), trackers)
+    board = pd.read_csv(tmp_path / "leaderboard.csv")
+    absurd = board[(board.tracker == "returns-absurd") & (board.dataset == "(all)")].iloc[0]
+    assert absurd["false_pct"] == pytest.approx(100.0 * 4 / 6)
+    assert pd.notna(absurd["rmse_d_px"]) and absurd["rmse_d_px"] < float("inf")
+
+
+def test_in_process_mode_keeps_every_fault_a_process_can_survive_in_its_cell(
+    faults_installed: None, tmp_path: Path
+) -> None:
+    selected = [word for tracker in IN_PROCESS_SAFE for word in ("--tracker", tracker)]
+    result = invoke("run", "--suite", "faults", *selected, "--in-process", "--out", str(tmp_path))
+    assert result.exit_code == 1, result.output
+    assert_rows_as_expected(stored_cells(tmp_path), IN_PROCESS_SAFE)
+
+
+def test_a_clean_run_exits_0_and_a_usage_error_2_before_anything_runs(faults_installed: None, tmp_path: Path) -> None:
+    assert invoke("run", "--suite", "faults", "--tracker", "honest", "--out", str(tmp_path)).exit_code == 0
+    unknown = invoke("run", "--suite", "faults", "--tracker", "nobody", "--out", str(tmp_path / "other"))
+    assert unknown.exit_code == 2 and unknown.output.startswith("Error: unknown tracker 'nobody'")
+    assert not (tmp_path / "other").exists()
+
+
+def test_a_second_run_on_the_same_folder_is_refused_while_the_first_holds_it(
+    faults_installed: None, tmp_path: Path
+) -> None:
+    with filelock.FileLock(tmp_path / f"{DATABASE_NAME}.lock"):
+        result = invoke("run", "--suite", "faults", "--tracker", "honest", "--out", str(tmp_path))
+    assert result.exit_code == 2
+    assert "another trackbench run is writing this results folder" in result.output
+    assert not (tmp_path / DATABASE_NAME).exists()
+
+
+def test_a_plugin_that_fails_to_import_leaves_only_its_own_trackers_out(
+    faults_installed: None, installed, tmp_path: Path
+) -> None:
+    installed("broken-dist", {"broken": "no_such_module_anywhere"}, version="2.0")
+    listing = invoke("list")
+    assert listing.exit_code == 1
+    assert "unavailable: plugin 'broken' (broken-dist 2.0) failed to import 'no_such_module_anywhere'" in listing.output
+    assert "honest 1.0" in listing.output
+    run = invoke("run", "--suite", "faults", "--tracker", "honest", "--out", str(tmp_path))
+    assert run.exit_code == 1, run.output
+    assert stored_cells(tmp_path).loc["honest", "status"] == "ok"
+    for board in ("leaderboard.md", "leaderboard.html"):
+        assert "plugin &#x27;broken&#x27;" in (text := (tmp_path / board).read_text()) or "plugin 'broken'" in text
+    strict = invoke("--strict-plugins", "list")
+    assert strict.exit_code == 2 and strict.output.startswith("Error: plugin 'broken' (broken-dist 2.0) failed")
+
+
+# Processes of their own: Ctrl-C to the process group, kill -9 of the main process, a FIFO as a frame.
+
+
+def start_trackbench(site: Path, *arguments: str, env: dict[str, str] | None = None) -> subprocess.Popen[str]:
+    environment = {**os.environ, "PYTHONPATH": str(site), **(env or {})}
+    return subprocess.Popen(
+        [sys.executable, "-c", "from benchmark.cli import main; main()", *arguments],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=environment,
+        start_new_session=True,
+    )
+
+
+def wait_for(predicate, timeout_s: float = 60.0) -> None:
+    deadline = time.monotonic() + timeout_s
+    while not predicate():
+        assert time.monotonic() < deadline, "timed out waiting"
+        time.sleep(0.05)
+
+
+def alive(pid: int) -> bool:
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except (FileNotFoundError, ProcessLookupError):
+        return False
+    return state != "Z"
+
+
+linux_only = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+
+
+@linux_only
+def test_ctrl_c_stops_the_run_keeps_the_finished_cells_publishes_and_exits_130(site: Path, tmp_path: Path) -> None:
+    selected = ["--tracker", "honest", "--tracker", "slow"]
+    process = start_trackbench(site, "run", "--suite", "faults", *selected, "--jobs", "1", "--out", str(tmp_path))
+    lines: list[str] = []
+    assert process.stderr is not None
+    for line in process.stderr:
+        lines.append(line)
+        if line.startswith("honest "):
+            break
+    os.killpg(process.pid, signal.SIGINT)
+    stdout, rest = process.communicate(timeout=60)
+    assert process.returncode == 130, "".join(lines) + rest
+    assert "interrupted: 1 cells finished and kept, 1 not run" in rest
+    assert "Traceback" not in rest
+    cells = stored_cells(tmp_path)
+    assert list(cells.index) == ["honest"] and cells.loc["honest", "status"] == "ok"
+    assert "honest" in (tmp_path / "leaderboard.md").read_text()
+
+
+@linux_only
+def test_workers_die_with_a_killed_run(site: Path, tmp_path: Path) -> None:
+    pid_file = tmp_path / "worker.pid"
+    process = start_trackbench(
+        site,
+        "run", "--suite", "faults", "--tracker", "spins", "--jobs", "1", "--timeout", "600", "--out", str(tmp_path),
+        env={"ACME_FAULTS_PID_FILE": str(pid_file)},
+    )
+    wait_for(lambda: pid_file.exists() and pid_file.read_text().strip())
+    worker = int(pid_file.read_text())
+    assert alive(worker)
+    process.kill()
+    process.communicate(timeout=60)
+    wait_for(lambda: not alive(worker), timeout_s=10.0)
+
+
+@linux_only
+def test_a_fifo_as_a_frame_costs_its_cell_not_the_run(site: Path, tmp_path: Path) -> None:
+    os.mkfifo(tmp_path / "frame_000.png")
+    (tmp_path / "seq.txt").write_text("1 0 6 0 # frame_000.png\n")
+    process = start_trackbench(
+        site, "run", "--dataset", str(tmp_path / "seq.txt"), "--tracker", "honest", "--timeout", "1",
+        "--out", str(tmp_path / "out"),
+    )
+    stdout, stderr = process.communicate(timeout=120)
+    assert process.returncode == 1, stderr
+    cells = stored_cells(tmp_path / "out")
+    assert cells.loc["honest", "status"] == "timeout"
