@@ -29,7 +29,7 @@ from __future__ import annotations
 import dataclasses
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
-from typing import Any, ClassVar, Generic, TypeVar
+from typing import Any, ClassVar, Generic, Protocol, TypeVar, runtime_checkable
 
 import numpy as np
 
@@ -106,3 +106,22 @@ class Tracker(ABC, Generic[TruthT, EstimateT]):
     @abstractmethod
     def step(self, frame: Frame[Any, TruthT]) -> EstimateT | None:
         """Process one frame and return the estimate, or None for no detection."""
+
+
+@runtime_checkable
+class ScoresStates(Protocol):
+    """A tracker that can score any state against a frame with its own observation model.
+
+    Diagnostics use it to tell observation-model failures from tracker
+    failures: if the best-scoring state near the truth is itself wrong, no
+    search with that model can be right (``trackbench diagnose``).
+    """
+
+    def score_states(self, frame: Frame[Any, Any], states: np.ndarray) -> np.ndarray:
+        """Scores, higher better, of ``(N, D)`` states on ``frame``; ``D`` as the modality's state array.
+
+        A camera state is ``(d, alpha, w, beta)`` in px, rad, px, rad
+        (:meth:`benchmark.modalities.camera.model.CableState.to_array`).
+        """
+        ...
+

@@ -17,7 +17,14 @@ detector is the observation model itself, applied to a grid of lines:
    distance is a plausible width (Table 5.2); a pair scores
    ``|c_l| + |c_r|``, as eq. (4.11) would a parallel cable
    (:func:`~trackbench_condensation.measure.best_pairs`);
-3. the strongest pairs become cable states ``(d, alpha, w, 0)``.
+3. the strongest pairs become cable states ``(d, alpha, w, 0)``;
+4. each is refined by a local ascent of eq. (4.11) over ``(d, alpha, w,
+   beta)`` (:class:`LocalAscent`), so that a candidate is judged, and its
+   particles drawn, at its own best skew and not at the scan's ``beta = 0``.
+   The tracker compares candidates with the eq. (4.11) score of its skewed
+   estimate; without the ascent a parallel pair loses 35-45 % of its score
+   against a cable of ``beta`` 1.6-1.8 deg, and the true cable can lose the
+   comparison to a wrong state that the filter already holds.
 
 :func:`propose` draws particles around them.  Proposed particles are not
 importance-weighted against the movement model: like the injected samples
@@ -30,6 +37,7 @@ candidates to propose, the tracker decides (:mod:`trackbench_condensation.tracke
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -125,6 +133,84 @@ class LineScan:
         left, right = offsets[pairs[:, 1]], offsets[pairs[:, 2]]
         states = np.column_stack([0.5 * (left + right), alphas[pairs[:, 0]], right - left, np.zeros(len(pairs))])
         return states, values
+
+
+@dataclass(frozen=True)
+class LocalAscent:
+    """A compass search of the eq. (4.11) score around candidate cables.
+
+    From each state, the eight moves of ``+-step`` along one of ``d``,
+    ``alpha``, ``w`` and ``beta`` are scored; the best one is taken if it
+    scores higher, otherwise the candidate's steps are halved, until they
+    are ``1 / 2**halvings`` of the first ones.  All candidates move in one
+    vectorised score call per round.
+
+    Parameters
+    ----------
+    first_steps : tuple of float
+        First steps of ``(d, alpha, w, beta)``: px, deg, px, deg.
+    halvings : int
+        How often the steps are halved before a candidate stops.
+    max_rounds : int
+        Upper bound on the rounds.
+    """
+
+    first_steps: tuple[float, float, float, float] = (2.0, 1.0, 2.0, 0.5)
+    halvings: int = 3
+    max_rounds: int = 40
+
+    def refine(
+        self,
+        states: np.ndarray,
+        score: Callable[[np.ndarray], np.ndarray],
+        low: np.ndarray,
+        high: np.ndarray,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Move each ``(d, alpha, w, beta)`` state uphill on ``score`` within ``[low, high]``.
+
+        Parameters
+        ----------
+        states : numpy.ndarray
+            ``(K, 4)`` starting states, px and rad.
+        score : callable
+            ``(N, 4)`` states to ``(N,)`` scores, higher better (eq. 4.11).
+        low, high : numpy.ndarray
+            ``(4,)`` bounds of the states (``-inf`` / ``inf`` for none).
+
+        Returns
+        -------
+        states : numpy.ndarray
+            ``(K, 4)`` refined states; none scores lower than where it started.
+        scores : numpy.ndarray
+            ``(K,)`` their scores.
+
+        References
+        ----------
+        seeds/000, section 4.5, eq. (4.11).
+        """
+        current = np.clip(np.array(states, dtype=float).reshape(-1, 4), low, high)
+        values = np.asarray(score(current), dtype=float)
+        count = len(current)
+        if count == 0:
+            return current, values
+        first = np.array(self.first_steps, dtype=float)
+        first[[1, 3]] = np.radians(first[[1, 3]])
+        steps = np.tile(first, (count, 1))
+        smallest = first[0] / 2.0**self.halvings
+        moves = np.concatenate([np.eye(4), -np.eye(4)])
+        rows = np.arange(count)
+        for _ in range(self.max_rounds):
+            active = steps[:, 0] >= smallest
+            if not active.any():
+                break
+            trial = np.clip(current[:, None, :] + moves[None, :, :] * steps[:, None, :], low, high)
+            trial_values = np.asarray(score(trial.reshape(-1, 4)), dtype=float).reshape(count, len(moves))
+            best = np.argmax(trial_values, axis=1)
+            improved = active & (trial_values[rows, best] > values)
+            current[improved] = trial[rows[improved], best[improved]]
+            values[improved] = trial_values[rows[improved], best[improved]]
+            steps[active & ~improved] *= 0.5
+        return current, values
 
 
 def propose(

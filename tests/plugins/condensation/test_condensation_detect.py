@@ -6,7 +6,10 @@ import math
 
 import numpy as np
 import pytest
-from trackbench_condensation.detect import LineScan, propose
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from trackbench_condensation.detect import LineScan, LocalAscent, propose
+from trackbench_condensation.observation import BorderObservation
 from trackbench_condensation.kernel import dog_taps
 
 from benchmark.modalities.camera.geometry import cable_borders, score_line_pair
@@ -59,3 +62,45 @@ def test_proposals_scatter_around_the_candidates():
 def test_bad_scan_settings_are_rejected():
     with pytest.raises(ValueError):
         LineScan(angle_step_deg=0.0)
+
+
+def test_local_ascent_finds_a_skewed_cable_the_parallel_scan_only_approaches(scene):
+    state = CableState(10.0, math.radians(6.0), 40.0, math.radians(2.0))
+    image = scene.draw_cable(state, seed=3)
+    observation = BorderObservation()
+    candidates, scan_scores = LineScan().candidates(image, observation.taps, 20.0, 3)
+
+    def score(states: np.ndarray) -> np.ndarray:
+        return observation.score(states, image)
+
+    bounds = (np.array([-np.inf, -0.8, 5.0, 0.0]), np.array([np.inf, 0.8, 100.0, math.radians(10.0)]))
+    refined, refined_scores = LocalAscent().refine(candidates, score, *bounds)
+    assert np.all(refined_scores >= score(candidates))
+    np.testing.assert_allclose(refined_scores, score(refined))
+    best = CableState.from_array(refined[np.argmax(refined_scores)])
+    assert score_line_pair(cable_borders(best), cable_borders(state), scene.SIZE) is Outcome.CORRECT
+    assert abs(math.degrees(best.beta - state.beta)) < 0.5
+    assert refined_scores.max() > 1.2 * score(candidates).max()
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    offset=st.tuples(st.floats(-6, 6), st.floats(-0.05, 0.05), st.floats(-6, 6), st.floats(-0.05, 0.05)),
+    peak=st.tuples(st.floats(-30, 30), st.floats(-0.6, 0.6), st.floats(0, 70), st.floats(-0.1, 0.3)),
+)
+def test_local_ascent_never_loses_score_and_stays_within_its_bounds(offset, peak):
+    low, high = np.array([-20.0, -0.5, 5.0, 0.0]), np.array([20.0, 0.5, 60.0, 0.2])
+    centre = np.array(peak)
+    scale = np.array([1.0, 100.0, 1.0, 100.0])  # a degree matters about as much as a pixel
+
+    def score(states: np.ndarray) -> np.ndarray:
+        return -np.sum(((states - centre) * scale) ** 2, axis=1)
+
+    states = np.array([np.clip(centre, low, high) + np.array(offset), [0.0, 0.0, 10.0, 0.1]])
+    refined, values = LocalAscent().refine(states, score, low, high)
+    assert np.all((refined >= low) & (refined <= high))
+    assert np.all(values >= score(np.clip(states, low, high)))
+    np.testing.assert_allclose(values, score(refined))
+    # On a concave score a start within a few grid steps ends at the bounded maximum.
+    target = np.clip(centre, low, high)
+    assert np.all(np.abs(refined[0] - target) <= np.array([0.3, 0.005, 0.3, 0.005]))
