@@ -121,7 +121,7 @@ class ScoresStates(Protocol):
         """Scores, higher better, of ``(N, D)`` states on ``frame``; ``D`` as the modality's state array.
 
         A camera state is ``(d, alpha, w, beta)`` in px, rad, px, rad
-        (:meth:`benchmark.modalities.camera.model.CableState.to_array`).
+        (:meth:`benchmark.modalities.camera.model.CableState.as_array`).
         """
         ...
 
