@@ -8,6 +8,7 @@
     datasets      suites and their sequences
     run           run cells, store them and publish the leaderboard
     leaderboard   re-publish the leaderboard of an existing results database
+    diagnose      the likelihood ceiling of a tracker's observation model on camera sequences
     make-dataset  write a suite's sequences to disk (PNG frames plus sequence files, or swath files)
 
 ``run`` forms a cell for every selected tracker, sequence and seed whose
@@ -348,6 +349,51 @@ def tables_command(session: Session, suite: str, out: Path, metrics: tuple[str, 
     text = grid_markdown(grid_tables(board, shown, order), f"{suite}: results per case")
     click.echo(text)
     path = write_text_atomically(out / f"tables_{suite}.md", text, "tables")
+    click.echo(f"wrote {path}", err=True)
+
+
+@main.command("diagnose")
+@click.option("--tracker", required=True, metavar="NAME", help="The tracker whose observation model to test.")
+@click.option("--suite", "suites", multiple=True, metavar="SUITE", help="Every sequence of a suite (repeatable).")
+@click.option(
+    "--dataset",
+    "datasets",
+    multiple=True,
+    metavar="NAME|PATH",
+    help="A registered sequence (suite/name) or a sequence file (repeatable).",
+)
+@OUT_OPTION
+@click.pass_obj
+def diagnose_command(
+    session: Session, tracker: str, suites: tuple[str, ...], datasets: tuple[str, ...], out: Path
+) -> None:
+    """Print the likelihood ceiling of a tracker on each selected camera sequence.
+
+    On every labelled frame, the states in a window around the true cable
+    are scored with the tracker's own observation model; the ceiling is the
+    share of frames whose best-scoring state is correct (Foresti's rule),
+    the most a tracker reporting that model's best state can reach.  Beside
+    it: the tracker's correct_pct in its latest run in OUT/results.sqlite
+    with the same parameters, if any.  Also written to OUT/diagnose_NAME.md.
+    """
+    from contextlib import nullcontext
+
+    from benchmark.files import make_folder, write_text_atomically
+    from benchmark.modalities.camera.diagnostics import ceiling_markdown, ceiling_report
+    from benchmark.selection import select_sequences, select_trackers
+    from benchmark.store import DATABASE_NAME, ResultStore
+
+    registry = session.registry
+    (entry,) = select_trackers(registry, [tracker])
+    sequences = select_sequences(registry, suites, datasets)
+    database = out / DATABASE_NAME
+    with ResultStore(database) if database.is_file() else nullcontext() as store:
+        table, skipped = ceiling_report(entry, sequences, registry.modalities, store)
+    for line in skipped:
+        click.echo(line, err=True)
+    text = ceiling_markdown(table, entry.name)
+    click.echo(text)
+    path = write_text_atomically(make_folder(out) / f"diagnose_{entry.name}.md", text, "diagnosis")
     click.echo(f"wrote {path}", err=True)
 
 

@@ -16,6 +16,11 @@ hard, and the frame-to-frame variances of Tables 4.2 and 4.3),
 and ``camera/S7`` is modelled on Foresti's pipeline under sand (seeds/004,
 Fig. 14).
 
+The ``camera-clutter`` suite (``camera_clutter.toml``) is S1's clutter
+family: ``camera-clutter/S1-d01`` to ``S1-d10`` are ``based_on``
+``camera/S1`` with ten more seeds (3101, 4101, ..., 12101, continuing S1b
+and S1c), fixed before any tracker ran on them.
+
 The ``stereo`` suite (``stereo.toml``) holds nine simulated chase-boat
 sequences, ``stereo/case1-slow`` to ``stereo/case3-fast``: the three
 trajectory cases of seeds/002, section 3 (case 1 both boats straight,
