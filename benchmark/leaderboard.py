@@ -5,8 +5,11 @@ dataset: rates are percentages of all those frames (so seeds weigh by their
 frame counts), each RMSE is the square root of the mean squared error over
 all frames with an estimate and a truth, and ``fps`` is all frames over all
 ``step`` time (:func:`benchmark.results.summarise` applied to the pooled
-frames).  A row with dataset ``(all)`` pools each tracker over every dataset
-of the board and comes first.  A tracker name that ran with several
+frames).  ``correct_sd_pct`` is the spread over seeds: the sample standard
+deviation of the per-seed ``correct_pct`` (empty for a single seed), so that
+a stochastic tracker's mean is read with its variation.  A row with dataset
+``(all)`` pools each tracker over every dataset of the board and comes
+first.  A tracker name that ran with several
 parameter sets, or a dataset name that stood for several datasets (a file
 edited between runs), gets a row per key, labelled ``name [key prefix]``.
 
@@ -42,6 +45,8 @@ ALL_DATASETS = "(all)"
 
 LEADING_COLUMNS = ("rank", "tracker", "dataset", "init", "seeds", "frames")
 RATE_COLUMNS = tuple(f"{outcome}_pct" for outcome in Outcome)
+SPREAD_COLUMN = "correct_sd_pct"
+"""Standard deviation over seeds of the per-seed ``correct_pct``, percentage points."""
 
 
 def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str, ...]:
@@ -54,7 +59,7 @@ def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str,
 def board_columns(errors: tuple[str, ...]) -> list[str]:
     """Columns of a board whose modality has the error columns ``errors``."""
     rmse = ["rmse_" + column.removeprefix("err_") for column in errors]
-    return [*LEADING_COLUMNS, *RATE_COLUMNS, *rmse, "fps", "status"]
+    return [*LEADING_COLUMNS, *RATE_COLUMNS, SPREAD_COLUMN, *rmse, "fps", "status"]
 
 
 def pooled_status(cells: pd.DataFrame) -> str:
@@ -135,17 +140,21 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
     by_cell = {int(cell_id): group for cell_id, group in frames.groupby("cell_id", sort=False)}
     empty = frames.iloc[0:0]
 
-    def row(group: pd.DataFrame, label: str, dataset: str, init: str) -> dict[str, object]:
+    def pool(group: pd.DataFrame) -> pd.DataFrame:
         parts = [by_cell[int(i)] for i in group["id"] if int(i) in by_cell]
-        pooled = pd.concat(parts, ignore_index=True) if parts else empty
-        summary = summarise(pooled, errors)
+        return pd.concat(parts, ignore_index=True) if parts else empty
+
+    def row(group: pd.DataFrame, label: str, dataset: str, init: str) -> dict[str, object]:
+        summary = summarise(pool(group), errors)
         summary["frames"] = int(summary["frames"])
+        per_seed = [summarise(pool(cells_of_seed), errors)["correct_pct"] for _, cells_of_seed in group.groupby("seed")]
         return {
             "tracker": label,
             "dataset": dataset,
             "init": init,
             "seeds": int(group["seed"].nunique()),
             **summary,
+            SPREAD_COLUMN: pd.Series(per_seed, dtype=float).std(ddof=1),
             "status": pooled_status(group),
         }
 

@@ -113,6 +113,37 @@ class ParticleSet:
         """The state of the highest-weight particle."""
         return self.states[int(np.argmax(self.weights))]
 
+    def quantile(self, q: float) -> np.ndarray:
+        """The weighted ``q``-quantile of every dimension of the state.
+
+        Parameters
+        ----------
+        q : float
+            In ``[0, 1]``.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape ``(D,)``: per dimension, the smallest particle value whose
+            cumulative weight (particles in ascending order of that value)
+            reaches ``q``.  Unlike a standard deviation it ignores how far a
+            few light particles lie from the rest.
+
+        Raises
+        ------
+        ValueError
+            If ``q`` is not in ``[0, 1]``.
+        """
+        if not 0.0 <= q <= 1.0:
+            raise ValueError(f"quantile must be in [0, 1], got {q}")
+        order = np.argsort(self.states, axis=0, kind="stable")
+        cumulative = np.cumsum(self.weights[order], axis=0)
+        # Weights sum to one up to rounding; compare with the actual total.
+        reached = cumulative >= q * cumulative[-1]
+        columns = np.arange(self.states.shape[1])
+        particles = order[np.argmax(reached, axis=0), columns]
+        return self.states[particles, columns]
+
     def take(self, indices: np.ndarray) -> ParticleSet:
         """The particles at ``indices``, equally weighted: the result of resampling."""
         return ParticleSet.equally_weighted(self.states[np.asarray(indices)])

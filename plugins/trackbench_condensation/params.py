@@ -183,6 +183,21 @@ class CondensationParams:
     lost_decay: Annotated[float, Interval(gt=0, le=1)] = 0.99
     """Per-frame factor by which the lost test's reference score forgets a past maximum."""
 
+    width_prior_spread: Annotated[pydantic.FiniteFloat, Ge(0)] = 0.5
+    """Standard deviation of the Gaussian prior on w, as a multiple of the running mean width; 0: no prior."""
+
+    width_prior_rate: Annotated[float, Interval(gt=0, le=1)] = 0.05
+    """Weight of each reported width in the running mean the width prior is centred on."""
+
+    max_spread_px: Annotated[pydantic.FiniteFloat, Ge(0)] = 3.0
+    """Report no cable when half the central 68 % interval of the particles' d exceeds this, px; 0: never."""
+
+    report_mode: bool = True
+    """Report the local maximum of eq. (4.11) above the mean when it scores ``mode_gain`` times the mean's."""
+
+    mode_gain: Annotated[pydantic.FiniteFloat, Ge(1)] = 1.2
+    """How many times the mean's eq. (4.11) score the local maximum must reach to be reported instead."""
+
     def __post_init__(self) -> None:
         """The rules that are not bounds of one field: an odd filter window, ordered initialisation ranges.
 

@@ -70,6 +70,8 @@ from trackbench_condensation.movement import diffusion_std, movement_model
 from trackbench_condensation.observation import BorderObservation, as_grey_image
 from trackbench_condensation.params import CondensationParams
 from trackbench_condensation.prior import InitLimits, particles_at, uniform_particles
+from trackbench_condensation.report import Report
+from trackbench_condensation.width import WidthPrior
 
 
 class CondensationTracker(Tracker[CameraTruth, CableState]):
@@ -118,12 +120,16 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
         self.lost = LostCable(p.lost_threshold, p.lost_decay)
         self.scan = LineScan(alpha_range_deg=self.limits.alpha_deg, width_range_px=self.limits.w_px)
         self.ascent = LocalAscent()
+        self.report = Report(p.max_spread_px, p.mode_gain if p.report_mode else None, self.ascent)
         low, high = self.limits.bounds()
         # Candidates may lie anywhere across the image; alpha, w and beta stay within Table 5.2.
         self._refine_bounds = (np.r_[-np.inf, low[1:4]], np.r_[np.inf, high[1:4]])
+        self.width_prior = (
+            WidthPrior(self.observation, p.width_prior_spread, p.width_prior_rate) if p.width_prior_spread > 0 else None
+        )
         self.filter = Condensation(
             movement=movement_model(noise),
-            observation=self.observation,
+            observation=self.width_prior or self.observation,
             resample=RESAMPLERS[p.resampler],
             ess_fraction=p.ess_fraction,
             carry_weights=p.carry_weights,
@@ -171,7 +177,10 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
         """
         _compile_kernels(self.params)
         n = int(self.params.n_particles)
-        if init is not None and init.cable.is_known:
+        known = init is not None and init.cable.is_known
+        if self.width_prior is not None:
+            self.width_prior.reset(init.cable.w if known else None)
+        if known:
             self._begin(particles_at(init.cable, n, self.dims), rng, lost=False)
         else:
             # Not knowing where the cable is, the tracker starts out lost:
@@ -219,9 +228,17 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
         self._refresh(image)
         self._steps += 1
         self.particles = self.filter.step(self.particles, image, self._rng)
-        estimate = self.particles.mmse()[:4]
-        self._lost = self.lost.update(float(self.observation.score(estimate[None, :], image)[0]))
-        return None if self._lost else CableState.from_array(estimate)
+        mean = self.particles.mmse()[:4]
+        mean_score = float(self.observation.score(mean[None, :], image)[0])
+        self._lost = self.lost.update(mean_score)
+        if self._lost or self.report.too_wide(self.particles):
+            return None
+        state = self.report.state(
+            mean, mean_score, lambda states: self.observation.score(states, image), *self._refine_bounds
+        )
+        if self.width_prior is not None:
+            self.width_prior.update(float(state[2]))
+        return CableState.from_array(state)
 
     def score_states(self, frame: CameraFrame, states: np.ndarray) -> np.ndarray:
         """The eq. (4.11) score of ``(N, 4)`` states ``(d, alpha, w, beta)`` on a frame (for diagnostics).

@@ -101,6 +101,20 @@ def test_seeds_pool_by_frames_not_by_mean_of_rates() -> None:
     assert row["status"] == "ok"
 
 
+def test_the_spread_over_seeds_is_the_standard_deviation_of_per_seed_correct_rates() -> None:
+    data = Cells()
+    data.add("a", "s/1", 0, ["correct", "false"])  # 50 %
+    data.add("a", "s/1", 1, ["correct"] * 3 + ["missed"])  # 75 %
+    data.add("a", "s/2", 0, ["correct"] * 2)  # seed 0 over both datasets: 3 of 4
+    data.add("a", "s/2", 1, ["missed"] * 4)  # seed 1 over both datasets: 3 of 8
+    data.add("b", "s/1", 0, ["correct"])
+    board = data.boards()["camera"]
+    assert rows(board, "s/1").loc["a", "correct_sd_pct"] == pytest.approx(pd.Series([50.0, 75.0]).std())
+    assert rows(board, "s/2").loc["a", "correct_sd_pct"] == pytest.approx(pd.Series([100.0, 0.0]).std())
+    assert rows(board, ALL_DATASETS).loc["a", "correct_sd_pct"] == pytest.approx(pd.Series([75.0, 37.5]).std())
+    assert math.isnan(rows(board, "s/1").loc["b", "correct_sd_pct"])
+
+
 @settings(max_examples=25, deadline=None)
 @given(st.lists(st.lists(st.sampled_from(["correct", "false", "missed", None]), min_size=1, max_size=8),
                 min_size=1, max_size=4))

@@ -60,9 +60,47 @@ def test_follows_a_moving_cable_from_its_first_state(sequence):
 
 def test_estimate_is_the_weighted_mean_of_the_particles(sequence):
     states, images = sequence
-    tracker = make()
+    tracker = make(report_mode=False)
     estimate = run(tracker, images[:3], init=CameraTruth(states[0]))[-1]
     np.testing.assert_allclose(estimate.as_array(), tracker.particles.weights @ tracker.particles.states[:, :4])
+
+
+def test_the_peak_beside_a_lagging_mean_is_reported(sequence):
+    states, images = sequence
+    # Started 4 px, 2.5 deg and 6 px of width off, the particles' mean is still off on the first frame.
+    first = states[0]
+    start = CameraTruth(CableState(first.d + 4.0, first.alpha + math.radians(2.5), first.w + 6.0, first.beta))
+    mean_only, with_mode = (
+        run(make(report_mode=mode, redetect_fraction=0.0, max_spread_px=0.0), images[:1], init=start)[0]
+        for mode in (False, True)
+    )
+    assert outcomes([mean_only, with_mode], states[:1] * 2) == [Outcome.FALSE, Outcome.CORRECT]
+
+
+def test_particles_that_disagree_on_the_distance_report_no_cable(sequence):
+    states, images = sequence
+    tracker = make(max_spread_px=0.2)
+    estimates = run(tracker, images[:3], init=CameraTruth(states[0]))
+    assert estimates == [None] * 3
+    assert not tracker._lost  # reported as no detection, but the filter still tracks
+
+
+def test_the_width_prior_starts_at_the_true_width_and_follows_the_reports(sequence):
+    states, images = sequence
+    tracker = make()
+    estimates = run(tracker, images[:2], init=CameraTruth(states[0]))
+    rate = tracker.params.width_prior_rate
+    expected = (1 - rate) * ((1 - rate) * states[0].w + rate * estimates[0].w) + rate * estimates[1].w
+    assert tracker.width_prior.mean_width == pytest.approx(expected)
+    tracker.reset(INFO, np.random.default_rng(0))
+    assert tracker.width_prior.mean_width is None
+
+
+def test_the_thesis_variant_reports_the_mean_without_a_width_prior():
+    from trackbench_condensation import VARIANTS
+
+    tracker = make(**VARIANTS["condensation-thesis"])
+    assert tracker.width_prior is None and tracker.report.mode_gain is None and tracker.report.max_spread_px == 0
 
 
 def test_same_seed_replays_and_another_seed_differs(sequence):
@@ -178,6 +216,10 @@ def test_unknown_and_bad_parameters_are_parameter_errors():
         {"redetect_candidates": 0},
         {"weight_exponent": 0.0},
         {"n_particles": 2.5},
+        {"mode_gain": 0.5},
+        {"max_spread_px": -1.0},
+        {"width_prior_spread": -0.5},
+        {"width_prior_rate": 0.0},
     ):
         (name,) = bad
         with pytest.raises(ParameterError, match=rf"tracker 'condensation'.*{name}"):
