@@ -113,36 +113,41 @@ class ParticleSet:
         """The state of the highest-weight particle."""
         return self.states[int(np.argmax(self.weights))]
 
-    def quantile(self, q: float) -> np.ndarray:
-        """The weighted ``q``-quantile of every dimension of the state.
+    def quantiles(self, q: np.ndarray | list[float] | float, dimension: int) -> np.ndarray:
+        """Weighted quantiles of one dimension of the state.
 
         Parameters
         ----------
-        q : float
-            In ``[0, 1]``.
+        q : array_like
+            Probabilities in ``[0, 1]``.
+        dimension : int
+            Column of the state.
 
         Returns
         -------
         numpy.ndarray
-            Shape ``(D,)``: per dimension, the smallest particle value whose
-            cumulative weight (particles in ascending order of that value)
-            reaches ``q``.  Unlike a standard deviation it ignores how far a
-            few light particles lie from the rest.
+            Shape of ``q``: for each, the smallest value of that dimension
+            whose cumulative weight (particles in ascending order of the
+            value) reaches ``q``.  Unlike a standard deviation, the spread
+            between two quantiles ignores how far a few light particles lie
+            from the rest.
 
         Raises
         ------
         ValueError
-            If ``q`` is not in ``[0, 1]``.
+            If a ``q`` is not in ``[0, 1]``.
+        IndexError
+            If ``dimension`` is not a column of the state.
         """
-        if not 0.0 <= q <= 1.0:
-            raise ValueError(f"quantile must be in [0, 1], got {q}")
-        order = np.argsort(self.states, axis=0, kind="stable")
-        cumulative = np.cumsum(self.weights[order], axis=0)
-        # Weights sum to one up to rounding; compare with the actual total.
-        reached = cumulative >= q * cumulative[-1]
-        columns = np.arange(self.states.shape[1])
-        particles = order[np.argmax(reached, axis=0), columns]
-        return self.states[particles, columns]
+        q = np.asarray(q, dtype=float)
+        if not np.all((q >= 0.0) & (q <= 1.0)):
+            raise ValueError(f"quantiles must be in [0, 1], got {q}")
+        values = self.states[:, dimension]
+        order = np.argsort(values, kind="stable")
+        cumulative = np.cumsum(self.weights[order])
+        # Weights sum to one up to rounding: compare with the actual total, and stay in range.
+        rows = np.minimum(np.searchsorted(cumulative, q * cumulative[-1], side="left"), self.size - 1)
+        return values[order[rows]]
 
     def take(self, indices: np.ndarray) -> ParticleSet:
         """The particles at ``indices``, equally weighted: the result of resampling."""

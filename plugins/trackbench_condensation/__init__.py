@@ -6,7 +6,7 @@ the velocities ``v_d`` and ``v_alpha`` (section 4.4).  Particles drift at
 their velocities and diffuse (eq. 4.9); each is weighed by the grey-level
 changes a derivative-of-Gaussian filter finds across its two projected
 borders (section 4.5, eqs. 4.10-4.11).  The reported state is the weighted
-mean of the particles (eq. 3.11).
+mean of the particles (eq. 3.11), or the peak of eq. (4.11) beside it.
 
 The plugin registers, through the ``trackbench`` entry-point group every
 third-party tracker uses::
@@ -18,8 +18,8 @@ five trackers, one class with different parameters:
 
 * ``condensation``: the thesis' settings (Table 5.1, 500 particles) with the
   departures :mod:`trackbench_condensation.params` documents (sharper
-  weights, a larger angle-velocity variance, lost-cable test and
-  re-detection);
+  weights, a larger angle-velocity variance, lost-cable test,
+  re-detection, what is reported and a prior on the width);
 * ``condensation-thesis``: exactly the thesis' tracker, for comparison;
 * ``condensation-fast``: its high-speed settings, 300 particles and a 5 px
   filter (section 5.2.5, Fig. 5.9);

@@ -7,10 +7,14 @@ core of :mod:`benchmark.filters`:
 2. drift and diffuse every particle with eq. (4.9)
    (:mod:`trackbench_condensation.movement`);
 3. weigh every particle by the grey-level changes across its two projected
-   borders, eq. (4.11) (:mod:`trackbench_condensation.observation`);
+   borders, eq. (4.11) (:mod:`trackbench_condensation.observation`), times
+   a prior on its width around the widths reported so far
+   (:mod:`trackbench_condensation.width`);
 4. report the minimum mean square error estimate, eq. (3.11), of
-   ``(d, alpha, w, beta)``, unless the lost-cable test
-   (:mod:`trackbench_condensation.lost`) says the cable is not in view.
+   ``(d, alpha, w, beta)``, or the peak of eq. (4.11) beside it when that
+   clearly scores higher; or no cable, when the lost-cable test
+   (:mod:`trackbench_condensation.lost`) says the cable is not in view or
+   the particles disagree on where it is (:mod:`trackbench_condensation.report`).
 
 Before the step, when due, part of the particles is re-drawn around the
 candidate cables of a line scan (:mod:`trackbench_condensation.detect`):
@@ -85,6 +89,10 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
         The observation model.
     lost : LostCable
         The lost-cable test, with the last score and its reference.
+    report : Report
+        What is reported once the lost test let a frame through.
+    width_prior : WidthPrior or None
+        The prior on the width in the particle weights (None when off).
 
     References
     ----------
@@ -205,8 +213,10 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
         Returns
         -------
         CableState or None
-            The MMSE estimate (eq. 3.11) of ``(d, alpha, w, beta)``; None when
-            the lost-cable test says the cable is not in view.
+            The MMSE estimate (eq. 3.11) of ``(d, alpha, w, beta)``, or the
+            eq. (4.11) peak beside it (:class:`~trackbench_condensation.report.Report`);
+            None when the lost-cable test says the cable is not in view or
+            the particles spread too wide in ``d``.
 
         Raises
         ------

@@ -215,16 +215,20 @@ def test_negative_or_nan_particle_weights_are_rejected(n: int, data: st.DataObje
 @QUICK
 @given(
     raw_weights(max_size=200).flatmap(lambda raw: st.tuples(st.just(raw), states_for(raw.size))),
-    st.floats(0.0, 1.0),
-    st.floats(0.0, 1.0),
+    st.lists(st.floats(0.0, 1.0), min_size=1, max_size=5),
+    st.data(),
 )
-def test_quantiles_are_particle_values_ordered_in_q(case: tuple[np.ndarray, np.ndarray], q1: float, q2: float) -> None:
+def test_quantiles_are_particle_values_ordered_in_q(
+    case: tuple[np.ndarray, np.ndarray], qs: list[float], data: st.DataObject
+) -> None:
     raw, states = case
+    dimension = data.draw(st.integers(0, states.shape[1] - 1))
     particles = ParticleSet(states, normalise_weights(raw))
-    low, high = particles.quantile(min(q1, q2)), particles.quantile(max(q1, q2))
-    assert low.shape == (states.shape[1],)
-    assert np.all(low <= high)
-    assert all(np.isin(low[k], states[:, k]) and np.isin(high[k], states[:, k]) for k in range(states.shape[1]))
+    values = particles.quantiles(sorted(qs), dimension)
+    assert values.shape == (len(qs),)
+    assert np.all(np.diff(values) >= 0)
+    assert np.all(np.isin(values, states[:, dimension]))
+    assert values[0] >= particles.quantiles(0.0, dimension) and values[-1] <= particles.quantiles(1.0, dimension)
 
 
 @QUICK
@@ -232,18 +236,19 @@ def test_quantiles_are_particle_values_ordered_in_q(case: tuple[np.ndarray, np.n
 def test_quantiles_of_equal_weights_invert_the_empirical_distribution(states: np.ndarray, k: int) -> None:
     # Between two steps of the empirical distribution, clear of rounding in the cumulative sum.
     q = (k + 0.5) / 25
-    expected = np.quantile(states, q, axis=0, method="inverted_cdf")
-    np.testing.assert_array_equal(ParticleSet.equally_weighted(states).quantile(q), expected)
+    particles = ParticleSet.equally_weighted(states)
+    for dimension in range(states.shape[1]):
+        expected = np.quantile(states[:, dimension], q, method="inverted_cdf")
+        assert particles.quantiles(q, dimension) == expected
 
 
 def test_quantiles_ignore_a_few_light_particles_far_off() -> None:
     states = np.r_[np.linspace(0.0, 1.0, 95), np.full(5, 1e6)][:, None]
-    particles = ParticleSet.equally_weighted(states)
-    assert particles.quantile(0.84)[0] <= 1.0 and particles.quantile(0.16)[0] >= 0.0
-    assert particles.quantile(1.0)[0] == 1e6
+    low, high, top = ParticleSet.equally_weighted(states).quantiles([0.16, 0.84, 1.0], 0)
+    assert 0.0 <= low <= high <= 1.0 and top == 1e6
 
 
 @pytest.mark.parametrize("q", [-0.1, 1.5, math.nan])
 def test_a_quantile_outside_zero_to_one_is_rejected(q: float) -> None:
-    with pytest.raises(ValueError, match="quantile must be in"):
-        ParticleSet.equally_weighted(np.zeros((3, 2))).quantile(q)
+    with pytest.raises(ValueError, match="quantiles must be in"):
+        ParticleSet.equally_weighted(np.zeros((3, 2))).quantiles([0.5, q], 1)

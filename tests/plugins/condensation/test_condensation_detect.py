@@ -9,8 +9,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from trackbench_condensation.detect import LineScan, LocalAscent, propose
-from trackbench_condensation.observation import BorderObservation
 from trackbench_condensation.kernel import dog_taps
+from trackbench_condensation.observation import BorderObservation
 
 from benchmark.modalities.camera.geometry import cable_borders, score_line_pair
 from benchmark.modalities.camera.model import CableState
