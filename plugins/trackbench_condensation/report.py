@@ -24,8 +24,9 @@ edges.  Two rules, taken after the lost test
    true cable by a few pixels of width, and a smaller gain traded correct
    frames for false ones there (see :mod:`trackbench_condensation.params`).
 
-Neither rule feeds back into the filter: the particles, the lost test and
-re-detection see the same mean as before.  Treating a wide frame as lost
+Neither rule acts on the particles: the lost test and re-detection judge
+the mean, and only the width prior (:mod:`trackbench_condensation.width`)
+follows the reported state.  Treating a wide frame as lost
 (re-detection over all angles, proposals only above the lost threshold)
 dropped the clutter family from 82 to 66 % correct (seeds 0-2).
 """
