@@ -63,7 +63,8 @@ def test_estimates_are_checked_for_type_then_by_the_scorer_for_values() -> None:
 
 
 def test_error_columns_and_claims_come_from_the_declaration() -> None:
-    assert CAMERA.error_columns == ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
+    assert CAMERA.error_columns == CAMERA.scorer.error_columns
+    assert CAMERA.error_columns[:4] == ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
     assert SONAR.error_columns == ("err_across_m",)
     assert "folders" in CAMERA.claims and "any other file" in CAMERA.claims and "files ending .avi" in CAMERA.claims
     assert SONAR.claims == ("files ending .swaths",)

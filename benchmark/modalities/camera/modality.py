@@ -32,7 +32,7 @@ CAMERA = Modality(
     ),
     exporter=export_camera_sequence,
     scene_kinds={"camera": CameraScene.from_dict},
-    description="grey images of a cable or pipe; estimates are cable states (d, alpha, w, beta)",
+    description="grey images of a cable or pipe; estimates are cable states (d, alpha, w, beta), maybe with a pose",
 )
 """Camera frames hold a ``uint8`` grey image (seeds/000 section 4.2, seeds/004 section II)."""
 

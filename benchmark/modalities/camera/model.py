@@ -92,6 +92,27 @@ class CameraPose:
 
 
 @dataclass(frozen=True, slots=True)
+class PosedCableState(CableState):
+    """A camera estimate that also reports the camera's pose, as seeds/004's EKF does.
+
+    Scored like any :class:`CableState` by its border lines; where the truth
+    knows the pose, the pose errors are scored too
+    (:class:`~benchmark.modalities.camera.scoring.CameraScorer`).
+
+    Attributes
+    ----------
+    pose : CameraPose
+        The estimated pose (``cz`` may be 0 when the tracker does not estimate it).
+    pose_variance : tuple of float
+        Variances of ``cx``, ``cy`` (m^2), ``theta`` and ``phi`` (rad^2): the
+        diagonal of the filter's covariance.
+    """
+
+    pose: CameraPose | None = None
+    pose_variance: tuple[float, float, float, float] | None = None
+
+
+@dataclass(frozen=True, slots=True)
 class VehicleSpeeds:
     """Speeds an inertial sensor reports, in the vehicle frame (m/s).
 

@@ -5,7 +5,11 @@ matched reported line has its mid-point within 5 px and its orientation
 within 3 degrees (seeds/004, section VI-C, Table V; ``conventions.md``
 section 3); the errors are those of ``(d, alpha, w, beta)``, angles in
 degrees (seeds/000, section 5.2.3).  A finite but absurd estimate is false
-(:meth:`CameraScorer.score`).
+(:meth:`CameraScorer.score`).  An estimate that reports the camera pose
+(:class:`~benchmark.modalities.camera.model.PosedCableState`) is also
+scored on it against a truth that knows the pose: the errors of ``C_x``,
+``C_y`` (m), pan ``theta`` and tilt ``phi`` (deg), the quantities of
+seeds/004, Tables III-IV; other estimates leave those errors empty.
 """
 
 from __future__ import annotations
@@ -17,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from benchmark.modalities.camera.geometry import DetectionRule, cable_borders, score_line_pair, state_errors
-from benchmark.modalities.camera.model import CableState, CameraTruth
+from benchmark.modalities.camera.model import CableState, CameraTruth, PosedCableState
 from benchmark.modality import EstimateError
 from benchmark.model import Outcome, SequenceInfo
 
@@ -37,17 +41,29 @@ class CameraScorer:
     """
 
     rule: DetectionRule = DetectionRule()
-    error_columns: tuple[str, ...] = ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
+    error_columns: tuple[str, ...] = (
+        "err_d_px",
+        "err_alpha_deg",
+        "err_w_px",
+        "err_beta_deg",
+        "err_cx_m",
+        "err_cy_m",
+        "err_theta_deg",
+        "err_phi_deg",
+    )
 
     def check(self, estimate: CableState) -> None:
-        """Raise EstimateError for non-finite values."""
+        """Raise EstimateError for non-finite values, of the cable or of a reported pose."""
         if not estimate.is_known:
             raise EstimateError(f"estimate has non-finite values: {estimate}")
+        pose = estimate.pose if isinstance(estimate, PosedCableState) else None
+        if pose is not None and not all(math.isfinite(v) for v in (pose.cx, pose.cy, pose.theta, pose.phi)):
+            raise EstimateError(f"estimate reports a pose with non-finite values: {pose}")
 
     def score(
         self, estimate: CableState | None, truth: CameraTruth | None, info: SequenceInfo
     ) -> tuple[Outcome | None, tuple[float, ...]]:
-        """Outcome and ``(d, alpha, w, beta)`` errors of one frame (px, deg, px, deg).
+        """Outcome, ``(d, alpha, w, beta)`` errors (px, deg, px, deg) and pose errors (m, m, deg, deg) of one frame.
 
         A finite but absurd estimate is false whatever its line pair looks
         like, and its errors stay finite so that the store keeps them and the
@@ -74,6 +90,13 @@ class CameraScorer:
             return None, nan
         if estimate is None:
             return Outcome.MISSED, nan
+        outcome, errors = self._score_lines(estimate, truth, info)
+        return outcome, errors + pose_errors(estimate, truth)
+
+    def _score_lines(
+        self, estimate: CableState, truth: CameraTruth, info: SequenceInfo
+    ) -> tuple[Outcome, tuple[float, float, float, float]]:
+        """The outcome by the line-pair rule and the cable-state errors."""
         if info.frame_size is None:
             raise ValueError(f"sequence {info.name!r} has no frame size; cannot score line pairs")
         max_angle = math.radians(self.rule.max_angle_deg)
@@ -92,3 +115,24 @@ class CameraScorer:
         with np.errstate(over="ignore", invalid="ignore"):
             outcome = score_line_pair(reported, cable_borders(truth.cable), info.frame_size, self.rule)
         return outcome, errors
+
+
+def pose_errors(estimate: CableState, truth: CameraTruth) -> tuple[float, float, float, float]:
+    """Errors of ``C_x``, ``C_y`` (m), ``theta`` and ``phi`` (deg), estimate minus truth.
+
+    All nan unless the estimate reports a finite pose and the truth knows it.
+
+    References
+    ----------
+    seeds/004, section VI-A, Tables III-IV (the columns ``X*(k) - x(k)``, with the sign reversed).
+    """
+    pose = estimate.pose if isinstance(estimate, PosedCableState) else None
+    if pose is None or truth.pose is None:
+        return (math.nan,) * 4
+    errors = (
+        pose.cx - truth.pose.cx,
+        pose.cy - truth.pose.cy,
+        math.degrees(pose.theta - truth.pose.theta),
+        math.degrees(pose.phi - truth.pose.phi),
+    )
+    return tuple(e if math.isfinite(e) else math.nan for e in errors)  # type: ignore[return-value]

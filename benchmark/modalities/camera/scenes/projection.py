@@ -75,6 +75,46 @@ def camera_axes(theta: float, phi: float, xi: float) -> np.ndarray:
     return np.array((h, v, a), dtype=float)
 
 
+def camera_axes_derivatives(theta: float, phi: float, xi: float) -> np.ndarray:
+    """The derivatives of :func:`camera_axes` with respect to pan, tilt and roll.
+
+    Parameters
+    ----------
+    theta, phi, xi : float
+        Pan, tilt and roll in rad.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(3, 3, 3)``: entry ``[k]`` is the derivative of the ``3 x 3``
+        matrix of rows ``h``, ``v``, ``a`` with respect to ``theta``
+        (``k = 0``), ``phi`` (1) and ``xi`` (2).
+
+    References
+    ----------
+    seeds/004, section II: the versors ``h``, ``v``, ``a``, differentiated term by term.
+    """
+    ct, st = math.cos(theta), math.sin(theta)
+    cp, sp = math.cos(phi), math.sin(phi)
+    cx, sx = math.cos(xi), math.sin(xi)
+    by_theta = (
+        (-st * cx, sx * st, -ct),
+        (-sp * ct * cx, sp * ct * sx, sp * st),
+        (cp * ct * cx, ct * sx * cp, -cp * st),
+    )
+    by_phi = (
+        (0.0, 0.0, 0.0),
+        (-cp * st * cx + sp * sx, sp * cx + cp * st * sx, -cp * ct),
+        (-sp * st * cx - cp * sx, -cp * cx - st * sx * sp, -sp * ct),
+    )
+    by_xi = (
+        (-ct * sx, -cx * ct, 0.0),
+        (sp * st * sx - cp * cx, cp * sx + sp * st * cx, 0.0),
+        (-cp * st * sx - sp * cx, sp * sx + st * cx * cp, 0.0),
+    )
+    return np.array((by_theta, by_phi, by_xi), dtype=float)
+
+
 def pose_axes(pose: CameraPose) -> np.ndarray:
     """:func:`camera_axes` of a pose."""
     return camera_axes(pose.theta, pose.phi, pose.xi)

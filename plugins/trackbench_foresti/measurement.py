@@ -1,0 +1,165 @@
+"""The measurement model: where the pipe's borders cross the first and last image rows.
+
+The EKF of seeds/004 measures ``z = (i_1, i_2, i_3, i_4)``, the columns at
+which the left and right borders of the pipe cross the first image row
+(``i_1``, ``i_2``) and the last one (``i_3``, ``i_4``), Fig. 4.  Section V-B
+approximates the borders by the two lines where the pipe meets the ``XZ``
+plane, ``X = -d/2`` and ``X = +d/2`` at ``Y = 0``, and the Appendix writes
+``g`` by solving eq. (2b) for the point of each line on a given row and
+substituting it in eq. (2a), eqs. (18)-(22).
+
+Here the same function is written through the image of each line: a world
+line through ``P_0`` with direction ``e_Z`` projects to the homogeneous
+image line ``l = (M P_0 + t) x (M e_Z)`` for ``T = [M | t]``; with
+``t = -M C`` and the identity ``(M a) x (M b) = det(M) M^-T (a x b)`` this
+is, up to scale,
+
+    l = M^-T n,    n = (P_0 - C) x e_Z = (-C_y, C_x - X, 0),
+
+and the line crosses row ``v`` at ``u = -(l_2 v + l_3) / l_1``.  ``M = K
+[h; v; a]`` holds the intrinsics ``K`` (focal length in px, image centre)
+and the camera versors of section II.  ``C_z`` drops out, as section V-A
+says it must for lines along the pipe.  Written this way the Jacobian ``G``
+follows by the chain rule: ``dl = M^-T dn`` for ``C_x``, ``C_y``, and
+``dl = -M^-T (K dR)^T l`` for an angle (``dR`` from
+:func:`~benchmark.modalities.camera.scenes.projection.camera_axes_derivatives`).
+
+The paper's rows and columns: its eqs. (2) put ``i`` on the axis of ``h``
+and Fig. 4 draws ``i_1 .. i_4`` along the image's horizontal borders, so
+``i`` is the column; the rows are the first (``v = 0``) and last
+(``v = h - 1``) as Fig. 4 and eqs. (21)-(22) have them.  The image centre
+is ``((W - 1)/2, (H - 1)/2)`` (conventions.md section 1, as in
+:func:`~benchmark.modalities.camera.scenes.projection.projection_matrix`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from benchmark.modalities.camera.geometry import Line
+from benchmark.modalities.camera.scenes.projection import camera_axes, camera_axes_derivatives, principal_point
+
+
+@dataclass(frozen=True)
+class PipeCamera:
+    """What the filter knows of the camera and the pipe.
+
+    Attributes
+    ----------
+    focal_px : float
+        ``f / delta_x`` in px (square pixels).
+    size : tuple of int
+        Image ``(W, H)`` in px.
+    diameter_m : float
+        The pipe's diameter ``d``.
+    nominal_tilt : float
+        ``phi_0`` of eq. (7), rad: the tilt the camera is mounted at.
+    frame_interval_s : float
+        ``tau`` of eq. (7).
+    """
+
+    focal_px: float
+    size: tuple[int, int]
+    diameter_m: float
+    nominal_tilt: float
+    frame_interval_s: float
+
+    def intrinsics(self) -> np.ndarray:
+        """``K``: focal length on the diagonal, the image centre in the last column."""
+        u0, v0 = principal_point(self.size)
+        return np.array(((self.focal_px, 0.0, u0), (0.0, self.focal_px, v0), (0.0, 0.0, 1.0)))
+
+    @property
+    def rows(self) -> np.ndarray:
+        """The first and last image rows, ``(0, H - 1)``."""
+        return np.array((0.0, self.size[1] - 1.0))
+
+
+def pose_angles(state: np.ndarray) -> tuple[float, float, float]:
+    """Pan ``theta``, tilt ``phi`` and roll ``xi`` of a state ``(C_x, C_y, theta, phi[, xi])``; roll 0 if absent."""
+    xi = float(state[4]) if len(state) > 4 else 0.0
+    return float(state[2]), float(state[3]), xi
+
+
+def _border_normals(state: np.ndarray, camera: PipeCamera) -> np.ndarray:
+    """``n = (-C_y, C_x - X, 0)`` of the left (``X = -d/2``) and right (``X = +d/2``) border, rows."""
+    half = camera.diameter_m / 2.0
+    cx, cy = float(state[0]), float(state[1])
+    return np.array(((-cy, cx + half, 0.0), (-cy, cx - half, 0.0)))
+
+
+def _image_lines(state: np.ndarray, camera: PipeCamera) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The homogeneous image lines of both borders (rows), ``M^-T`` and ``K``."""
+    intrinsics = camera.intrinsics()
+    inverse_t = np.linalg.inv(intrinsics @ camera_axes(*pose_angles(state))).T
+    return _border_normals(state, camera) @ inverse_t.T, inverse_t, intrinsics
+
+
+def _crossings(lines: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """``u = -(l_2 v + l_3) / l_1`` of each line (rows of ``lines``) at each row ``v``: ``(lines, rows)``."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return -(lines[:, 1:2] * rows[None, :] + lines[:, 2:3]) / lines[:, 0:1]
+
+
+def border_abscissae(state: np.ndarray, camera: PipeCamera) -> np.ndarray:
+    """``g(x)``: the columns ``(i_1, i_2, i_3, i_4)`` where the borders cross the first and last rows.
+
+    Parameters
+    ----------
+    state : numpy.ndarray
+        ``(C_x, C_y, theta, phi)`` or with roll ``xi`` appended; m and rad.
+    camera : PipeCamera
+        Intrinsics, image size and pipe diameter.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(i_1, i_2, i_3, i_4)`` in px: left and right border on row 0, then
+        on row ``H - 1``.  A border parallel to the rows gives ``inf``/``nan``.
+
+    References
+    ----------
+    seeds/004, section V-B, eq. (11), Fig. 4 and the Appendix, eqs. (18)-(22).
+    """
+    lines, _, _ = _image_lines(np.asarray(state, dtype=float), camera)
+    return _crossings(lines, camera.rows).T.reshape(4)
+
+
+def border_jacobian(state: np.ndarray, camera: PipeCamera) -> np.ndarray:
+    """``G = dg/dx``, the ``(4, n)`` Jacobian of :func:`border_abscissae` (eq. 14b).
+
+    Columns follow the state: ``C_x``, ``C_y``, ``theta``, ``phi`` and, for a
+    five-element state, ``xi``.
+
+    References
+    ----------
+    seeds/004, eqs. (14b) and (16a); the derivation is in the module docstring.
+    """
+    state = np.asarray(state, dtype=float)
+    lines, inverse_t, intrinsics = _image_lines(state, camera)
+    rows = camera.rows
+    by_centre = (inverse_t @ np.array(((0.0, -1.0), (1.0, 0.0), (0.0, 0.0)))).T  # d l / d(C_x, C_y) per unit n
+    axes = camera_axes_derivatives(*pose_angles(state))[: len(state) - 2]
+    jacobian = np.empty((4, len(state)))
+    for border, line in enumerate(lines):
+        derivatives = [by_centre[0], by_centre[1]]
+        derivatives += [-inverse_t @ (intrinsics @ d_axes).T @ line for d_axes in axes]
+        along = line[1] * rows + line[2]
+        for column, dl in enumerate(derivatives):
+            jacobian[[border, border + 2], column] = -(dl[1] * rows + dl[2]) / line[0] + along * dl[0] / line[0] ** 2
+    return jacobian
+
+
+def border_lines(abscissae: np.ndarray, size: tuple[int, int]) -> tuple[Line, Line]:
+    """The left and right border lines through ``(i_1, 0)``-``(i_3, H-1)`` and ``(i_2, 0)``-``(i_4, H-1)``.
+
+    Raises
+    ------
+    ValueError
+        If an abscissa is not finite.
+    """
+    i1, i2, i3, i4 = (float(v) for v in abscissae)
+    bottom = size[1] - 1.0
+    return Line.from_pixels((i1, 0.0), (i3, bottom), size), Line.from_pixels((i2, 0.0), (i4, bottom), size)
