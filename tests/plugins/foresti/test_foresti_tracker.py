@@ -162,3 +162,16 @@ def test_the_lines_baseline_reports_the_pair_or_nothing(draw):
     tracker.reset(INFO, np.random.default_rng(0))
     assert correct(tracker.step(frame(0, state, draw)), state)
     assert tracker.step(Frame(1, blank(draw, 3))) is None
+
+
+def test_an_uncertain_state_reports_no_cable_when_asked(draw):
+    states = true_states(4)
+    tracker = ForestiEkfTracker(ForestiEkfTracker.make_params({"max_border_std_px": 12.0}))
+    tracker.reset(INFO, np.random.default_rng(0))  # from x_0, P_0: borders uncertain by far more than 12 px
+    first = frame(0, states[0], draw, visible=False)
+    assert tracker.step(first) is None
+    estimates = [tracker.step(frame(k, s, draw)) for k, s in enumerate(states[1:], start=1)]
+    assert estimates[-1] is not None and correct(estimates[-1], states[-1])
+    always = ForestiEkfTracker()
+    always.reset(INFO, np.random.default_rng(0))
+    assert always.step(first) is not None
