@@ -48,6 +48,11 @@ ImageSize = tuple[int, int]
 """``(W, H)`` in px."""
 
 
+def _cos_sin(*angles: float) -> list[tuple[float, float]]:
+    """``(cos, sin)`` of each angle."""
+    return [(math.cos(angle), math.sin(angle)) for angle in angles]
+
+
 def camera_axes(theta: float, phi: float, xi: float) -> np.ndarray:
     """The camera versors of seeds/004, section II, as the rows of a matrix.
 
@@ -66,9 +71,7 @@ def camera_axes(theta: float, phi: float, xi: float) -> np.ndarray:
     ----------
     seeds/004, section II, the versors ``h``, ``v``, ``a`` following Fig. 2.
     """
-    ct, st = math.cos(theta), math.sin(theta)
-    cp, sp = math.cos(phi), math.sin(phi)
-    cx, sx = math.cos(xi), math.sin(xi)
+    (ct, st), (cp, sp), (cx, sx) = _cos_sin(theta, phi, xi)
     h = (ct * cx, -sx * ct, -st)
     v = (-sp * st * cx - cp * sx, -cp * cx + sp * st * sx, -sp * ct)
     a = (cp * st * cx - sp * sx, -sp * cx + st * sx * cp, cp * ct)
@@ -94,9 +97,7 @@ def camera_axes_derivatives(theta: float, phi: float, xi: float) -> np.ndarray:
     ----------
     seeds/004, section II: the versors ``h``, ``v``, ``a``, differentiated term by term.
     """
-    ct, st = math.cos(theta), math.sin(theta)
-    cp, sp = math.cos(phi), math.sin(phi)
-    cx, sx = math.cos(xi), math.sin(xi)
+    (ct, st), (cp, sp), (cx, sx) = _cos_sin(theta, phi, xi)
     by_theta = (
         (-st * cx, sx * st, -ct),
         (-sp * ct * cx, sp * ct * sx, sp * st),
