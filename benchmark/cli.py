@@ -397,6 +397,41 @@ def diagnose_command(
     click.echo(f"wrote {path}", err=True)
 
 
+@main.command("pose-table")
+@click.option("--tracker", required=True, metavar="NAME", help="A camera tracker that reports the camera pose.")
+@click.option("--dataset", required=True, metavar="NAME|PATH", help="A camera sequence whose truth has the pose.")
+@click.option("--first", type=click.IntRange(min=0), default=0, show_default=True, help="First frame shown.")
+@click.option("--frames", type=click.IntRange(min=1), default=12, show_default=True, help="Number of frames shown.")
+@click.option(
+    "--init",
+    type=click.Choice(["truth", "none"]),
+    default="none",
+    show_default=True,
+    help="Start from the first frame's truth, or from the tracker's own prior (the paper's x_0).",
+)
+@OUT_OPTION
+@click.pass_obj
+def pose_table_command(
+    session: Session, tracker: str, dataset: str, first: int, frames: int, init: str, out: Path
+) -> None:
+    """Print a pose tracker's measurement, state, error and covariance per frame, as Foresti's Tables III-IV.
+
+    The tracker runs in this process from frame 0; frames FIRST to
+    FIRST+FRAMES-1 are shown.  Also written to OUT/pose_NAME.md.
+    """
+    from benchmark.files import make_folder, write_text_atomically
+    from benchmark.modalities.camera.pose_table import pose_markdown, pose_table
+    from benchmark.selection import select_sequences, select_trackers
+
+    (entry,) = select_trackers(session.registry, [tracker])
+    (sequence,) = select_sequences(session.registry, (), (dataset,))
+    table = pose_table(entry.create(), sequence, first, frames, init == "truth")
+    text = pose_markdown(table, f"{entry.name} on {sequence.info.name}, frames {first}-{first + len(table) - 1}")
+    click.echo(text)
+    path = write_text_atomically(make_folder(out) / f"pose_{entry.name}.md", text, "pose table")
+    click.echo(f"wrote {path}", err=True)
+
+
 @main.command("make-dataset")
 @click.argument("suite")
 @click.option(

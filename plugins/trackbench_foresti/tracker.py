@@ -139,8 +139,8 @@ class ForestiEkfTracker(Tracker[CameraTruth, CableState]):
         self._r = p.measurement_var_px2 * np.eye(4)
         self.belief: Gaussian | None = None
         self.camera: PipeCamera | None = None
-        self.measured = False
-        """Whether the last frame gave a measurement."""
+        self.measurement: np.ndarray | None = None
+        """The last frame's measured abscissae ``(i_1, i_2, i_3, i_4)``, None without a pair."""
         self._speeds = np.zeros(3)
         self._started = False
 
@@ -170,7 +170,7 @@ class ForestiEkfTracker(Tracker[CameraTruth, CableState]):
         self.belief = Gaussian(mean[:dims], np.diag(variance[:dims]))
         self._speeds = np.zeros(3)
         self._started = False
-        self.measured = False
+        self.measurement = None
 
     def step(self, frame: CameraFrame) -> CableState | None:
         """Predict, measure and correct; the border lines and pose of the corrected state.
@@ -217,13 +217,14 @@ class ForestiEkfTracker(Tracker[CameraTruth, CableState]):
             pair = self.features.measure(image, predicted, spread)
         else:
             pair = self.features.measure(image)
-        self.measured = pair is not None
+        self.measurement = None
         if pair is not None:
             left, right = pair
             (i1, i3), (i2, i4) = left.abscissae(camera.size), right.abscissae(camera.size)
+            self.measurement = np.array((i1, i2, i3, i4))
             self.belief = update(
                 self.belief,
-                np.array((i1, i2, i3, i4)),
+                self.measurement,
                 lambda x: border_abscissae(x, camera),
                 lambda x: border_jacobian(x, camera),
                 self._r,

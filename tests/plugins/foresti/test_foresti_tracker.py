@@ -92,7 +92,7 @@ def test_without_measurements_the_covariance_grows_by_q_and_the_borders_are_pred
     traces, held = [], []
     for k in range(6, 12):
         estimate = tracker.step(frame(k, states[k], draw, visible=False))
-        assert not tracker.measured
+        assert tracker.measurement is None
         traces.append(np.trace(tracker.belief.covariance))
         held.append(correct(estimate, states[k]))
     assert all(b > a for a, b in zip(traces, traces[1:]))
@@ -100,7 +100,7 @@ def test_without_measurements_the_covariance_grows_by_q_and_the_borders_are_pred
     assert all(held)
     for k in range(12, 16):
         tracker.step(frame(k, states[k], draw))
-    assert tracker.measured and np.trace(tracker.belief.covariance) < traces[-1]
+    assert tracker.measurement is not None and np.trace(tracker.belief.covariance) < traces[-1]
 
 
 def test_with_no_speeds_and_no_pipe_each_variance_grows_by_exactly_q(draw):
