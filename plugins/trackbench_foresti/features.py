@@ -100,6 +100,10 @@ class CandidateLine:
         Length, robustness and strength, eqs. (6a)-(6c).
     reliability : float
         ``Lambda``, eq. (6d).
+    polarity : int
+        +1 when the grey level rises across the line along its normal
+        ``(cos alpha, sin alpha)`` (its edges' phases point that way), -1
+        when it falls, 0 when unknown.
     """
 
     alpha: float
@@ -110,6 +114,7 @@ class CandidateLine:
     pr: float
     pf: float
     reliability: float
+    polarity: int = 0
 
     @property
     def by_rows(self) -> bool:
@@ -339,6 +344,7 @@ class FeatureExtractor:
                 pr=pr,
                 pf=float(pf),
                 reliability=reliability(pl, pr, float(pf), p.weights),
+                polarity=line.polarity,
             )
             for (line, domain, pl, pr), pf in zip(kept, pfs, strict=True)
         ]

@@ -51,7 +51,10 @@ dropped.
 
 The voters of a line are then the edges within ``tolerance`` px of it whose
 phase lies within ``phase_tolerance`` of its normal.  Its modulus ``M`` is
-their mean modulus.  Its domain is a boolean array over the image rows
+their mean modulus, and its polarity the way most of their phases point
+along the normal (+1 with it, -1 against it): whether the grey level rises
+or falls across the line, which grouping needs to tell a band from two
+edges that step the same way.  Its domain is a boolean array over the image rows
 (``dom[i]`` for row ``v = i``, ``i`` in ``[0, H)``) for lines within 45 deg
 of vertical (``|alpha| <= pi/4``), over the columns (``u = i``, ``i`` in
 ``[0, W)``) for the others: "rows (or columns)" in Fig. 7(b), so that each
@@ -87,6 +90,9 @@ class HoughLine:
         ``bool`` array of length ``H`` (row domain) or ``W`` (column domain).
     by_rows : bool
         True when the domain runs over rows (``|alpha| <= pi/4``).
+    polarity : int
+        +1 when most voters' phases point along ``(cos alpha, sin alpha)``,
+        -1 when against it, 0 without voters or on a tie.
     """
 
     alpha: float
@@ -95,6 +101,7 @@ class HoughLine:
     modulus: float
     domain: np.ndarray
     by_rows: bool
+    polarity: int = 0
 
 
 @dataclass(frozen=True, eq=False)
@@ -132,6 +139,9 @@ class EdgePoints:
         Phase ``F(k)`` folded into ``[-pi/2, pi/2)``: the normal angle of
         the line the edge belongs to.  The points are sorted by it, so that
         the edges of one direction are found by bisection.
+    step : numpy.ndarray
+        +1 where the phase points along ``(cos normal, sin normal)``, -1
+        where folding turned it by a half turn.
     size : tuple of int
         Image ``(W, H)`` in px.
     """
@@ -142,6 +152,7 @@ class EdgePoints:
     y: np.ndarray
     modulus: np.ndarray
     normal: np.ndarray
+    step: np.ndarray
     size: tuple[int, int]
 
     @classmethod
@@ -151,10 +162,12 @@ class EdgePoints:
         width, height = edges.size
         x = u.astype(np.float64) - (width - 1) / 2.0
         y = (height - 1) / 2.0 - v.astype(np.float64)
-        normal = fold(edges.phase[v, u].astype(np.float64))
+        phase = edges.phase[v, u].astype(np.float64)
+        normal = fold(phase)
+        step = np.where(np.cos(phase - normal) >= 0.0, 1, -1)
         order = np.argsort(normal, kind="stable")
         modulus = edges.modulus[v, u].astype(np.float64)
-        return cls(u[order], v[order], x[order], y[order], modulus[order], normal[order], edges.size)
+        return cls(u[order], v[order], x[order], y[order], modulus[order], normal[order], step[order], edges.size)
 
     def facing(self, alpha: float, phase_tolerance: float) -> np.ndarray:
         """Indices of the points whose normal is within ``phase_tolerance`` of ``alpha``, modulo ``pi``."""
@@ -341,8 +354,8 @@ def refine_lines(
 
 def line_support(
     points: EdgePoints, alphas: np.ndarray, rhos: np.ndarray, tolerance: float, phase_tolerance: float
-) -> tuple[np.ndarray, list[np.ndarray], np.ndarray]:
-    """Mean modulus and domain of lines, from the edges that support them.
+) -> tuple[np.ndarray, list[np.ndarray], np.ndarray, np.ndarray]:
+    """Mean modulus, domain and polarity of lines, from the edges that support them.
 
     Parameters
     ----------
@@ -363,6 +376,10 @@ def line_support(
         Each line's ``bool`` domain over rows (length ``H``) or columns (``W``).
     by_rows : numpy.ndarray
         ``bool``: which lines have row domains (``|alpha| <= pi/4``).
+    polarity : numpy.ndarray
+        ``int``: the sign of the sum of the voters' :attr:`EdgePoints.step`
+        (whether the grey level rises or falls across the line along its
+        normal), 0 without voters.
 
     References
     ----------
@@ -372,14 +389,16 @@ def line_support(
     width, height = points.size
     by_rows = np.abs(fold(alphas)) <= math.pi / 4 + 1e-12
     modulus = np.zeros(alphas.size)
+    polarity = np.zeros(alphas.size, dtype=int)
     domains = []
     for i, near in enumerate(supporters(points, alphas, rhos, tolerance, phase_tolerance)):
         if near.size:
             modulus[i] = points.modulus[near].mean()
+            polarity[i] = int(np.sign(points.step[near].sum()))
         domain = np.zeros(height if by_rows[i] else width, dtype=bool)
         domain[points.v[near] if by_rows[i] else points.u[near]] = True
         domains.append(domain)
-    return modulus, domains, by_rows
+    return modulus, domains, by_rows, polarity
 
 
 def _distinct(alphas: np.ndarray, rhos: np.ndarray, alpha_reach: float, rho_reach: float) -> list[int]:
@@ -450,9 +469,10 @@ def hough_lines(
     stray = 0.5 * math.hypot(width, height) * math.sin(alpha_step / 2.0) + rho_step / 2.0
     alphas, rhos = refine_lines(points, alphas, rhos, tolerance + stray, phase_tolerance)
     kept = _distinct(alphas, rhos, neighbourhood * alpha_step, neighbourhood * rho_step)
-    modulus, domains, by_rows = line_support(points, alphas[kept], rhos[kept], tolerance, phase_tolerance)
+    modulus, domains, by_rows, polarity = line_support(points, alphas[kept], rhos[kept], tolerance, phase_tolerance)
     votes = pooled[k[kept], j[kept]]
+    lines = zip(alphas[kept], rhos[kept], votes, modulus, domains, by_rows, polarity, strict=True)
     return [
-        HoughLine(float(a), float(r), int(n), float(m), dom, bool(rows))
-        for a, r, n, m, dom, rows in zip(alphas[kept], rhos[kept], votes, modulus, domains, by_rows, strict=True)
+        HoughLine(float(a), float(r), int(n), float(m), dom, bool(rows), int(sign))
+        for a, r, n, m, dom, rows, sign in lines
     ]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -67,6 +68,15 @@ def test_borders_may_not_diverge_towards_the_top_beyond_the_slack(draw):
     parallel = pair_at(draw, (150.0, 190.0), (150.0, 190.0))
     assert compatible(*converging, SIZE) and compatible(*parallel, SIZE)
     assert not compatible(converging[1], converging[0], SIZE)  # rule (c): left must be left
+
+
+def test_two_borders_stepping_the_same_way_do_not_bound_a_band(draw):
+    left, right = pair_at(draw, (100.0, 140.0), (80.0, 160.0))
+    signed = [dataclasses.replace(line, polarity=sign) for line, sign in zip((left, right), (-1, 1), strict=True)]
+    assert compatible(*signed, SIZE)
+    assert not compatible(signed[0], dataclasses.replace(signed[1], polarity=-1), SIZE)
+    assert compatible(signed[0], dataclasses.replace(signed[1], polarity=0), SIZE)  # unknown: not ruled out
+    assert choose_pair([signed[0], dataclasses.replace(signed[1], polarity=-1)], SIZE) is None
 
 
 def test_lines_far_from_vertical_are_not_paired(draw):

@@ -132,6 +132,16 @@ def test_the_borders_of_a_drawn_pipe_are_found(draw, state):
         ), f"border {border} of {state} not among {found}"
 
 
+@pytest.mark.parametrize("contrast, left, right", [(-50.0, -1, 1), (50.0, 1, -1)])
+def test_the_borders_of_a_band_step_opposite_ways(draw, contrast, left, right):
+    """A dark band: the grey level falls across its left border and rises across its right one."""
+    state = CableState(0.0, 0.0, 40.0, 0.0)
+    edges = canny_edges(draw.pipe(state, contrast=contrast, seed=5), DEFAULTS.blur_sigma_px, 20.0, 60.0)
+    found = sorted(lines_of(edges, min_votes=DEFAULTS.min_votes), key=lambda line: line.rho)
+    assert len(found) == 2 and all(abs(abs(line.rho) - 20.0) < 1.5 for line in found)
+    assert [line.polarity for line in found] == [left, right]
+
+
 def test_bad_resolutions_are_refused():
     points = EdgePoints.of(edge_map([1], [1], 0.0))
     with pytest.raises(ValueError, match="alpha_step"):
