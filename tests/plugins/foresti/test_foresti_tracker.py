@@ -175,3 +175,31 @@ def test_an_uncertain_state_reports_no_cable_when_asked(draw):
     always = ForestiEkfTracker()
     always.reset(INFO, np.random.default_rng(0))
     assert always.step(first) is not None
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.tuples(st.floats(-0.3, 0.3), st.floats(1.0, 2.5), st.floats(-0.1, 0.1), st.floats(0.7, 1.2)),
+    st.tuples(st.floats(-0.5, 0.5), st.floats(-0.3, 0.3), st.floats(0.0, 2.0)),
+    st.integers(0, 2**16),
+    st.integers(1, 10),
+)
+def test_without_a_measurement_the_covariance_never_shrinks(start, speeds, seed, frames):
+    """Eq. (17): prediction alone adds Q each frame: the trace grows, the angles' variances by Q exactly."""
+    rng = np.random.default_rng(seed)
+    root = rng.normal(0.0, 0.3, (4, 4))
+    belief = Gaussian(np.array(start), root @ root.T + 1e-6 * np.eye(4))
+    tracker = ForestiEkfTracker()
+    q = np.diag(tracker.params.process_var)
+    u = np.array(speeds)
+    for _ in range(frames):
+        before = belief.covariance
+        belief = update(
+            predict(belief, lambda x: advance(x, u, CAMERA), lambda x: advance_jacobian(x, u, CAMERA), q),
+            None,
+            lambda x: border_abscissae(x, CAMERA),
+            lambda x: border_jacobian(x, CAMERA),
+            tracker.params.measurement_var_px2 * np.eye(4),
+        )
+        assert np.trace(belief.covariance) > np.trace(before)
+        assert np.all(np.diag(belief.covariance)[2:] >= np.diag(before)[2:] + np.diag(q)[2:] - 1e-12)
