@@ -420,13 +420,14 @@ def pose_table_command(
     FIRST+FRAMES-1 are shown.  Also written to OUT/pose_NAME.md.
     """
     from benchmark.files import make_folder, write_text_atomically
-    from benchmark.modalities.camera.pose_table import pose_markdown, pose_table
+    from benchmark.modalities.camera.pose_table import pose_table
+    from benchmark.report.markdown import titled_table
     from benchmark.selection import select_sequences, select_trackers
 
     (entry,) = select_trackers(session.registry, [tracker])
     (sequence,) = select_sequences(session.registry, (), (dataset,))
     table = pose_table(entry.create(), sequence, first, frames, init == "truth")
-    text = pose_markdown(table, f"{entry.name} on {sequence.info.name}, frames {first}-{first + len(table) - 1}")
+    text = titled_table(table, f"{entry.name} on {sequence.info.name}, frames {first}-{first + len(table) - 1}")
     click.echo(text)
     path = write_text_atomically(make_folder(out) / f"pose_{entry.name}.md", text, "pose table")
     click.echo(f"wrote {path}", err=True)

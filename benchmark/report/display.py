@@ -1,7 +1,9 @@
 """Boards as text: values rounded for reading, columns aligned by type.
 
 Boards keep full precision (and CSV exports them so); the Markdown, HTML and
-terminal forms round percentages to 0.1, RMSEs to 0.01 and fps to 1.
+terminal forms round percentages to 0.1, RMSEs to 0.01 and fps to 1 (and
+the tables of ``trackbench pose-table``: metres to 0.01, degrees to 0.1,
+pixels to 1, variances to three digits).
 """
 
 from __future__ import annotations
@@ -17,13 +19,18 @@ def one_line(text: object) -> str:
 
 
 def format_value(column: str, value: object) -> str:
+    """A value as shown: percentages and degrees to 0.1, RMSEs and metres to 0.01, pixels to 1, variances as e-03."""
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return ""
     if column.endswith("_pct"):
         return f"{value:.1f}"
-    if column.startswith("rmse_"):
+    if column.startswith("rmse_") or column.endswith("_m"):
         return f"{value:.2f}"
-    if column == "fps":
+    if column.startswith("var_"):
+        return f"{value:.2e}"
+    if column.endswith("_deg"):
+        return f"{value:.1f}"
+    if column == "fps" or column.endswith("_px"):
         return f"{value:.0f}"
     return str(value)
 

@@ -75,3 +75,14 @@ def to_markdown(boards: Mapping[str, pd.DataFrame], caption: str = "", problems:
     if problems:
         parts += ["## Problems", "", *(f"- {escape_markdown(problem)}" for problem in problems), ""]
     return "\n".join(parts)
+
+
+def titled_table(table: pd.DataFrame, title: str) -> str:
+    """A table under a level-one heading, values rounded for reading (:mod:`benchmark.report.display`)."""
+    shown = display_table(table)
+    # Numbers need no escaping, and a minus sign escaped as a list marker would read badly in a terminal.
+    for column in table.columns:
+        if not pd.api.types.is_numeric_dtype(table[column]):
+            shown[column] = shown[column].map(escape_markdown)
+    body = shown.to_markdown(index=False, disable_numparse=True, colalign=alignment(table))
+    return f"# {escape_markdown(title)}\n\n{body}\n"

@@ -38,8 +38,7 @@ from benchmark.modalities.camera.model import CableState
 from benchmark.modalities.camera.scoring import CameraScorer
 from benchmark.modality import Modality
 from benchmark.model import Outcome, Sequence
-from benchmark.report.display import alignment, display_table
-from benchmark.report.markdown import escape_markdown
+from benchmark.report.markdown import titled_table
 from benchmark.selection import SelectionError
 from benchmark.tracker import ScoresStates
 
@@ -407,9 +406,7 @@ def ceiling_report(
 
 def ceiling_markdown(table: pd.DataFrame, tracker: str) -> str:
     """A :func:`ceiling_report` table as Markdown under a heading naming the tracker, percentages to 0.1."""
-    shown = display_table(table).map(escape_markdown)
-    body = shown.to_markdown(index=False, disable_numparse=True, colalign=alignment(table))
-    return f"# Likelihood ceiling of {escape_markdown(tracker)}\n\n{body}\n"
+    return titled_table(table, f"Likelihood ceiling of {tracker}")
 
 
 __all__ = [

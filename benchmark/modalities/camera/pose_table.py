@@ -23,15 +23,14 @@ import pandas as pd
 
 from benchmark.modalities.camera.model import PosedCableState
 from benchmark.model import Sequence
-from benchmark.report.markdown import escape_markdown
 
 COLUMNS = (
     "frame",
     "measured",
-    "i1",
-    "i2",
-    "i3",
-    "i4",
+    "i1_px",
+    "i2_px",
+    "i3_px",
+    "i4_px",
     "cx_m",
     "cy_m",
     "theta_deg",
@@ -112,7 +111,7 @@ def _row(index: int, tracker: Any, estimate: object, truth: Any) -> dict[str, An
         measured = tracker.measurement
         row["measured"] = "N" if measured is None else "Y"
         if measured is not None:
-            row.update(zip(("i1", "i2", "i3", "i4"), (float(v) for v in measured)))
+            row.update(zip(COLUMNS[2:6], (float(v) for v in measured)))
     pose = estimate.pose if isinstance(estimate, PosedCableState) else None
     if pose is None:
         return row
@@ -130,25 +129,4 @@ def _row(index: int, tracker: Any, estimate: object, truth: Any) -> dict[str, An
     return row
 
 
-def pose_markdown(table: pd.DataFrame, title: str) -> str:
-    """A :func:`pose_table` as Markdown: abscissae to 1 px, lengths to 0.01 m, angles to 0.1 deg, variances as e-03."""
-
-    def shown(column: str, value: object) -> str:
-        if value is None or (isinstance(value, float) and math.isnan(value)):
-            return ""
-        if column.startswith("var_"):
-            return f"{value:.2e}"
-        if column.endswith("_m"):
-            return f"{value:.2f}"
-        if column.endswith("_deg"):
-            return f"{value:.1f}"
-        if column in ("i1", "i2", "i3", "i4"):
-            return f"{value:.0f}"
-        return str(value)
-
-    text = pd.DataFrame({c: [shown(c, v) for v in table[c].tolist()] for c in table.columns}, dtype=object)
-    body = text.to_markdown(index=False, disable_numparse=True, colalign=["right"] * len(table.columns))
-    return f"# {escape_markdown(title)}\n\n{body}\n"
-
-
-__all__ = ["COLUMNS", "MeasuresBorders", "pose_markdown", "pose_table"]
+__all__ = ["COLUMNS", "MeasuresBorders", "pose_table"]

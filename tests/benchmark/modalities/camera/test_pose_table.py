@@ -11,8 +11,9 @@ from click.testing import CliRunner
 
 from benchmark.cli import main
 from benchmark.modalities.camera.model import CableState, CameraPose, CameraTruth, PosedCableState
-from benchmark.modalities.camera.pose_table import COLUMNS, MeasuresBorders, pose_markdown, pose_table
+from benchmark.modalities.camera.pose_table import COLUMNS, MeasuresBorders, pose_table
 from benchmark.model import Frame, Sequence, SequenceInfo
+from benchmark.report.markdown import titled_table
 
 CABLE = CableState(1.0, 0.0, 30.0, 0.01)
 
@@ -58,11 +59,11 @@ def test_the_table_holds_measurement_state_error_and_variance_for_the_span():
     table = pose_table(tracker, Poses(), first=2, frames=3)
     assert list(table.columns) == list(COLUMNS) and table["frame"].tolist() == [2, 3, 4]
     assert table["measured"].tolist() == ["Y", "N", "Y"] and not tracker.started_from_truth
-    assert table.loc[0, ["i1", "i4"]].tolist() == [3.0, 6.0] and math.isnan(table.loc[1, "i1"])
+    assert table.loc[0, ["i1_px", "i4_px"]].tolist() == [3.0, 6.0] and math.isnan(table.loc[1, "i1_px"])
     np.testing.assert_allclose(table["err_cx_m"], [-0.1, -0.1, -0.1])
     np.testing.assert_allclose(table["var_cx_m2"], [0.25, 0.125, 0.0625])
     assert table.loc[0, "phi_deg"] == pytest.approx(45.0)
-    text = pose_markdown(table, "lagging on poses")
+    text = titled_table(table, "lagging on poses")
     assert text.startswith("# lagging on poses") and "2.50e-01" in text and "-0.10" in text
 
 
