@@ -28,11 +28,12 @@ measure from the top-left corner with ``alpha`` in ``[0, 180)`` deg; see
 Defaults
 --------
 The parameters are the flat fields of :class:`FeatureParams`.  Where the
-brief or the paper fixes a value it is kept: 1 deg / 1 px accumulator
-(``alpha_step_deg``, ``rho_step_px``), 1.5 px domain tolerance
-(``domain_tolerance_px``), ``PL > 0.5`` and ``PR > 0.65`` (``min_pl``,
+paper fixes a value it is kept: ``PL > 0.5`` and ``PR > 0.65`` (``min_pl``,
 ``min_pr``; Fig. 8), weights ``0.5, 0.35, 0.15`` (``weight_pl``,
-``weight_pr``, ``weight_pf``; Table I).  The others were chosen on the
+``weight_pr``, ``weight_pf``; Table I).  It gives no accumulator resolution
+or domain tolerance; 1 deg / 1 px (``alpha_step_deg``, ``rho_step_px``) and
+1.5 px (``domain_tolerance_px``) suit images of a few hundred pixels.  The
+others were chosen on the
 first 100 frames of camera/S2, S3 and S4 (set A), scored by the detection
 rule of conventions.md section 3 without a prediction, and checked on
 frames 100-499 of the same sequences (set C) and on the first 100 frames of
@@ -41,7 +42,9 @@ C 99.7 %, B 42.3 % (S1-S1c: borders hidden by clutter fail ``PR > 0.65``;
 S7: in half the frames the pipe runs into the sand and shows only in the
 lower part of the image, its borders are not found or fail ``PR > 0.65`` or
 lose to full-height sand ripples, and a pair of ripples is chosen instead;
-a prediction is needed there).  Changing one default at a time:
+a prediction is needed there; these rates were measured before grouping's
+rule (d), which removed most of S7's ripple pairs).  Changing one default at
+a time:
 
 * ``max_gap = 5`` instead of 10 (Canny breaks the borders where sand
   ripples cross them): A 90.7 %, C 91.0 %, B 28.0 % correct.
@@ -53,7 +56,7 @@ a prediction is needed there).  Changing one default at a time:
 * ``phase_tolerance_deg = 8`` instead of 5: A 100 %, C 100 %, B 46.3 %,
   but 1.1 ms slower per frame; kept at 5 deg for the time budget.
 * ``domain_tolerance_px = 2`` instead of 1.5: C 100 %, B 43.7 %; kept at
-  the brief's 1.5 px.
+  1.5 px, the width of an anti-aliased step.
 
 The grouping defaults (``max_divergence_deg``, ``min_pair_reliability``,
 ``gate_px``, ``meet_ratio``) are discussed in
@@ -179,10 +182,10 @@ class FeatureParams:
     """High Canny hysteresis threshold, at least ``canny_low`` (about twice a step's height in grey levels)."""
 
     alpha_step_deg: Annotated[pydantic.FiniteFloat, Interval(gt=0, le=45)] = 1.0
-    """Hough angle resolution, deg; must divide 180 (the brief: 1 deg)."""
+    """Hough angle resolution, deg; must divide 180."""
 
     rho_step_px: Positive = 1.0
-    """Hough distance resolution, px (the brief: 1 px)."""
+    """Hough distance resolution, px."""
 
     phase_tolerance_deg: Annotated[pydantic.FiniteFloat, Interval(ge=0, le=90)] = 5.0
     """An edge votes for the normal angles within this many deg of its gradient direction, and supports a line
@@ -196,7 +199,7 @@ class FeatureParams:
     """Half-size in bins of the accumulator's non-maximum suppression."""
 
     domain_tolerance_px: NonNegative = 1.5
-    """Largest distance of a supporting edge from its line, px (the brief: 1.5 px)."""
+    """Largest distance of a supporting edge from its line, px."""
 
     max_gap: Count = 10
     """Domain holes of up to this many entries are filled (eqs. 5a-5b)."""
