@@ -112,7 +112,15 @@ def test_with_no_speeds_and_no_pipe_each_variance_grows_by_exactly_q(draw):
         tracker.step(Frame(k, sand))
         diagonals.append(np.diag(tracker.belief.covariance))
     steps = np.diff(diagonals, axis=0)
-    np.testing.assert_allclose(steps, np.tile(tracker.params.process_var, (4, 1)), rtol=1e-9)
+    # Q is given for the paper's 0.25 s steps; these frames are 0.04 s apart.
+    per_frame = np.array(tracker.params.process_var) * 0.04 / 0.25
+    np.testing.assert_allclose(steps, np.tile(per_frame, (4, 1)), rtol=1e-9)
+    as_printed = ForestiEkfTracker(ForestiEkfTracker.make_params({"process_var_interval_s": 0.0}))
+    as_printed.reset(INFO, np.random.default_rng(0))
+    before = np.diag(as_printed.belief.covariance)
+    as_printed.step(Frame(0, sand))
+    as_printed.step(Frame(1, sand))
+    np.testing.assert_allclose(np.diag(as_printed.belief.covariance) - before, as_printed.params.process_var)
 
 
 @settings(max_examples=25, deadline=None)
