@@ -23,6 +23,10 @@ import pandas as pd
 
 from benchmark.modalities.camera.model import PosedCableState
 from benchmark.model import Sequence
+from benchmark.selection import SelectionError
+
+CAMERA = "camera"
+"""The modality whose sequences carry the camera pose."""
 
 COLUMNS = (
     "frame",
@@ -81,11 +85,17 @@ def pose_table(tracker: Any, sequence: Sequence, first: int = 0, frames: int = 1
     ------
     ValueError
         If the span is empty or lies beyond the sequence, naming it.
+    SelectionError
+        If the sequence is not a camera sequence, or the tracker reported no
+        pose on any frame of the span.
 
     References
     ----------
     seeds/004, section VI-A, Tables III and IV.
     """
+    name = getattr(tracker, "name", type(tracker).__name__)
+    if sequence.info.modality != CAMERA:
+        raise SelectionError(f"sequence {sequence.info.name!r} is a {sequence.info.modality} sequence, not camera")
     if first < 0 or frames < 1:
         raise ValueError(f"frames {first}..{first + frames - 1} of {sequence.info.name!r}: not a span of frames")
     iterator = iter(sequence.frames())
@@ -102,7 +112,10 @@ def pose_table(tracker: Any, sequence: Sequence, first: int = 0, frames: int = 1
             rows.append(_row(frame.index, tracker, estimate, frame.truth))
     if not rows:
         raise ValueError(f"sequence {sequence.info.name!r} has no frames from {first} on")
-    return pd.DataFrame(rows, columns=list(COLUMNS))
+    table = pd.DataFrame(rows, columns=list(COLUMNS))
+    if table["cx_m"].isna().all():
+        raise SelectionError(f"tracker {name!r} reported no camera pose on {sequence.info.name!r}")
+    return table
 
 
 def _row(index: int, tracker: Any, estimate: object, truth: Any) -> dict[str, Any]:

@@ -84,3 +84,5 @@ def test_the_command_runs_the_foresti_ekf_from_the_papers_prior(tmp_path):
     assert (tmp_path / "pose_foresti_ekf.md").read_text().strip() == result.stdout.strip()
     missing = CliRunner().invoke(main, ["pose-table", "--tracker", "foresti_ekf", "--dataset", "camera/nope"])
     assert missing.exit_code == 2 and "nope" in missing.output
+    no_pose = CliRunner().invoke(main, ["pose-table", "--tracker", "hough", "--dataset", "camera/S3", "--frames", "1"])
+    assert no_pose.exit_code == 2 and "'hough' reported no camera pose" in no_pose.output
