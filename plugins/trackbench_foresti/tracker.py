@@ -30,38 +30,40 @@ camera is assumed to hover, and the process noise ``Q`` carries its motion.
 
 Defaults are section VI-A's: ``R = 16 I`` (4 px on each abscissa),
 ``Q = diag(0.01, 0.01, 0.0012, 0.087)``, ``x_0 = (0, 2, 0, 0.78)`` and
-``P_0 = diag(1, 1, 0.3, 0.3)``.  The paper contradicts itself on ``Q``: the
-text says it assumes 0.1 m on ``C_x``, ``C_y``, 2 deg on one angle and
-5 deg on the other; 0.01 and 0.0012 are those as variances, but 0.087 is
-5 deg as a standard deviation (its variance would be 0.0076), and Table
-IV's covariances grow by 0.04 and 0.0076 a frame, neither matching.  The
-printed matrix is the one the text gives as the filter's, so it is the
-default.
+``P_0 = diag(1, 1, 0.3, 0.3)``.  The paper contradicts itself twice:
 
-``Q`` is the state's drift over one step of the paper's filter, and that
-filter ran at 4 frames/s (section VII: "it runs at 4 frames/s"), while the
-camera suite has 25.  A random walk's variance grows in proportion to time,
-so each frame of ``tau`` seconds adds ``Q tau / 0.25 s``
-(``process_var_interval_s``; 0 adds ``Q`` per frame as printed).  Per frame
-as printed, the prediction through S7's burial is soon so uncertain that the
-gate admits a stray pair of lines 19 frames in (``var phi`` 1.7 rad^2), and
-the filter re-finds the pipe only 51 frames later: S7 64.7 % correct against
-72.7 % scaled, camera suite and clutter family 68.3 against 68.6 %, no other
-sequence of the camera suite lower.  The price is a slower pose: with the
-smaller drift the angles follow the camera's pitching later, and the tilt's
-RMSE on S2-S6 rises from 0.8-5.0 deg to 1.3-5.0 deg.  Section VI names ``theta`` the tilt and ``phi`` the pan, against
-section II; ``x_0``'s ``0.78`` rad = 45 deg for ``phi`` (Table III's tilt
-column reads 45) supports section II, which is followed here.  With
-``phi``'s variance 0.0076 instead, the camera suite scores the same
-(81.9 against 81.8 % correct).
+* on ``Q``: the text says it assumes 0.1 m on ``C_x``, ``C_y``, 2 deg on
+  one angle and 5 deg on the other; 0.01 and 0.0012 are those as
+  variances, but 0.087 is 5 deg as a standard deviation (its variance would
+  be 0.0076), and Table IV's covariances grow by 0.04 and 0.0076 a frame,
+  neither matching.  The printed matrix is the one the text gives as the
+  filter's, so it is the default; with ``phi``'s variance 0.0076 the camera
+  suite scores the same (81.9 against 81.8 % correct, before the scaling
+  below);
+* on the angles' names: section VI calls ``theta`` the tilt and ``phi`` the
+  pan, against section II; ``x_0``'s 0.78 rad = 45 deg for ``phi`` (Table
+  III's tilt column reads 45) supports section II, which is followed here.
+
+One departure.  ``Q`` is the state's drift over one step of the paper's
+filter, which ran at 4 frames/s (section VII), while the camera suite has
+25.  A random walk's variance grows in proportion to time, so each frame of
+``tau`` seconds adds ``Q tau / 0.25 s`` (``process_var_interval_s``; 0 adds
+``Q`` per frame as printed).  Per frame as printed, the prediction through
+S7's burial is soon so uncertain that the gate admits a stray pair of lines
+19 frames in (``var phi`` 1.7 rad^2), and the filter re-finds the pipe only
+51 frames later: S7 64.7 % correct against 72.7 % scaled, camera suite and
+clutter family 68.3 against 68.6 %, no sequence of the camera suite lower.
+The price is a slower pose: with the smaller drift the angles follow the
+camera's pitching later, and the tilt's RMSE on S2-S6 rises from 0.8-5.0
+deg to 1.3-5.0 deg.
 
 The paper's filter reports the state's borders on every frame, measured or
 not, and so does this one by default.  ``max_border_std_px`` (not in the
 paper) reports no cable instead when a border abscissa the state predicts
 is uncertain by more than that many pixels.  On the camera suite and the
-clutter family (one seed; the filter is deterministic) the default scores
-67.6 % correct and 32.4 % false; 25 px: 65.0 / 2.3 %; 12 px: 63.9 / 1.7 %;
-the feature extractor alone (``foresti_lines``) 64.5 / 1.6 %.
+clutter family (one seed; the filter is deterministic) the default is
+68.6 % correct and 31.4 % false; 25 px: 67.2 / 3.3 %; 12 px: 65.8 / 0.6 %;
+the feature extractor alone (``foresti_lines``) 64.5 / 0.4 %.
 """
 
 from __future__ import annotations
