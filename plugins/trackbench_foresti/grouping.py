@@ -37,7 +37,8 @@ a pair (left, right) is compatible when
     the paper asks pairs to fit, and the test eq. (4.11) of seeds/000 makes
     of a cable's borders.  Sand ripples make long parallel lines whose
     neighbours often step the same way; without (d), while S7's pipe was
-    buried the EKF took such pairs for it and followed them (S7: 43.3 %
+    buried the EKF (``Q`` per frame as printed) took such pairs for it and
+    followed them (S7: 43.3 %
     correct, 56.7 % false) and the extractor alone reported them on 49.3 %
     of S7's frames; with (d) the EKF is 64.7 % correct on S7 and the
     extractor reports a wrong pair on 12.0 %; no other sequence of the
