@@ -23,6 +23,8 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+from benchmark.modalities.camera.io.video import to_grey
+
 
 @dataclass(frozen=True, eq=False)
 class EdgeMap:
@@ -73,11 +75,8 @@ def as_grey(image: np.ndarray) -> np.ndarray:
         For anything else, naming the image's dtype and shape.
     """
     if isinstance(image, np.ndarray) and image.dtype == np.uint8 and image.ndim == 3 and 0 not in image.shape:
-        channels = image.shape[2]
-        if channels == 1:
-            image = image[:, :, 0]
-        elif channels in (3, 4):
-            image = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY if channels == 3 else cv2.COLOR_BGRA2GRAY)
+        if image.shape[2] in (1, 3, 4):
+            image = to_grey(image)
     check_grey_image(image)
     return image
 

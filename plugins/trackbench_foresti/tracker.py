@@ -229,26 +229,20 @@ class ForestiEkfTracker(Tracker[CameraTruth, CableState]):
             )
         self._started = True
         self._speeds = frame_speeds(frame)
+        # g and G at the predicted state serve both the grouping's gate and the update (eqs. 16a-16b).  A state
+        # whose borders do not cross the image rows predicts no abscissae to compare with: no measurement.
         predicted = border_abscissae(self.belief.mean, camera)
         pair = None
         if np.all(np.isfinite(predicted)):
             slope = border_jacobian(self.belief.mean, camera)
             spread = slope @ self.belief.covariance @ slope.T + self._r
             pair = self.features.measure(image, predicted, spread)
-        else:
-            pair = self.features.measure(image)
         self.measurement = None
         if pair is not None:
             left, right = pair
             (i1, i3), (i2, i4) = left.abscissae(camera.size), right.abscissae(camera.size)
             self.measurement = np.array((i1, i2, i3, i4))
-            self.belief = update(
-                self.belief,
-                self.measurement,
-                lambda x: border_abscissae(x, camera),
-                lambda x: border_jacobian(x, camera),
-                self._r,
-            )
+            self.belief = update(self.belief, self.measurement, lambda _: predicted, slope, self._r)
         return self._estimate()
 
     def _estimate(self) -> PosedCableState | None:
