@@ -185,6 +185,30 @@ def test_an_uncertain_state_reports_no_cable_when_asked(draw):
     assert always.step(first) is not None
 
 
+def test_after_a_burial_a_pair_the_corrected_state_cannot_reproduce_is_no_measurement(draw):
+    """A stray pair inside the wide gate of a long burial must not pull the pose away (S7's sand ripples)."""
+    states = true_states(34)
+    # The right border 30 px off on the first row, 7 px on the last: a pair converging more than the pipe.
+    stray = cable_from_borders(*border_lines(border_abscissae(states[30], CAMERA) + [0.0, -30.0, 0.0, -7.0], SIZE))
+    stray_frame = Frame(30, draw.pipe(stray, contrast=-60.0, seed=30), None, VehicleSpeeds(*SPEEDS))
+    tilts = {}
+    for refit in (0.0, 18.47):
+        tracker = ForestiEkfTracker(ForestiEkfTracker.make_params({"refit_chi2": refit}))
+        tracker.reset(INFO, np.random.default_rng(0), init=frame(0, states[0], draw).truth)
+        for k in range(30):
+            tracker.step(frame(k, states[k], draw, visible=k < 6))
+        tracker.step(stray_frame)
+        tilts[refit] = (tracker.measurement is not None, math.degrees(tracker.belief.mean[3] - states[30][3]))
+        if refit:
+            for k in range(31, 34):
+                estimate = tracker.step(frame(k, states[k], draw))
+            assert tracker.measurement is not None and correct(estimate, states[33])
+    taken, moved = tilts[0.0]
+    assert taken and abs(moved) > 10.0  # the paper's filter takes the stray pair and its tilt jumps
+    refused, kept = tilts[18.47]
+    assert not refused and abs(kept) < 2.0
+
+
 @settings(max_examples=60, deadline=None)
 @given(
     st.tuples(st.floats(-0.3, 0.3), st.floats(1.0, 2.5), st.floats(-0.1, 0.1), st.floats(0.7, 1.2)),
