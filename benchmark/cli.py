@@ -159,7 +159,11 @@ def list_datasets(session: Session) -> None:
     if not suites:
         click.echo("No suites registered.")
     for suite in suites.values():
-        click.echo(f"{suite.name}  from {suite.origin.distribution} (plugin {suite.origin.plugin})")
+        roles = ([] if suite.scored else ["training split, not scored unless named"]) + (
+            [f"trains on {suite.training}"] if suite.training else []
+        )
+        role = f"  [{'; '.join(roles)}]" if roles else ""
+        click.echo(f"{suite.name}  from {suite.origin.distribution} (plugin {suite.origin.plugin}){role}")
         for sequence in suite.sequences:
             info = sequence.info
             frames = "?" if info.n_frames is None else str(info.n_frames)
@@ -225,6 +229,14 @@ def _show(publication: Publication) -> None:
     help="Time limit of each cell.",
 )
 @click.option("--param", "params", multiple=True, metavar="TRACKER.KEY=VALUE", help="Override a tracker parameter.")
+@click.option(
+    "--train",
+    "train",
+    multiple=True,
+    metavar="SUITE|NAME|PATH",
+    help="Train the trackers that learn on this suite, sequence or sequence file (repeatable), instead of the "
+    "training suite each scored suite names.",
+)
 @click.pass_context
 def run(
     ctx: click.Context,
@@ -239,6 +251,7 @@ def run(
     resume: bool,
     timeout: float,
     params: tuple[str, ...],
+    train: tuple[str, ...],
 ) -> None:
     """Run trackers on datasets, store the cells and publish the leaderboard.
 
@@ -249,7 +262,7 @@ def run(
 
     session: Session = ctx.obj
     registry = session.registry
-    cells = select_cells(registry, Selection(trackers, suites, datasets, params, seeds, init))
+    cells = select_cells(registry, Selection(trackers, suites, datasets, params, seeds, init, train))
     options = {key: list(value) if isinstance(value, tuple) else value for key, value in ctx.params.items()}
     summary = run_benchmark(
         cells,

@@ -15,14 +15,14 @@ import uuid
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TextIO
+from typing import Any
 
 from benchmark.errors import DataError
 
 
 @contextmanager
-def atomic_writer(path: str | os.PathLike[str], what: str = "file") -> Iterator[TextIO]:
-    """A text handle whose content replaces ``path`` when the block ends without error.
+def atomic_writer(path: str | os.PathLike[str], what: str = "file", binary: bool = False) -> Iterator[Any]:
+    """A handle whose content replaces ``path`` when the block ends without error.
 
     Parameters
     ----------
@@ -30,11 +30,13 @@ def atomic_writer(path: str | os.PathLike[str], what: str = "file") -> Iterator[
         The file to write; its folder must exist.
     what : str
         What the file is, for error messages ("leaderboard", "image sequence file").
+    binary : bool
+        A bytes handle instead of a text one.
 
     Yields
     ------
-    TextIO
-        UTF-8, ``\\n`` line ends.
+    TextIO or BinaryIO
+        Text: UTF-8, ``\\n`` line ends.
 
     Raises
     ------
@@ -45,7 +47,7 @@ def atomic_writer(path: str | os.PathLike[str], what: str = "file") -> Iterator[
     target = Path(path)
     temporary = target.with_name(f".{target.name}.{uuid.uuid4().hex[:12]}.tmp")
     try:
-        handle = temporary.open("x", encoding="utf-8", newline="\n")
+        handle = temporary.open("xb") if binary else temporary.open("x", encoding="utf-8", newline="\n")
     except OSError as exc:
         raise DataError(f"{target}: cannot write {what}: {exc.strerror or exc}") from None
     try:
@@ -64,6 +66,13 @@ def write_text_atomically(path: str | os.PathLike[str], text: str, what: str = "
     """Write ``text`` to ``path`` through :func:`atomic_writer`; return the path."""
     with atomic_writer(path, what) as handle:
         handle.write(text)
+    return Path(path)
+
+
+def write_bytes_atomically(path: str | os.PathLike[str], data: bytes, what: str = "file") -> Path:
+    """Write ``data`` to ``path`` through :func:`atomic_writer`; return the path."""
+    with atomic_writer(path, what, binary=True) as handle:
+        handle.write(data)
     return Path(path)
 
 

@@ -10,10 +10,13 @@ asks for (:func:`benchmark.selection.select_cells`) and
 3. with ``resume``, takes over every cell the database already finished
    with status ``ok`` (same tracker key, dataset identity, seed and
    initialisation) and runs only the others;
-4. runs the cells (:func:`benchmark.runner.run_cells`), storing each one in
+4. fits the trackers that learn, once per training set, on the cells left
+   to run (:func:`benchmark.training.fit_models`), reusing a model stored
+   in ``OUT/models``;
+5. runs the cells (:func:`benchmark.runner.run_cells`), storing each one in
    its own transaction as it finishes, so an interrupted run loses nothing
    finished;
-5. publishes the run's leaderboards (:func:`publish`): ranked per modality,
+6. publishes the run's leaderboards (:func:`publish`): ranked per modality,
    written atomically to ``OUT/leaderboard.{csv,md,html}``, also after the
    user's Ctrl-C.
 
@@ -25,6 +28,7 @@ through a ``log`` callback, one line per event.
 from __future__ import annotations
 
 import collections
+import functools
 import math
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -40,8 +44,9 @@ from benchmark.leaderboard import load_leaderboards
 from benchmark.modality import Modality
 from benchmark.report import write_leaderboards
 from benchmark.results import CellResult
-from benchmark.runner import DEFAULT_TIMEOUT_S, Cell, run_cells
+from benchmark.runner import DEFAULT_TIMEOUT_S, Cell, run_cells, run_isolated
 from benchmark.store import DATABASE_NAME, ResultStore
+from benchmark.training import fit_models
 
 Log = Callable[[str], None]
 """Receives one line of progress at a time."""
@@ -216,6 +221,9 @@ def run_benchmark(
                 statuses["ok"] += len(done)
                 log(f"resume: {len(done)} cells already finished, {len(todo)} to run")
             try:
+                todo = fit_models(
+                    todo, out, functools.partial(run_isolated, in_process=in_process), timeout_s, log
+                )
                 for result in run_cells(todo, jobs=jobs, timeout_s=timeout_s, in_process=in_process):
                     store.add_cell(run_id, result)
                     statuses[result.status] += 1

@@ -16,7 +16,8 @@ edited between runs), gets a row per key, labelled ``name [key prefix]``.
 Within each dataset trackers are ranked by ``correct_pct`` (higher first),
 then by the first RMSE column (``rmse_d_px`` for cameras, lower first), the
 order of seeds/004, Table V followed by the accuracy of seeds/000,
-section 5.2.3.  Rows whose cells failed (status other than ``ok``) rank
+section 5.2.3.  ``training`` names the training set of a tracker that
+learns (:mod:`benchmark.training`), empty for the others.  Rows whose cells failed (status other than ``ok``) rank
 after every row that ran cleanly, since their rates cover only the frames
 before the failure.
 
@@ -43,7 +44,7 @@ if TYPE_CHECKING:
 ALL_DATASETS = "(all)"
 """Dataset name of the row that pools a tracker over all datasets of a board."""
 
-LEADING_COLUMNS = ("rank", "tracker", "dataset", "init", "seeds", "frames")
+LEADING_COLUMNS = ("rank", "tracker", "dataset", "init", "training", "seeds", "frames")
 RATE_COLUMNS = tuple(f"{outcome}_pct" for outcome in Outcome)
 SPREAD_COLUMN = "correct_sd_pct"
 """Standard deviation over seeds of the per-seed ``correct_pct``, percentage points."""
@@ -152,6 +153,7 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
             "tracker": label,
             "dataset": dataset,
             "init": init,
+            "training": ", ".join(sorted(set(group.get("training", pd.Series(dtype=str)).fillna("")) - {""})),
             "seeds": int(group["seed"].nunique()),
             **summary,
             SPREAD_COLUMN: pd.Series(per_seed, dtype=float).std(ddof=1),

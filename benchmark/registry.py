@@ -68,11 +68,22 @@ class TrackerEntry:
 
 @dataclass(frozen=True)
 class SuiteEntry:
-    """A registered suite: named sequences of one or more modalities."""
+    """A registered suite: named sequences of one or more modalities.
+
+    Attributes
+    ----------
+    training : str or None
+        The suite whose labelled sequences train the trackers that learn
+        (:class:`benchmark.tracker.Learns`) before they run on this one.
+    scored : bool
+        False for a training split: a run that names no suite leaves it out.
+    """
 
     name: str
     sequences: tuple[Sequence, ...]
     origin: Origin = Origin()
+    training: str | None = None
+    scored: bool = True
 
 
 class Registry:
@@ -201,11 +212,16 @@ class Registry:
         self.trackers[entry_name] = entry
         return entry
 
-    def add_suite(self, name: str, sequences: Iterable[Sequence]) -> SuiteEntry:
+    def add_suite(
+        self, name: str, sequences: Iterable[Sequence], *, training: str | None = None, scored: bool = True
+    ) -> SuiteEntry:
         """Register a suite of sequences under ``name``.
 
         Sequence names (``identity.name``) must be unique across all suites.
-        Nothing is read from the sequences but their identities.
+        Nothing is read from the sequences but their identities.  ``training``
+        names the suite that trains learning trackers for this one (it may be
+        registered later); ``scored=False`` marks a training split, which
+        runs leave out unless they name it.
 
         Raises
         ------
@@ -229,7 +245,7 @@ class Registry:
                     f"which no plugin registered (registered: {', '.join(self.modalities) or 'none'})"
                 )
             taken.add(identity.name)
-        entry = SuiteEntry(name, items, self.origin)
+        entry = SuiteEntry(name, items, self.origin, training, scored)
         self.suites[name] = entry
         return entry
 

@@ -154,6 +154,8 @@ class CellResult:
         The traceback of an error, for the tracker's author.
     error_columns : tuple of str
         The modality's error columns, in its scorer's order.
+    training : str
+        The training set of a tracker that learns (:mod:`benchmark.training`), else empty.
     """
 
     tracker: str
@@ -171,6 +173,7 @@ class CellResult:
     elapsed_s: float
     detail: str = ""
     error_columns: tuple[str, ...] = ()
+    training: str = ""
 
     @property
     def key(self) -> CellKey:

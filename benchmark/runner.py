@@ -60,6 +60,7 @@ from benchmark.modality import EstimateError, Modality
 from benchmark.model import Sequence
 from benchmark.registry import TrackerEntry
 from benchmark.results import CellKey, CellResult, FrameScore, Status
+from benchmark.training import Training
 
 InitMode = Literal["truth", "none"]
 DEFAULT_TIMEOUT_S = 600.0
@@ -83,6 +84,9 @@ class Cell:
     modality : Modality
         The modality of tracker and sequence: frame types and scorer
         (keyword only).
+    training : Training or None
+        For a tracker that learns: its training set, then its fitted model
+        (:mod:`benchmark.training`; keyword only).
     """
 
     tracker: TrackerEntry
@@ -90,6 +94,7 @@ class Cell:
     seed: int
     init: InitMode = "truth"
     modality: Modality = dataclasses.field(kw_only=True)
+    training: Training | None = dataclasses.field(default=None, kw_only=True)
 
     def __post_init__(self) -> None:
         if self.init not in ("truth", "none"):
@@ -110,9 +115,15 @@ class Cell:
         return self.identity.name
 
     @property
+    def tracker_key(self) -> str:
+        """The tracker's cache key, joined by the training's key for a tracker that learns."""
+        key = self.tracker.cache_key
+        return key if self.training is None else f"{key}+{self.training.key}"
+
+    @property
     def key(self) -> CellKey:
-        """Identity of the computation: tracker cache key, dataset identity, seed, init."""
-        return CellKey(self.tracker.cache_key, self.identity.key, self.seed, self.init)
+        """Identity of the computation: tracker (and training) key, dataset identity, seed, init."""
+        return CellKey(self.tracker_key, self.identity.key, self.seed, self.init)
 
     def label(self) -> str:
         """Short human-readable name: ``tracker on dataset, seed s``."""
@@ -129,8 +140,9 @@ def cell_result(cell: Cell, status: Status, message: str = "", **fields: Any) ->
     return CellResult(
         tracker=cell.tracker.name,
         tracker_version=cell.tracker.version,
-        tracker_key=cell.tracker.cache_key,
+        tracker_key=cell.tracker_key,
         params=dataclasses.asdict(cell.tracker.params),
+        training="" if cell.training is None else cell.training.name,
         dataset=dataset,
         dataset_key=dataset_key,
         modality=cell.modality.name,
@@ -230,6 +242,9 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
         info = cell.sequence.info
         where = "creating the tracker"
         tracker = cell.tracker.create()
+        if cell.training is not None:
+            where = f"adopting the model trained on {cell.training.name}"
+            tracker.use_model(cell.training.load())  # type: ignore[attr-defined]
         frames = iter(cell.sequence.frames())
         where = "reading frame 0"
         first = next(frames, None)
@@ -372,6 +387,39 @@ def _run_in_pool(cells: list[Cell], jobs: int, timeout_s: float | None) -> Itera
         futures = {pool.schedule(run_cell, args=(cell, timeout_s), timeout=hard_limit): cell for cell in cells}
         for future in concurrent.futures.as_completed(futures):
             yield _from_future(futures[future], future, timeout_s)
+    finally:
+        pool.stop()
+        pool.join()
+
+
+def run_isolated(function: Any, args: tuple[Any, ...], timeout_s: float | None, in_process: bool = False) -> Any:
+    """``function(*args)`` in a fresh worker process under a time limit (or here, with ``in_process``).
+
+    Used to fit the trackers that learn (:func:`benchmark.training.fit_models`)
+    with the cells' isolation: a fit that raises, exits or hangs costs only
+    its tracker's cells.
+
+    Raises
+    ------
+    Exception
+        Whatever ``function`` raised; ``TimeoutError`` past the limit;
+        ``RuntimeError`` if the worker process ended.
+    """
+    if in_process:
+        return function(*args)
+    from pebble import ProcessExpired, ProcessPool
+
+    from benchmark.workers import init_worker
+
+    pool = ProcessPool(max_workers=1, initializer=init_worker, initargs=(os.getpid(),))
+    try:
+        future = pool.schedule(function, args=args, timeout=timeout_s)
+        try:
+            return future.result()
+        except TimeoutError:
+            raise TimeoutError(f"no result within the {timeout_s:g} s limit; the worker was stopped") from None
+        except ProcessExpired as exc:
+            raise RuntimeError(f"the worker process ended ({_exit_reason(exc.exitcode)})") from None
     finally:
         pool.stop()
         pool.join()

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+from collections import defaultdict
 from collections.abc import Iterable, Iterator, Mapping
 
 from benchmark.errors import ParameterError, TrackbenchError
@@ -30,8 +31,9 @@ from benchmark.identity import DatasetIdentity
 from benchmark.io import open_sequence
 from benchmark.modality import Modality
 from benchmark.model import Frame, Sequence, SequenceInfo
-from benchmark.registry import Registry, TrackerEntry
+from benchmark.registry import Registry, SuiteEntry, TrackerEntry
 from benchmark.runner import Cell, InitMode
+from benchmark.training import Training, learns, overlap_error
 
 
 class SelectionError(TrackbenchError):
@@ -163,7 +165,7 @@ def open_dataset_path(path: str, modalities: Iterable[Modality]) -> Sequence:
 
 
 def select_sequences(registry: Registry, suites: Iterable[str] = (), datasets: Iterable[str] = ()) -> list[Sequence]:
-    """The sequences of the named suites and datasets; all suites when none is named.
+    """The sequences of the named suites and datasets; every scored suite when none is named.
 
     Parameters
     ----------
@@ -192,7 +194,7 @@ def select_sequences(registry: Registry, suites: Iterable[str] = (), datasets: I
     suite_names = list(dict.fromkeys(suites))
     dataset_names = list(dict.fromkeys(datasets))
     if not suite_names and not dataset_names:
-        suite_names = list(registry.suites)
+        suite_names = [name for name, suite in registry.suites.items() if suite.scored]
     unknown = [name for name in suite_names if name not in registry.suites]
     if unknown:
         raise SelectionError(f"unknown suite {', '.join(map(repr, unknown))} (known: {_known(registry.suites)})")
@@ -282,6 +284,10 @@ class Selection:
         Seeds ``0 .. seeds - 1`` of every tracker and sequence.
     init : {"truth", "none"}
         Initialise trackers from the first frame's ground truth, or not.
+    train : tuple of str
+        Suites, registered sequences or sequence paths (``--train``) that
+        train every tracker that learns, instead of the ``training`` suite
+        each scored suite names.
     """
 
     trackers: tuple[str, ...] = ()
@@ -290,6 +296,7 @@ class Selection:
     params: tuple[str, ...] = ()
     seeds: int = 1
     init: InitMode = "truth"
+    train: tuple[str, ...] = ()
 
 
 def select_cells(registry: Registry, selection: Selection) -> list[Cell]:
@@ -307,4 +314,73 @@ def select_cells(registry: Registry, selection: Selection) -> list[Cell]:
     overrides = parse_param_overrides(selection.params)
     entries = apply_param_overrides(select_trackers(registry, selection.trackers), overrides)
     sequences = select_sequences(registry, selection.suites, selection.datasets)
-    return make_cells(entries, sequences, range(selection.seeds), selection.init, registry.modalities)
+    cells = make_cells(entries, sequences, range(selection.seeds), selection.init, registry.modalities)
+    return plan_training(registry, cells, selection.train)
+
+
+def plan_training(registry: Registry, cells: Iterable[Cell], train: Iterable[str] = ()) -> list[Cell]:
+    """The cells, each of a tracker that learns with its planned :class:`~benchmark.training.Training`.
+
+    The training set is ``train`` (suite names, registered sequence names or
+    sequence paths) when given, else the ``training`` suite of the scored
+    sequence's suite; only the sequences of the tracker's modality count.
+    A cell that cannot be trained gets a refused training naming why (no
+    training set, a set without sequences of its modality, a set holding a
+    sequence the tracker is scored on), so that it ends as an error row
+    while the other cells run.
+
+    Raises
+    ------
+    SelectionError
+        For a ``train`` word that names nothing (:func:`select_sequences`).
+    DataError
+        For a ``train`` path that cannot be read.
+    """
+    cells = list(cells)
+    words = list(dict.fromkeys(train))
+    given: tuple[str, list[Sequence]] | None = None
+    if words:
+        suites = [word for word in words if word in registry.suites]
+        datasets = [word for word in words if word not in registry.suites]
+        given = ", ".join(words), select_sequences(registry, suites, datasets)
+    suite_of = {seq.identity.key: suite for suite in registry.suites.values() for seq in suite.sequences}
+    scored: dict[str, list[Sequence]] = defaultdict(list)
+    for cell in cells:
+        scored[cell.tracker.cache_key].append(cell.sequence)
+    planned = []
+    for cell in cells:
+        if learns(cell.tracker):
+            cell = dataclasses.replace(cell, training=_training_of(registry, cell, given, suite_of, scored))
+        planned.append(cell)
+    return planned
+
+
+def _training_of(
+    registry: Registry,
+    cell: Cell,
+    given: tuple[str, list[Sequence]] | None,
+    suite_of: Mapping[str, SuiteEntry],
+    scored: Mapping[str, list[Sequence]],
+) -> Training:
+    """The training of one learning cell (see :func:`plan_training`)."""
+    entry = cell.tracker
+    if given is not None:
+        name, sequences = given
+    else:
+        suite = suite_of.get(cell.identity.key)
+        name = "" if suite is None or suite.training is None else suite.training
+        where = f"suite {suite.name!r}" if suite is not None else f"dataset {cell.dataset!r}"
+        if not name:
+            return Training.refused(
+                "", f"tracker {entry.name!r} learns from labelled sequences, but {where} names no training suite; "
+                "give one with --train SUITE_OR_PATH"
+            )
+        if name not in registry.suites:
+            return Training.refused(name, f"{where} names training suite {name!r}, which no plugin registered")
+        sequences = list(registry.suites[name].sequences)
+    mine = [sequence for sequence in sequences if sequence.identity.modality == entry.modality]
+    if not mine:
+        return Training.refused(name, f"training set {name!r} holds no {entry.modality} sequence")
+    training = Training.plan(entry, name, mine)
+    error = overlap_error(training, scored[entry.cache_key])
+    return Training.refused(name, error) if error else training

@@ -11,12 +11,13 @@ Schema (``PRAGMA user_version`` = :data:`SCHEMA_VERSION`)::
     runs(id, started, finished, argv JSON, options JSON, version, problems JSON)
     cells(id, run_id -> runs, tracker, tracker_version, tracker_key, params JSON,
           dataset, dataset_key, modality, seed, init, status, message, detail,
-          frames, elapsed_s, finished)
+          frames, elapsed_s, finished, training)
     run_cells(run_id -> runs, cell_id -> cells)
     frames(cell_id -> cells, position, frame, outcome, step_ms)
     frame_errors(cell_id, position, name, value)
 
-``problems`` lists, one line each, what went wrong in a run outside any
+``training`` names the training set of a tracker that learns (empty for
+the others; :mod:`benchmark.training`).  ``problems`` lists, one line each, what went wrong in a run outside any
 cell, such as a plugin that failed to import.  A cell is identified by
 ``(tracker_key, dataset_key, seed, init)`` (:class:`benchmark.results.CellKey`):
 ``dataset_key`` is the key of the dataset's identity
@@ -33,10 +34,10 @@ fit the same table; a non-finite error is simply not stored.
 ``run_cells`` lists the cells that make up a run's results: those it ran
 and those it took over from earlier runs with ``--resume``.
 
-A database of schema version 1 (no ``problems``, no ``dataset_key``) is
-upgraded in place when opened; its cells get their ``dataset`` as
-``dataset_key``, which no identity's key equals, so they are shown but
-never resumed.  Any SQLite error, such as a file damaged on disk, is
+A database of schema version 1 (no ``problems``, no ``dataset_key``) or 2
+(no ``training``) is upgraded in place when opened; version 1's cells get
+their ``dataset`` as ``dataset_key``, which no identity's key equals, so
+they are shown but never resumed.  Any SQLite error, such as a file damaged on disk, is
 reported as a :class:`~benchmark.errors.DataError` naming the file.
 """
 
@@ -59,7 +60,7 @@ from benchmark.errors import DataError
 if TYPE_CHECKING:
     from benchmark.results import CellKey, CellResult
 
-SCHEMA_VERSION = 2
+SCHEMA_VERSION = 3
 DATABASE_NAME = "results.sqlite"
 
 _SCHEMA = """
@@ -89,7 +90,8 @@ CREATE TABLE IF NOT EXISTS cells (
     detail TEXT NOT NULL,
     frames INTEGER NOT NULL,
     elapsed_s REAL NOT NULL,
-    finished TEXT NOT NULL
+    finished TEXT NOT NULL,
+    training TEXT NOT NULL DEFAULT ''
 );
 CREATE INDEX IF NOT EXISTS cells_by_key ON cells (tracker_key, dataset_key, seed, init);
 CREATE TABLE IF NOT EXISTS run_cells (
@@ -121,6 +123,10 @@ ALTER TABLE runs ADD COLUMN problems TEXT NOT NULL DEFAULT '[]';
 ALTER TABLE cells ADD COLUMN dataset_key TEXT NOT NULL DEFAULT '';
 UPDATE cells SET dataset_key = dataset;
 DROP INDEX cells_by_key;
+ALTER TABLE cells ADD COLUMN training TEXT NOT NULL DEFAULT '';
+""",
+    2: """
+ALTER TABLE cells ADD COLUMN training TEXT NOT NULL DEFAULT '';
 """,
 }
 """Schema version to the SQL that brings it to :data:`SCHEMA_VERSION` (``_SCHEMA`` then adds what is missing)."""
@@ -143,6 +149,7 @@ CELL_COLUMNS = (
     "frames",
     "elapsed_s",
     "finished",
+    "training",
 )
 """Columns of the table :meth:`ResultStore.cells` returns."""
 
@@ -301,8 +308,8 @@ class ResultStore:
         with self._db:
             cursor = self._db.execute(
                 "INSERT INTO cells (run_id, tracker, tracker_version, tracker_key, params, dataset, dataset_key, "
-                "modality, seed, init, status, message, detail, frames, elapsed_s, finished) "
-                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                "modality, seed, init, status, message, detail, frames, elapsed_s, finished, training) "
+                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                 (
                     run_id,
                     result.tracker,
@@ -320,6 +327,7 @@ class ResultStore:
                     n_frames,
                     float(result.elapsed_s),
                     _now(),
+                    result.training,
                 ),
             )
             cell_id = int(cursor.lastrowid)

@@ -29,11 +29,12 @@ from __future__ import annotations
 import dataclasses
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
+from collections.abc import Sequence as SequenceOf
 from typing import Any, ClassVar, Generic, Protocol, TypeVar, runtime_checkable
 
 import numpy as np
 
-from benchmark.model import Frame, SequenceInfo
+from benchmark.model import Frame, Sequence, SequenceInfo
 from benchmark.parameters import make_params
 
 TruthT = TypeVar("TruthT")
@@ -125,3 +126,31 @@ class ScoresStates(Protocol):
         """
         ...
 
+
+
+@runtime_checkable
+class Learns(Protocol):
+    """A tracker that learns from labelled sequences before it runs.
+
+    ``trackbench run`` trains such a tracker once per (tracker version,
+    parameters, training set) on a training split that never overlaps the
+    scored sequences, stores the model :meth:`fit` returns, and hands it to
+    every cell's fresh instance through :meth:`use_model` before
+    :meth:`Tracker.reset`.  The model must be picklable: cells may run in
+    other processes.
+    """
+
+    def fit(self, training: SequenceOf[Sequence], rng: np.random.Generator) -> Any:
+        """Learn from the labelled frames of ``training``; adopt the model and return it.
+
+        Raises
+        ------
+        DataError
+            If the training set cannot teach the tracker (no labelled frame,
+            a class never seen), naming what is missing.
+        """
+        ...
+
+    def use_model(self, model: Any) -> None:
+        """Adopt a model an earlier :meth:`fit` returned, perhaps in another process."""
+        ...

@@ -52,13 +52,13 @@ and a sequence may start from a sequence of another shipped suite
 """
 
 from benchmark import Registry, hookimpl
-from trackbench_suites.loader import load_suites, parse_suite, shipped_table
+from trackbench_suites.loader import SuiteDefinition, load_suites, parse_suite, shipped_table
 
-__all__ = ["load_suites", "parse_suite", "shipped_table", "trackbench_register_datasets"]
+__all__ = ["SuiteDefinition", "load_suites", "parse_suite", "shipped_table", "trackbench_register_datasets"]
 
 
 @hookimpl
 def trackbench_register_datasets(registry: Registry) -> None:
     """Register every suite defined by a TOML file of this package."""
-    for name, sequences in load_suites(registry.scene_kinds):
-        registry.add_suite(name, sequences)
+    for suite in load_suites(registry.scene_kinds):
+        registry.add_suite(suite.name, suite.sequences, training=suite.training, scored=suite.scored)

@@ -6,6 +6,8 @@ Each ``*.toml`` file next to this module defines one suite::
     name = "camera"          # suite name; sequences are "camera/S1", ...
     kind = "camera"          # which scene class renders its sequences
     description = "..."
+    training = "camera-train"  # optional: the suite that trains learning trackers
+    scored = true            # false: a training split, left out of runs
 
     [defaults]               # merged under every sequence (tables merge
     focal_px = 380.0         # key by key, other values are replaced)
@@ -40,7 +42,7 @@ import tomllib
 from collections.abc import Callable, Iterator, Mapping
 from importlib import resources
 from importlib.resources.abc import Traversable
-from typing import Any
+from typing import Any, NamedTuple
 
 from benchmark.errors import DataError
 from benchmark.modality import SceneFactory
@@ -146,9 +148,30 @@ def shipped_table(reference: str, where: str, _chain: tuple[str, ...] = ()) -> d
     raise DataError(f"{where}: {BASE_KEY} {reference!r} names no sequence of a shipped suite")
 
 
+class SuiteDefinition(NamedTuple):
+    """A suite as its file defines it.
+
+    Attributes
+    ----------
+    name : str
+        The suite name.
+    sequences : list of Sequence
+        Named ``"<suite>/<sequence>"``, in file order.
+    training : str or None
+        ``[suite] training``: the suite that trains learning trackers for this one.
+    scored : bool
+        ``[suite] scored`` (default true); false for a training split.
+    """
+
+    name: str
+    sequences: list[Sequence]
+    training: str | None = None
+    scored: bool = True
+
+
 def parse_suite(
     text: str, source: str, kinds: Mapping[str, SceneFactory], resolve: BaseResolver = shipped_table
-) -> tuple[str, list[Sequence]]:
+) -> SuiteDefinition:
     """The suite a TOML document defines.
 
     Parameters
@@ -166,32 +189,37 @@ def parse_suite(
 
     Returns
     -------
-    name : str
-        The suite name.
-    sequences : list of Sequence
-        Named ``"<suite>/<sequence>"``, in file order.
+    SuiteDefinition
+        Name, sequences and the ``[suite]`` keys ``training`` and ``scored``.
 
     Raises
     ------
     DataError
         For invalid TOML, a missing or unknown ``[suite]`` key or ``kind``, a
-        sequence without a name, a repeated name, a ``based_on`` that names
-        nothing, or an invalid sequence definition.
+        ``training`` that is not a suite name or a ``scored`` that is not a
+        boolean, a sequence without a name, a repeated name, a ``based_on``
+        that names nothing, or an invalid sequence definition.
     """
     header, defaults, entries = _read(text, source)
     suite = header["name"]
     kind = header.get("kind")
     if kind not in kinds:
         raise DataError(f"{source}: [suite] kind {kind!r} is not one of the registered scene kinds {sorted(kinds)}")
-    extra = sorted(set(header) - {"name", "kind", "description"})
+    extra = sorted(set(header) - {"name", "kind", "description", "training", "scored"})
     if extra:
         raise DataError(f"{source}: unknown [suite] key(s) {extra}")
+    training = header.get("training")
+    if training is not None and (not isinstance(training, str) or not training or training == suite):
+        raise DataError(f"{source}: [suite] training must name another suite, got {training!r}")
+    scored = header.get("scored", True)
+    if not isinstance(scored, bool):
+        raise DataError(f"{source}: [suite] scored must be true or false, got {scored!r}")
     factory = kinds[kind]
     sequences: list[Sequence] = []
     for short, table in _tables(defaults, entries, source, resolve):
         table["name"] = f"{suite}/{short}"
         sequences.append(factory(table, f"{source} [sequence {short}]"))
-    return suite, sequences
+    return SuiteDefinition(suite, sequences, training, scored)
 
 
 def suite_files() -> Iterator[Traversable]:
@@ -200,6 +228,6 @@ def suite_files() -> Iterator[Traversable]:
     yield from sorted((item for item in folder.iterdir() if item.name.endswith(".toml")), key=lambda i: i.name)
 
 
-def load_suites(kinds: Mapping[str, SceneFactory]) -> list[tuple[str, list[Sequence]]]:
-    """Every suite shipped in this package, as ``(name, sequences)``, built with the scene kinds ``kinds``."""
+def load_suites(kinds: Mapping[str, SceneFactory]) -> list[SuiteDefinition]:
+    """Every suite shipped in this package, built with the scene kinds ``kinds``."""
     return [parse_suite(item.read_text(encoding="utf-8"), item.name, kinds) for item in suite_files()]

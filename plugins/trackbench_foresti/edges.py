@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from benchmark.modalities.camera.io.video import to_grey
+from benchmark.modalities.camera.io.video import grey_image
 
 
 @dataclass(frozen=True, eq=False)
@@ -63,22 +63,11 @@ def check_grey_image(image: np.ndarray) -> None:
 
 
 def as_grey(image: np.ndarray) -> np.ndarray:
-    """A ``uint8`` observation as the grey image of shape ``(H, W)`` the module works on.
+    """A camera observation as the ``uint8`` grey image of shape ``(H, W)`` the module works on.
 
-    A 2-D ``uint8`` array is returned as it is; an ``(H, W, 1)`` one loses
-    its channel axis; ``(H, W, 3)`` and ``(H, W, 4)`` ones are read as
-    OpenCV's BGR and BGRA and converted with ``cv2.cvtColor``.
-
-    Raises
-    ------
-    ValueError
-        For anything else, naming the image's dtype and shape.
+    See :func:`benchmark.modalities.camera.io.video.grey_image`; ValueError for anything it cannot read.
     """
-    if isinstance(image, np.ndarray) and image.dtype == np.uint8 and image.ndim == 3 and 0 not in image.shape:
-        if image.shape[2] in (1, 3, 4):
-            image = to_grey(image)
-    check_grey_image(image)
-    return image
+    return grey_image(image)
 
 
 def canny_edges(image: np.ndarray, sigma: float, low: float, high: float) -> EdgeMap:

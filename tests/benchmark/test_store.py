@@ -282,7 +282,7 @@ def test_a_version_1_database_is_upgraded_in_place(tmp_path: Path, results: dict
 
     with ResultStore(path) as store:
         old = store.cells(1)
-        assert old[["id", "dataset", "dataset_key"]].values.tolist() == [[7, "fake/S1", "fake/S1"]]
+        assert old[["id", "dataset", "dataset_key", "training"]].values.tolist() == [[7, "fake/S1", "fake/S1", ""]]
         assert store.frame_tables([7])["err_d_px"].tolist() == [1.5]
         assert store.run_problems(1) == []
         assert store.find_ok_cells([results["noisy"].key, old_key]) == {old_key: 7}
@@ -297,6 +297,23 @@ def test_a_version_1_database_is_upgraded_in_place(tmp_path: Path, results: dict
     index = [row[2] for row in connection.execute("PRAGMA index_info(cells_by_key)")]
     connection.close()
     assert index == ["tracker_key", "dataset_key", "seed", "init"]
+
+
+def test_a_version_2_database_gets_an_empty_training_column(tmp_path: Path, results: dict[str, CellResult]) -> None:
+    path = tmp_path / "r.sqlite"
+    with ResultStore(path) as store:
+        store.add_cell(store.start_run([], {}), results["noisy"])
+    connection = sqlite3.connect(path)
+    connection.executescript("ALTER TABLE cells DROP COLUMN training; PRAGMA user_version = 2;")
+    connection.close()
+    trained = dataclasses.replace(results["noisy"], tracker_key="key+trained", training="camera-train")
+    with ResultStore(path) as store:
+        assert store.cells(all_runs=True)["training"].tolist() == [""]
+        store.add_cell(store.start_run([], {}), trained)
+        assert store.cells(all_runs=True)["training"].tolist() == ["", "camera-train"]
+    connection = sqlite3.connect(path)
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 3
+    connection.close()
 
 
 def test_a_database_damaged_mid_file_is_a_data_error_naming_it(tmp_path: Path) -> None:

@@ -14,7 +14,7 @@ NAMES = [f"camera-clutter/S1-d{draw:02d}" for draw in range(1, 11)]
 
 @pytest.fixture(scope="module")
 def suites(kinds) -> dict:
-    return {name: {seq.info.name: seq for seq in sequences} for name, sequences in load_suites(kinds)}
+    return {suite.name: {seq.info.name: seq for seq in suite.sequences} for suite in load_suites(kinds)}
 
 
 def test_ten_draws_with_the_seeds_fixed_in_advance(suites) -> None:

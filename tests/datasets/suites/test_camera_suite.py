@@ -14,7 +14,7 @@ from benchmark.modalities.camera.scenes.texture import TextureGrid, profile_fact
 
 @pytest.fixture(scope="module")
 def camera(kinds):
-    suites = dict(load_suites(kinds))
+    suites = {suite.name: suite.sequences for suite in load_suites(kinds)}
     return {seq.info.name.split("/")[1]: seq for seq in suites["camera"]}
 
 

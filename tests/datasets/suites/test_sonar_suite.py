@@ -18,7 +18,7 @@ NAMES = ["sonar/autotracker", "sonar/as-laid", "sonar/concrete", "sonar/second-p
 
 @pytest.fixture(scope="module")
 def sonar(kinds) -> dict[str, SonarScene]:
-    return {seq.info.name: seq for seq in dict(load_suites(kinds))["sonar"]}
+    return {seq.info.name: seq for seq in {suite.name: suite.sequences for suite in load_suites(kinds)}["sonar"]}
 
 
 def test_plugin_registers_the_four_sonar_sequences() -> None:

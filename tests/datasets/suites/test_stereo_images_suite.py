@@ -17,7 +17,7 @@ NAMES = [f"stereo-images/case{case}-medium" for case in (1, 2, 3)]
 
 @pytest.fixture(scope="module")
 def suites(kinds) -> dict:
-    return {name: {seq.info.name: seq for seq in sequences} for name, sequences in load_suites(kinds)}
+    return {suite.name: {seq.info.name: seq for seq in suite.sequences} for suite in load_suites(kinds)}
 
 
 def test_plugin_registers_three_rendered_stereo_sequences() -> None:
@@ -89,7 +89,7 @@ seed = 5
 
 def test_based_on_takes_the_named_sequence_under_the_files_defaults_and_entry(kinds) -> None:
     base_a, base_b = shipped_table("stereo/case2-slow", "test"), shipped_table("stereo/case1-fast", "test")
-    name, (a, b) = parse_suite(BASED, "demo.toml", kinds)
+    name, (a, b), *_ = parse_suite(BASED, "demo.toml", kinds)
     assert name == "demo-images"
     assert (a.info.name, b.info.name) == ("demo-images/A", "demo-images/B")
     assert a.spec.n_frames == b.spec.n_frames == 7

@@ -21,7 +21,7 @@ NAMES = [f"stereo/case{case}-{speed}" for case in (1, 2, 3) for speed in TOP_SPE
 
 @pytest.fixture(scope="module")
 def stereo(kinds) -> dict[str, StereoScene]:
-    return {seq.info.name: seq for seq in dict(load_suites(kinds))["stereo"]}
+    return {seq.info.name: seq for seq in {suite.name: suite.sequences for suite in load_suites(kinds)}["stereo"]}
 
 
 def test_plugin_registers_nine_stereo_sequences_next_to_camera() -> None:

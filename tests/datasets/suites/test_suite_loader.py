@@ -39,7 +39,7 @@ def test_merge_tables_merges_nested_tables_and_replaces_the_rest() -> None:
 
 
 def test_sequences_get_the_defaults_and_the_suite_prefix(kinds) -> None:
-    name, sequences = parse_suite(GOOD, "demo.toml", kinds)
+    name, sequences, *_ = parse_suite(GOOD, "demo.toml", kinds)
     assert name == "demo"
     a, b = (seq.spec for seq in sequences)
     assert (a.name, b.name) == ("demo/A", "demo/B")
@@ -63,6 +63,9 @@ def test_sequences_get_the_defaults_and_the_suite_prefix(kinds) -> None:
         ),
         (GOOD + "\n[extra]\n", r"unknown top-level key"),
         (GOOD.replace('name = "demo"\n', ""), r"needs a \[suite\] table with a non-empty name"),
+        (GOOD.replace('kind = "camera"', 'kind = "camera"\ntraining = 3'), r"training must name another suite"),
+        (GOOD.replace('kind = "camera"', 'kind = "camera"\ntraining = "demo"'), r"training must name another suite"),
+        (GOOD.replace('kind = "camera"', 'kind = "camera"\nscored = "no"'), r"scored must be true or false"),
     ],
 )
 def test_bad_suite_files_name_file_and_sequence(kinds, text: str, message: str) -> None:
@@ -78,10 +81,19 @@ def test_a_suite_may_name_any_kind_it_is_given_and_its_factory_builds_each_seque
         return table["name"]
 
     text = GOOD.replace('kind = "camera"', 'kind = "scan"')
-    assert parse_suite(text, "scan.toml", {"scan": factory}) == ("demo", ["demo/A", "demo/B"])
+    assert parse_suite(text, "scan.toml", {"scan": factory})[:2] == ("demo", ["demo/A", "demo/B"])
     (a, where_a), (b, _) = built
     assert where_a == "scan.toml [sequence A]"
     assert a == {"name": "demo/A", "focal_px": 300.0, "optics": {"blur_px": 0.0, "noise_grey": 2.0}, "n_frames": 4}
     assert (b["focal_px"], b["optics"]["noise_grey"]) == (500.0, 1.0)
     with pytest.raises(DataError, match=r"scan\.toml: \[suite\] kind 'scan' is not one of the registered .* \[\]"):
         parse_suite(text, "scan.toml", {})
+
+
+def test_a_suite_names_its_training_split_and_a_split_is_not_scored(kinds) -> None:
+    plain = parse_suite(GOOD, "demo.toml", kinds)
+    assert (plain.training, plain.scored) == (None, True)
+    trained = parse_suite(GOOD.replace('kind = "camera"', 'kind = "camera"\ntraining = "demo-train"'), "d.toml", kinds)
+    assert (trained.training, trained.scored) == ("demo-train", True)
+    split = parse_suite(GOOD.replace('kind = "camera"', 'kind = "camera"\nscored = false'), "d.toml", kinds)
+    assert (split.training, split.scored) == (None, False)

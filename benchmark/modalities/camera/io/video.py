@@ -48,6 +48,35 @@ def to_grey(image: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(grey)
 
 
+def grey_image(observation: object, min_size_px: int = 1) -> np.ndarray:
+    """A camera observation as the ``uint8`` grey image of shape ``(H, W)`` that camera trackers read.
+
+    A 2-D ``uint8`` array is returned as it is; ``(H, W, 1)``, ``(H, W, 3)``
+    (BGR) and ``(H, W, 4)`` (BGRA) ``uint8`` arrays and 2-D ``uint16`` ones
+    are converted with :func:`to_grey`.
+
+    Raises
+    ------
+    ValueError
+        For anything else (not an array, another dtype, floating-point or
+        NaN pixels, another shape, an image smaller than ``min_size_px`` on
+        a side), naming what it got.
+    """
+    if not isinstance(observation, np.ndarray):
+        raise ValueError(f"expected a grey image as a numpy array, got {type(observation).__name__}")
+    image = observation
+    if image.dtype.kind == "f" and not np.all(np.isfinite(image)):
+        raise ValueError(f"image of dtype {image.dtype} holds NaN or infinite pixels")
+    colour = image.dtype == np.uint8 and image.ndim == 3 and image.shape[2] in (1, 3, 4)
+    if image.size and (colour or (image.dtype == np.uint16 and image.ndim == 2)):
+        image = to_grey(image)
+    if image.dtype != np.uint8 or image.ndim != 2:
+        raise ValueError(f"expected a uint8 grey image of shape (H, W), got {image.dtype} of shape {image.shape}")
+    if min(image.shape) < max(min_size_px, 1):
+        raise ValueError(f"image of shape {image.shape} is smaller than {max(min_size_px, 1)} px on a side")
+    return image
+
+
 def _open(path: Path) -> cv2.VideoCapture:
     if not path.is_file():
         raise DataError(f"{path}: no such video file")

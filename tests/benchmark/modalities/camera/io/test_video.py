@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from benchmark.errors import DataError
-from benchmark.modalities.camera.io.video import VideoFile, to_grey
+from benchmark.modalities.camera.io.video import VideoFile, grey_image, to_grey
 
 LEVELS = [20, 60, 100, 140, 180, 220]
 
@@ -77,3 +77,27 @@ def test_to_grey_accepts_grey_bgr_and_bgra():
     red = np.zeros((2, 2, 3), dtype=np.uint8)
     red[..., 2] = 255
     assert to_grey(red)[0, 0] > to_grey(blue)[0, 0]
+
+
+@pytest.mark.parametrize(
+    ("observation", "message"),
+    [
+        (np.full((4, 4), np.nan), "NaN"),
+        (np.zeros((4, 4), np.float32), "float32"),
+        (np.zeros((4, 4, 2), np.uint8), r"shape \(4, 4, 2\)"),
+        (np.zeros((0, 4), np.uint8), r"shape \(0, 4\) is smaller than 1 px"),
+        ([[1, 2]], "list"),
+    ],
+)
+def test_grey_image_names_what_it_cannot_read(observation: object, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        grey_image(observation)
+
+
+def test_grey_image_passes_grey_through_and_converts_colour_and_16_bit() -> None:
+    grey = np.arange(12, dtype=np.uint8).reshape(3, 4)
+    assert grey_image(grey) is grey
+    assert np.array_equal(grey_image(np.repeat(grey[:, :, None], 3, axis=2)), grey)
+    assert np.array_equal(grey_image(grey.astype(np.uint16) * 257), grey)
+    with pytest.raises(ValueError, match="smaller than 5 px"):
+        grey_image(grey, min_size_px=5)

@@ -1,0 +1,149 @@
+"""The parameters of the segmentation tracker and where their defaults come from.
+
+The thesis' review (seeds/000, section 2.3) describes the method of Ortiz
+et al. without a single number besides its results, so every default here is
+a reading of the text or a measurement on the camera suite.  Where a value
+was chosen by measurement, its docstring gives the numbers that chose it:
+the share of frames scored correct on camera/S1..S7 and on the first two
+draws of the clutter family (camera-clutter/S1-d01, S1-d02), tracking from
+the first frame without ground truth, with every other parameter at its
+default.  "Mean" is the mean of those nine shares; with all defaults as
+shipped it is 86.3 %.  The tracker is deterministic, so one run is exact.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import pydantic
+from annotated_types import Ge, Interval
+
+from benchmark.parameters import NonNegative, Positive, Share
+
+
+@pydantic.dataclasses.dataclass(frozen=True)
+class SegmentationParams:
+    """Parameters of the segmentation tracker (seeds/000, section 2.3).
+
+    Each field's type declares its domain; rules tying fields together are in
+    :meth:`__post_init__`.  A value outside them is a
+    :class:`pydantic.ValidationError`.
+    """
+
+    smoothing_sigma: NonNegative = 1.0
+    """Gaussian smoothing of the image before the histogram, px; 0: none (not in the thesis).  With ``smooth_share``
+    0.7: 1.5 px gave a mean of 79.1 %, 1.0 px 81.6 % (clutter draws 73.0 / 70.6 against 85.5 / 82.3 %); with the
+    shipped defaults, 0 gives 78.2 % against 86.3 %."""
+
+    pyramid_levels: Annotated[int, Interval(ge=1, le=4)] = 2
+    """Levels of the pyramid of cells: level ``k`` splits the image into ``2^(k-1) x 2^(k-1)`` cells, so the default
+    is the whole image and its 2 x 2 quarters (seeds/000, section 2.3: "for instance, 2 x 2").  A third level (4 x 4)
+    gave a mean of 81.4 against 79.1 % (smoothing 1.5 px, share 0.7) at half the frame rate (about 120 against
+    230 frames/s)."""
+
+    gradient_bin: Positive = 1.0
+    """Width of a gradient bin of the joint histogram, grey levels per px."""
+
+    gradient_bins: Annotated[int, Ge(2)] = 64
+    """Number of gradient bins of the joint histogram; larger moduli count in the last."""
+
+    smooth_share: Annotated[pydantic.FiniteFloat, Interval(gt=0, le=1)] = 0.5
+    """Share of a cell's pixels below the cut between smooth and contour pixels of its histogram.  With smoothing
+    1.5 px: 0.5 / 0.7 / 0.9 gave means of 82.4 / 79.1 / 76.6 %; with 1.0 px, 0.5 gives 86.3 % against 81.6 % for
+    0.7 (S1 69.0 against 54.4 %, S5 90.6 against 74.9 %)."""
+
+    projection_sigma: NonNegative = 3.0
+    """Gaussian smoothing of the grey-level projection before its valleys are sought, grey levels.  2 / 3 / 5 gave
+    means of 81.1 / 79.1 / 61.1 % (smoothing 1.5 px, share 0.7); 2 with the shipped defaults 86.4 %, no better
+    than 3 but with S7 falling from 59.3 to 42.7 % correct (50.0 % false)."""
+
+    valley_ratio: Share = 1.0
+    """A valley splits two mountains while its height is at most this share of the lower neighbouring peak; 1: every
+    local minimum of the smoothed projection is a valley.  The cable covers a few per cent of a cell, and its hill
+    is a shoulder of the sand's rather than a hill of its own, so only over-segmentation separates it: with 0.7 /
+    0.9 / 1.0 (and ``snap_px`` 0), S4 was 0.6 / 36.0 (0.95) / 64.5 % correct and S2 47.9 / 92.6 (0.95) / 88.8 %."""
+
+    reach_px: Annotated[int, Interval(ge=0, le=5)] = 1
+    """Columns either side of the predicted position searched for the next contour pixel of a chain."""
+
+    max_gap_rows: Annotated[int, Ge(0)] = 2
+    """Rows without a contour pixel a chain may bridge along the predicted direction."""
+
+    snap_px: Annotated[int, Interval(ge=0, le=8)] = 3
+    """Contour points move to the strongest gradient within this many columns; 0: they stay (not in the thesis).
+    Without it the grey-level cut lies inside soft edges, the width comes out 6-12 px narrow on S5 and S5 is
+    41.5 % correct (45.0 % false); 2 / 3 / 4 px gave means of 71.5 / 79.1 / 80.2 % (smoothing 1.5 px, share 0.7),
+    and 4 with the shipped defaults 79.1 % against 86.3 %."""
+
+    split_px: Positive = 1.5
+    """A chain is cut where a pixel lies farther than this from its piece's chord, px."""
+
+    min_segment_rows: Annotated[int, Ge(2)] = 10
+    """Straight segments spanning fewer rows are short and discarded."""
+
+    strip_px: Positive = 2.0
+    """Half-width of the strip co-linear segments must fall into to be grouped, px."""
+
+    group_angle_deg: Annotated[float, Interval(ge=0, le=45)] = 3.0
+    """Largest angle between two segments of one group, degrees."""
+
+    long_share: Share = 0.4
+    """A long segment spans at least this share of its cell's rows (of the image's rows when fusing)."""
+
+    min_gradient: NonNegative = 4.0
+    """Smallest mean gradient modulus of a long segment's contour pixels, grey levels per px."""
+
+    max_rms_px: Positive = 1.5
+    """Largest root mean square distance of a long segment's pixels from its line, px."""
+
+    max_lines: Annotated[int, Ge(2)] = 12
+    """Long segments kept per cell (and after fusion), those with the most pixels."""
+
+    max_skew_deg: Annotated[float, Interval(gt=0, lt=45)] = 10.0
+    """Largest skew ``|beta|`` of a border pair, degrees (seeds/000, Table 5.2: 0 to 10)."""
+
+    min_width_px: NonNegative = 5.0
+    """Smallest plausible cable width, px (seeds/000, Table 5.2)."""
+
+    max_width_px: Positive = 100.0
+    """Largest plausible cable width, px (seeds/000, Table 5.2)."""
+
+    min_overlap: Share = 0.5
+    """Share of the shorter border's rows the other border of a pair must also cover."""
+
+    width_tolerance: Annotated[pydantic.FiniteFloat, Interval(gt=0, le=1)] = 0.3
+    """Largest relative difference of a pair's width from the predicted width while tracking."""
+
+    pairs_per_cell: Annotated[int, Ge(1)] = 3
+    """Best pairs of each cell whose lines go into the fusion."""
+
+    process_var: tuple[Positive, Positive, Positive] = (25.0, 0.003, 4.0)
+    """Variances of the frame-to-frame change of ``(d, alpha, w)``: px^2, rad^2, px^2."""
+
+    measurement_var: tuple[Positive, Positive, Positive] = (4.0, 0.0003, 4.0)
+    """Variances of a measured ``(d, alpha, w)``: px^2, rad^2, px^2."""
+
+    roi_margin_px: NonNegative = 10.0
+    """Fixed margin of the region of interest beyond each predicted border, px."""
+
+    roi_sigmas: NonNegative = 2.0
+    """Further margin of the region of interest in standard deviations of a border's predicted position."""
+
+    max_misses: Annotated[int, Ge(1)] = 5
+    """Frames in a row without a pair after which the cable is lost and the whole image is searched again."""
+
+    use_init: bool = True
+    """Start tracking from ``init`` when the run initialises from truth."""
+
+    def __post_init__(self) -> None:
+        """The rule that is not a bound of one field: the plausible widths form a range.
+
+        Raises
+        ------
+        ValueError
+            Naming the parameters and their values.
+        """
+        if self.min_width_px > self.max_width_px:
+            raise ValueError(
+                f"min_width_px must not exceed max_width_px, got {self.min_width_px} > {self.max_width_px}"
+            )

@@ -1,0 +1,145 @@
+"""The Kalman filter on the cable's position, orientation and width, and the region of interest it predicts.
+
+"For tracking, Ortiz et al. propose to use a Kalman filter to estimate the
+cable orientation and position as well as its width.  A region of interest
+(ROI) is computed using the predicted cable parameters to limit the search
+region" (seeds/000, section 2.3).  The thesis adds that "system dynamics are
+not used for this prediction", so the readings made here are
+
+* the state is ``x = (d, alpha, w)`` of the cable model (conventions.md
+  section 1) and the motion model is a random walk, ``x_(t+1) = x_t +
+  noise`` with diagonal process noise; the measurement is the ``(d, alpha,
+  w)`` of the frame's best pair, ``z = x + noise`` with diagonal measurement
+  noise (:class:`CableKalman`).  The equations are the shared core
+  :mod:`benchmark.filters.kalman`;
+* the ROI is the band of the image within ``w/2 + margin`` of the predicted
+  centreline, where the margin is ``margin_px`` plus ``n_sigma`` standard
+  deviations of a border's lateral position at the top or bottom of the
+  image under the predicted covariance (:func:`region_of_interest`); it
+  widens by itself while frames go without a measurement, as the
+  covariance grows.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from benchmark.filters.kalman import Gaussian, predict, update
+from benchmark.modalities.camera.model import CableState
+
+_IDENTITY = np.eye(3)
+
+
+class CableKalman:
+    """A random-walk Kalman filter on ``(d, alpha, w)``.
+
+    Parameters
+    ----------
+    process_var : tuple of float
+        Variances of the frame-to-frame change of ``d`` (px^2), ``alpha``
+        (rad^2) and ``w`` (px^2).
+    measurement_var : tuple of float
+        Variances of a measured ``d``, ``alpha`` and ``w``, same units.
+
+    Attributes
+    ----------
+    belief : Gaussian or None
+        The current mean and covariance; None before the first measurement
+        and after :meth:`forget`.
+
+    References
+    ----------
+    seeds/000, section 2.3 (a Kalman filter on the cable parameters);
+    seeds/002, Table 2 (the filter equations).
+    """
+
+    def __init__(self, process_var: tuple[float, float, float], measurement_var: tuple[float, float, float]) -> None:
+        self.process_noise = np.diag(np.asarray(process_var, dtype=float))
+        self.measurement_noise = np.diag(np.asarray(measurement_var, dtype=float))
+        self.belief: Gaussian | None = None
+
+    def forget(self) -> None:
+        """Drop the belief: the cable is lost."""
+        self.belief = None
+
+    def start(self, state: CableState) -> None:
+        """Start from one measured state with the measurement's covariance."""
+        self.belief = Gaussian(np.array([state.d, state.alpha, state.w]), self.measurement_noise.copy())
+
+    def predict(self) -> None:
+        """One random-walk step: the mean stays, the covariance grows by the process noise."""
+        if self.belief is not None:
+            self.belief = predict(self.belief, _IDENTITY, None, self.process_noise)
+
+    def update(self, state: CableState) -> None:
+        """Correct the belief with a measured state, or start from it when there is no belief.
+
+        The measured ``(d, alpha)`` is first written in the form whose angle
+        lies within a quarter turn of the belief's (``(d, alpha)`` and
+        ``(-d, alpha +- pi)`` are the same centreline); a corrected angle
+        that leaves ``(-pi/2, pi/2]`` is brought back the same way, with
+        the covariance of ``d`` with the other two turned accordingly.
+        """
+        if self.belief is None:
+            self.start(state)
+            return
+        d, alpha = state.d, state.alpha
+        reference = float(self.belief.mean[1])
+        if abs(alpha - reference) > math.pi / 2:
+            d, alpha = -d, alpha - math.copysign(math.pi, alpha - reference)
+        corrected = update(self.belief, np.array([d, alpha, state.w]), _IDENTITY, None, self.measurement_noise)
+        mean = corrected.mean
+        if not -math.pi / 2 < mean[1] <= math.pi / 2:
+            flip = np.diag([-1.0, 1.0, 1.0])
+            mean = np.array([-mean[0], mean[1] - math.copysign(math.pi, mean[1]), mean[2]])
+            corrected = Gaussian(mean, flip @ corrected.covariance @ flip)
+        self.belief = corrected
+
+
+def lateral_std(covariance: np.ndarray, reach_px: float) -> float:
+    """Standard deviation, px, of a border's lateral position ``reach_px`` from the image centre.
+
+    A border lies at ``d -+ w/2`` along the normal; an angle error ``da``
+    moves a point ``reach_px`` along the cable by ``reach_px da``.  The
+    three are combined as independent.
+    """
+    return math.sqrt(max(0.0, covariance[0, 0] + 0.25 * covariance[2, 2] + reach_px**2 * covariance[1, 1]))
+
+
+def region_of_interest(
+    belief: Gaussian, size: tuple[int, int], margin_px: float, n_sigma: float
+) -> tuple[np.ndarray, float]:
+    """The band around the predicted cable where the next search runs.
+
+    Parameters
+    ----------
+    belief : Gaussian
+        The predicted ``(d, alpha, w)`` and its covariance.
+    size : tuple of int
+        Image ``(W, H)``.
+    margin_px : float
+        Fixed margin beyond each predicted border, px.
+    n_sigma : float
+        Further margin in standard deviations of a border's lateral position
+        at the image's top or bottom (:func:`lateral_std`).
+
+    Returns
+    -------
+    mask : numpy.ndarray
+        Boolean ``(H, W)``: True inside the ROI.
+    half_width : float
+        Half-width of the band, px, measured along the cable's normal.
+
+    References
+    ----------
+    seeds/000, section 2.3: an ROI computed from the predicted parameters.
+    """
+    width, height = size
+    d, alpha, w = (float(value) for value in belief.mean)
+    half_width = 0.5 * abs(w) + margin_px + n_sigma * lateral_std(belief.covariance, 0.5 * height)
+    x = np.arange(width, dtype=np.float32) - np.float32((width - 1) / 2.0)
+    y = np.float32((height - 1) / 2.0) - np.arange(height, dtype=np.float32)
+    distance = np.abs(x[None, :] * np.float32(math.cos(alpha)) + y[:, None] * np.float32(math.sin(alpha)) - d)
+    return distance <= half_width, half_width

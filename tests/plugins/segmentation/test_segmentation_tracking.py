@@ -1,0 +1,115 @@
+"""Tests of the Kalman filter on (d, alpha, w) and the region of interest it predicts (seeds/000, section 2.3)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from trackbench_segmentation.tracking import CableKalman, lateral_std, region_of_interest
+
+from benchmark.filters.kalman import Gaussian
+from benchmark.modalities.camera.geometry import cable_borders, chord_midpoint, model_to_pixel
+from benchmark.modalities.camera.model import CableState
+
+SIZE = (320, 240)
+PROCESS = (25.0, 0.003, 4.0)
+MEASUREMENT = (4.0, 0.0003, 4.0)
+
+states = st.builds(
+    CableState,
+    st.floats(-150, 150),
+    st.floats(-1.5, 1.5),
+    st.floats(5, 100),
+    st.floats(0, 0.17),
+)
+
+
+def assert_symmetric_psd(covariance: np.ndarray) -> None:
+    assert np.array_equal(covariance, covariance.T)
+    assert np.linalg.eigvalsh(covariance).min() >= -1e-12
+
+
+@settings(max_examples=40, deadline=None)
+@given(steps=st.lists(st.one_of(st.none(), states), min_size=1, max_size=25))
+def test_the_belief_stays_symmetric_positive_semidefinite(steps):
+    kalman = CableKalman(PROCESS, MEASUREMENT)
+    for measured in steps:
+        kalman.predict()
+        if measured is not None:
+            kalman.update(measured)
+        if kalman.belief is not None:
+            assert_symmetric_psd(kalman.belief.covariance)
+            assert np.all(np.isfinite(kalman.belief.mean))
+            assert -math.pi / 2 < kalman.belief.mean[1] <= math.pi / 2
+
+
+def test_prediction_grows_the_covariance_and_keeps_the_mean():
+    kalman = CableKalman(PROCESS, MEASUREMENT)
+    kalman.start(CableState(10.0, 0.1, 30.0, 0.0))
+    before = kalman.belief
+    kalman.predict()
+    assert np.array_equal(kalman.belief.mean, before.mean)
+    assert np.allclose(np.diag(kalman.belief.covariance), np.diag(before.covariance) + PROCESS)
+
+
+def test_an_update_pulls_the_mean_towards_the_measurement_and_shrinks_the_covariance():
+    kalman = CableKalman(PROCESS, MEASUREMENT)
+    kalman.start(CableState(0.0, 0.0, 30.0, 0.0))
+    kalman.predict()
+    spread = np.diag(kalman.belief.covariance).copy()
+    kalman.update(CableState(10.0, 0.05, 34.0, 0.0))
+    assert 0.0 < kalman.belief.mean[0] < 10.0 and 30.0 < kalman.belief.mean[2] < 34.0
+    assert np.all(np.diag(kalman.belief.covariance) < spread)
+
+
+def test_a_measurement_across_the_half_turn_is_the_same_centreline():
+    kalman = CableKalman(PROCESS, MEASUREMENT)
+    kalman.start(CableState(20.0, math.radians(88.0), 30.0, 0.0))
+    kalman.predict()
+    kalman.update(CableState(-20.0, math.radians(-88.0), 30.0, 0.0))
+    d, alpha, _ = kalman.belief.mean
+    # The corrected centreline lies between the two, near the horizontal, in either of its two forms.
+    if alpha > 0:
+        assert d == pytest.approx(20.0) and math.radians(88.0) < alpha <= math.pi / 2
+    else:
+        assert d == pytest.approx(-20.0) and -math.pi / 2 < alpha < math.radians(-88.0)
+    assert_symmetric_psd(kalman.belief.covariance)
+
+
+def test_update_without_a_belief_starts_from_the_measurement():
+    kalman = CableKalman(PROCESS, MEASUREMENT)
+    kalman.update(CableState(5.0, 0.1, 25.0, 0.0))
+    assert kalman.belief.mean.tolist() == [5.0, 0.1, 25.0]
+    assert np.array_equal(kalman.belief.covariance, np.diag(MEASUREMENT))
+    kalman.forget()
+    assert kalman.belief is None
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    d=st.floats(-80, 80),
+    alpha=st.floats(-0.6, 0.6),
+    w=st.floats(10, 60),
+    variance=st.floats(0.0, 50.0),
+)
+def test_the_roi_holds_both_predicted_borders_and_grows_with_uncertainty(d, alpha, w, variance):
+    state = CableState(d, alpha, w, 0.0)
+    tight = Gaussian(np.array([d, alpha, w]), np.diag([variance, variance * 1e-4, variance]))
+    loose = Gaussian(tight.mean, tight.covariance + np.diag([100.0, 0.01, 100.0]))
+    roi, half = region_of_interest(tight, SIZE, 5.0, 2.0)
+    wider, wider_half = region_of_interest(loose, SIZE, 5.0, 2.0)
+    assert roi.shape == (SIZE[1], SIZE[0]) and roi.dtype == bool
+    assert wider_half > half >= w / 2 + 5.0
+    assert np.all(wider[roi])
+    for border in cable_borders(state):
+        u, v = (int(round(c)) for c in model_to_pixel(*chord_midpoint(border, SIZE), SIZE))
+        if 0 <= u < SIZE[0] and 0 <= v < SIZE[1]:
+            assert roi[v, u]
+
+
+def test_lateral_std_combines_position_width_and_angle():
+    covariance = np.diag([4.0, 1e-4, 16.0])
+    assert lateral_std(covariance, 100.0) == np.float64(math.sqrt(4.0 + 4.0 + 1.0))
