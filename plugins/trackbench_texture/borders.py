@@ -1,0 +1,258 @@
+"""The cable's borders from the classified image.
+
+"The determination of the cable position out of the segmentation results is
+not addressed here but necessary if the system is to be used for the
+guidance of an underwater vehicle" (seeds/000, section 2.2, Comments).
+Texture is measured over a neighbourhood about as wide as the cable, so the
+cable class marks a strip around the cable, not its borders; the borders
+are the straight line pieces (the pixels the straightness descriptor
+counts) along the two sides of that strip.  The reading implemented here:
+
+1. the **strip** is the connected part of the cable-class pixels
+   (8-connectivity, at least ``min_region_px`` pixels) that spans the
+   largest share of the image's height or width, since a cable crosses the
+   whole view.  Its second moments tell whether it lies along the image's
+   height (then it is scanned row by row) or across it (column by column);
+2. its **centreline** is a robust straight-line fit (OpenCV's Huber
+   ``fitLine``) to the middle of the strip in each row (column); it splits
+   the straight-piece pixels inside the strip into the two sides;
+3. each **border** is a RANSAC line fit to one side's straight-piece
+   pixels: the line through two of them that has the most pixels within
+   ``inlier_px``, refined by least squares on those.  A border is the
+   longest straight line on its side, so clutter inside the strip rarely
+   outvotes it.  The pairs of pixels are drawn from the run's random
+   generator.
+
+The strip is **not cable-shaped**, and no detection is reported, when no
+part is large enough, when the chosen part spans less than
+``min_length_share`` of the rows (columns), when either border's inliers
+lie on less than ``min_inlier_share`` of the rows (columns) the strip
+spans, or when the borders cross inside the image, are narrower than
+``min_width_px`` or wider than ``max_width_px``, or converge or diverge by
+more than ``max_skew_deg``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import cv2
+import numpy as np
+
+from benchmark.modalities.camera.geometry import Line, cable_from_borders
+from benchmark.modalities.camera.model import CableState
+
+
+@dataclass(frozen=True, eq=False)
+class Strip:
+    """The cable region of a classified image, in scan coordinates.
+
+    Attributes
+    ----------
+    by_rows : bool
+        True when the strip lies along the image's height and is scanned row
+        by row; False when it is scanned column by column.
+    mask : numpy.ndarray
+        ``bool`` array of the strip's pixels, indexed ``[along, across]``
+        (the image itself when scanned by rows, its transpose otherwise).
+    """
+
+    by_rows: bool
+    mask: np.ndarray
+
+    def scan(self, image: np.ndarray) -> np.ndarray:
+        """An ``(H, W)`` image indexed ``[along, across]`` like :attr:`mask`."""
+        return image if self.by_rows else image.T
+
+    @property
+    def crossed(self) -> np.ndarray:
+        """``bool`` per scan line: True where the strip crosses it."""
+        return self.mask.any(axis=1)
+
+    @property
+    def coverage(self) -> float:
+        """Share of the scan lines the strip crosses."""
+        return float(self.crossed.mean())
+
+
+@dataclass(frozen=True)
+class ScanLine:
+    """The line ``across = slope * along + intercept`` in scan coordinates."""
+
+    slope: float
+    intercept: float
+
+    def at(self, along: np.ndarray | float) -> np.ndarray | float:
+        """The across-coordinate of the line at ``along``."""
+        return self.slope * along + self.intercept
+
+    def distance(self, along: np.ndarray, across: np.ndarray) -> np.ndarray:
+        """Perpendicular distances of points from the line, px."""
+        return np.abs(across - self.at(along)) / math.hypot(1.0, self.slope)
+
+
+def cable_strip(cable: np.ndarray, min_region_px: int) -> Strip | None:
+    """The connected part of the cable-class pixels that spans the image best, or None.
+
+    Parameters
+    ----------
+    cable : numpy.ndarray
+        ``bool`` array of shape ``(H, W)``: the cable-class pixels.
+    min_region_px : int
+        Smallest connected part considered, px.
+
+    Returns
+    -------
+    Strip or None
+        None when no connected part has ``min_region_px`` pixels.
+    """
+    count, labels, stats, _ = cv2.connectedComponentsWithStats(cable.astype(np.uint8), connectivity=8)
+    height, width = cable.shape
+    best, best_span = 0, 0.0
+    for label in range(1, count):
+        if stats[label, cv2.CC_STAT_AREA] < min_region_px:
+            continue
+        span = max(stats[label, cv2.CC_STAT_HEIGHT] / height, stats[label, cv2.CC_STAT_WIDTH] / width)
+        if span > best_span:
+            best, best_span = label, span
+    if best == 0:
+        return None
+    region = labels == best
+    moments = cv2.moments(region.astype(np.uint8), binaryImage=True)
+    by_rows = bool(moments["mu02"] >= moments["mu20"])
+    return Strip(by_rows, region if by_rows else region.T)
+
+
+def centreline(strip: Strip) -> ScanLine:
+    """A robust straight line through the middle of the strip on each scan line it crosses."""
+    crossed = strip.crossed
+    rows = strip.mask[crossed]
+    first = np.argmax(rows, axis=1)
+    last = rows.shape[1] - 1 - np.argmax(rows[:, ::-1], axis=1)
+    along = np.flatnonzero(crossed).astype(np.float32)
+    middle = 0.5 * (first + last).astype(np.float32)
+    if len(along) < 2:
+        return ScanLine(0.0, float(middle.mean()))
+    va, vc, a0, c0 = cv2.fitLine(np.column_stack([along, middle]), cv2.DIST_HUBER, 0, 0.01, 0.01).ravel()
+    if abs(va) < 1e-6:
+        return ScanLine(0.0, float(np.median(middle)))
+    return ScanLine(float(vc / va), float(c0 - vc / va * a0))
+
+
+def ransac_line(
+    along: np.ndarray, across: np.ndarray, inlier_px: float, trials: int, rng: np.random.Generator
+) -> tuple[ScanLine, np.ndarray] | None:
+    """The line through two of the points with the most points within ``inlier_px``, refined by least squares.
+
+    Parameters
+    ----------
+    along, across : numpy.ndarray
+        ``(N,)`` scan coordinates of the points.
+    inlier_px : float
+        Distance within which a point supports a line, px.
+    trials : int
+        Number of pairs of points tried.
+    rng : numpy.random.Generator
+        Draws the pairs.
+
+    Returns
+    -------
+    (ScanLine, numpy.ndarray) or None
+        The refined line and its inliers (``(N,)`` bool); None for fewer
+        than two points or when no pair spans two scan lines.
+    """
+    n = len(along)
+    if n < 2:
+        return None
+    pairs = rng.integers(n, size=(trials, 2))
+    d_along = along[pairs[:, 1]] - along[pairs[:, 0]]
+    usable = d_along != 0
+    if not usable.any():
+        return None
+    pairs, d_along = pairs[usable], d_along[usable]
+    slopes = (across[pairs[:, 1]] - across[pairs[:, 0]]) / d_along
+    intercepts = across[pairs[:, 0]] - slopes * along[pairs[:, 0]]
+    residual = np.abs(across[None, :] - (slopes[:, None] * along[None, :] + intercepts[:, None]))
+    support = (residual <= inlier_px * np.hypot(1.0, slopes)[:, None]).sum(axis=1)
+    best = int(np.argmax(support))
+    line = ScanLine(float(slopes[best]), float(intercepts[best]))
+    for _ in range(2):
+        inliers = line.distance(along, across) <= inlier_px
+        if inliers.sum() < 2 or np.ptp(along[inliers]) == 0:
+            break
+        slope, intercept = np.polyfit(along[inliers], across[inliers], 1)
+        line = ScanLine(float(slope), float(intercept))
+    return line, line.distance(along, across) <= inlier_px
+
+
+def _model_line(line: ScanLine, by_rows: bool, size: tuple[int, int]) -> Line:
+    """The model-coordinate line of a scan line of an image of ``size = (W, H)``."""
+    extent = max((size[1] if by_rows else size[0]) - 1.0, 1.0)
+    ends = [(float(line.at(t)), t) for t in (0.0, extent)]
+    if not by_rows:
+        ends = [(t, a) for a, t in ends]
+    return Line.from_pixels(ends[0], ends[1], size)
+
+
+def fit_borders(
+    strip: Strip,
+    straight: np.ndarray,
+    rng: np.random.Generator,
+    *,
+    inlier_px: float,
+    trials: int,
+    min_length_share: float,
+    min_inlier_share: float,
+    min_width_px: float,
+    max_width_px: float,
+    max_skew: float,
+) -> CableState | None:
+    """The cable state of the straight borders along the two sides of the strip, or None.
+
+    Parameters
+    ----------
+    strip : Strip
+        The cable region (:func:`cable_strip`).
+    straight : numpy.ndarray
+        ``(H, W)`` map, non-zero on straight line pieces
+        (:attr:`trackbench_texture.descriptors.PixelKinds.straight`).
+    rng : numpy.random.Generator
+        Draws RANSAC's pairs of points.
+    inlier_px, trials : float, int
+        RANSAC's inlier distance (px) and number of pairs.
+    min_length_share, min_inlier_share, min_width_px, max_width_px : float
+        The cable-shape tests of the module docstring.
+    max_skew : float
+        Largest ``|beta|``, rad.
+
+    Returns
+    -------
+    CableState or None
+        None when the strip is not cable-shaped.
+    """
+    crossed = strip.crossed
+    if crossed.mean() < min_length_share:
+        return None
+    middle = centreline(strip)
+    along, across = np.nonzero(strip.scan(straight > 0) & strip.mask)
+    along, across = along.astype(np.float64), across.astype(np.float64)
+    left_side = across < middle.at(along)
+    borders = []
+    for side in (left_side, ~left_side):
+        fit = ransac_line(along[side], across[side], inlier_px, trials, rng)
+        if fit is None:
+            return None
+        line, inliers = fit
+        if len(np.unique(along[side][inliers])) < min_inlier_share * crossed.sum():
+            return None
+        borders.append(line)
+    low, high = borders
+    extent = float(strip.mask.shape[0] - 1)
+    if any(high.at(t) <= low.at(t) for t in (0.0, extent)):
+        return None
+    size = (straight.shape[1], straight.shape[0])
+    state = cable_from_borders(_model_line(low, strip.by_rows, size), _model_line(high, strip.by_rows, size))
+    if not (min_width_px <= state.w <= max_width_px and abs(state.beta) <= max_skew):
+        return None
+    return state

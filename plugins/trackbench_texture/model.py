@@ -1,0 +1,184 @@
+"""Learning the texture model from labelled sequences (seeds/000, section 2.2).
+
+Grau et al. "used a set of underwater cable images to learn the texture
+parameters for different types of regions".  Here the set is the labelled
+frames of the training sequences, subsampled so that training on ten
+sequences of a few hundred frames takes seconds:
+
+1. from each sequence, ``frames_per_sequence`` labelled frames (those whose
+   truth knows the cable), drawn by reservoir sampling, so that a sequence
+   of unknown length is read once and never held in memory;
+2. from each of them, ``pixels_per_frame`` pixels, half inside the true
+   cable and half outside (fewer when a side has fewer pixels);
+3. the region classes learned from those pixels' descriptors
+   (:func:`trackbench_texture.classes.train_regions`).
+
+Every random choice draws from the generator handed to :func:`train`, and
+scikit-learn's estimators get seeds drawn from it, so one seed gives the
+same model bit for bit.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from collections.abc import Sequence as SequenceOf
+from dataclasses import dataclass
+
+import numpy as np
+
+from benchmark.errors import DataError
+from benchmark.modalities.camera.io.video import grey_image as read_grey
+from benchmark.modalities.camera.model import CableState
+from benchmark.model import Frame, Sequence
+from trackbench_texture.classes import RegionClassifier, train_regions
+from trackbench_texture.descriptors import PixelKinds, densities, pixel_kinds, texture_descriptors
+from trackbench_texture.labels import cable_mask
+from trackbench_texture.params import DescriptorParams, TextureParams
+
+
+def grey_image(observation: object, where: str) -> np.ndarray:
+    """A camera observation as the ``uint8`` grey image of shape ``(H, W)`` the descriptors read.
+
+    The camera trackers' shared reader
+    (:func:`benchmark.modalities.camera.io.video.grey_image`) accepts grey,
+    BGR and BGRA ``uint8`` images and grey ``uint16`` ones.
+
+    Raises
+    ------
+    DataError
+        For anything else, naming ``where`` (the tracker and the frame) and
+        what was wrong.
+    """
+    try:
+        return read_grey(observation)
+    except ValueError as exc:
+        raise DataError(f"{where}: {exc}") from None
+
+
+@dataclass(frozen=True, eq=False)
+class TextureModel:
+    """What the texture tracker learned: its descriptors' settings and the region classifier.
+
+    Attributes
+    ----------
+    descriptors : DescriptorParams
+        The descriptor settings the classifier was trained on (used again to classify).
+    regions : RegionClassifier
+        The per-pixel region classifier.
+    training : tuple of str
+        Names of the sequences it learned from.
+    n_frames : int
+        Number of labelled frames whose pixels it learned from.
+    """
+
+    descriptors: DescriptorParams
+    regions: RegionClassifier
+    training: tuple[str, ...]
+    n_frames: int
+
+    def analyse(self, image: np.ndarray) -> tuple[PixelKinds, np.ndarray]:
+        """The descriptors' pixels and the region class of every pixel of a ``uint8`` grey image.
+
+        The classes are computed on a grid of spacing ``grid_px`` (the
+        descriptors vary slowly, being densities over ``window_px``), and
+        each grid point's class fills the pixels nearest to it.
+
+        Returns
+        -------
+        kinds : PixelKinds
+            What each descriptor counts (the straight pieces locate the borders).
+        regions : numpy.ndarray
+            ``uint8`` array of shape ``(H, W)`` of :class:`~trackbench_texture.classes.Region` values.
+        """
+        settings = self.descriptors
+        kinds = pixel_kinds(image, settings)
+        step = settings.grid_px
+        offset = step // 2
+        height, width = image.shape
+        rows = np.arange(min(offset, height - 1), height, step)
+        cols = np.arange(min(offset, width - 1), width, step)
+        coarse = self.regions.classify(densities(kinds, settings.window_px)[np.ix_(rows, cols)])
+        nearest_row = np.clip(np.rint((np.arange(height) - rows[0]) / step).astype(int), 0, len(rows) - 1)
+        nearest_col = np.clip(np.rint((np.arange(width) - cols[0]) / step).astype(int), 0, len(cols) - 1)
+        return kinds, coarse[np.ix_(nearest_row, nearest_col)]
+
+
+@dataclass(frozen=True, eq=False)
+class _Labelled:
+    image: np.ndarray
+    cable: CableState
+    where: str
+
+
+def _labelled_frames(sequence: Sequence) -> Iterable[tuple[Frame, str]]:
+    name = sequence.identity.name
+    for frame in sequence.frames():
+        truth = frame.truth
+        cable = getattr(truth, "cable", None)
+        if isinstance(cable, CableState) and cable.is_known:
+            yield frame, f"texture: training sequence {name!r}, frame {frame.index}"
+
+
+def _reservoir(sequence: Sequence, k: int, rng: np.random.Generator) -> list[_Labelled]:
+    """``k`` labelled frames drawn uniformly without replacement, in one pass."""
+    kept: list[_Labelled] = []
+    for seen, (frame, where) in enumerate(_labelled_frames(sequence)):
+        slot = seen if seen < k else int(rng.integers(seen + 1))
+        if slot < k:
+            item = _Labelled(grey_image(frame.observation, where), frame.truth.cable, where)
+            if seen < k:
+                kept.append(item)
+            else:
+                kept[slot] = item
+    return kept
+
+
+def _pixels(frame: _Labelled, descriptors: np.ndarray, count: int, rng: np.random.Generator):
+    on_cable = cable_mask(frame.cable, (frame.image.shape[1], frame.image.shape[0])).ravel()
+    chosen = []
+    for side in (np.flatnonzero(on_cable), np.flatnonzero(~on_cable)):
+        take = min(len(side), count // 2)
+        chosen.append(rng.choice(side, size=take, replace=False) if take else side[:0])
+    index = np.concatenate(chosen)
+    return descriptors.reshape(-1, descriptors.shape[-1])[index], on_cable[index]
+
+
+def train(training: SequenceOf[Sequence], params: TextureParams, rng: np.random.Generator) -> TextureModel:
+    """Learn the texture model from the labelled frames of ``training``.
+
+    Parameters
+    ----------
+    training : sequence of benchmark.model.Sequence
+        Camera sequences whose frames' truths know the cable.
+    params : TextureParams
+        Sampling sizes, descriptor settings and classifier settings.
+    rng : numpy.random.Generator
+        The only source of randomness.
+
+    Returns
+    -------
+    TextureModel
+
+    Raises
+    ------
+    DataError
+        If no training sequence has a labelled frame, a frame is not an
+        image (naming it), or the frames show no cable or no ground pixel.
+    """
+    learn: list[_Labelled] = []
+    for sequence in training:
+        learn += _reservoir(sequence, params.frames_per_sequence, rng)
+    if not learn:
+        names = [sequence.identity.name for sequence in training]
+        raise DataError(f"texture: no labelled frame (truth with a known cable) in the training set {names}")
+    settings = params.descriptor_params()
+    samples, on_cable = [], []
+    for frame in learn:
+        x, y = _pixels(frame, texture_descriptors(frame.image, settings), params.pixels_per_frame, rng)
+        samples.append(x)
+        on_cable.append(y)
+    regions = train_regions(
+        np.concatenate(samples), np.concatenate(on_cable), params.boosting_rounds, params.min_confidence, rng
+    )
+    names = tuple(sequence.identity.name for sequence in training)
+    return TextureModel(settings, regions, names, len(learn))

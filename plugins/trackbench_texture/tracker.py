@@ -1,0 +1,184 @@
+"""The texture tracker of Grau et al. (seeds/000, section 2.2), the benchmark's first that learns.
+
+Grau et al. tell the cable from the seabed by its texture: five descriptors
+measured around every pixel (straightness, abruptness, discontinuity,
+granularity and blurriness; :mod:`trackbench_texture.descriptors`) are
+classified into region classes learned from labelled images (cable, sand,
+stones and vegetation, undefined; :mod:`trackbench_texture.classes`,
+:mod:`trackbench_texture.model`).  The thesis leaves open how the cable's
+position follows from the classified image; here its two borders are
+fitted to the edges of the cable region (:mod:`trackbench_texture.borders`).
+
+Each frame is classified on its own: the tracker keeps no state between
+frames but its random generator, never reads a frame's truth and ignores
+``init``.  Randomness comes only from the generators handed to
+:meth:`TextureTracker.fit` (frames and pixels learned from, the seeds of
+the clustering and the classifier) and :meth:`TextureTracker.reset` (the
+pairs of pixels the border fits try), so a seed replays a run bit for bit.
+
+Expected weakness, as the thesis puts it: "because of marine growth beside
+and on top of cables, the cable often has a similar texture to its
+environment (cf. figure 2.3).  I assume that in these cases this approach
+tends to fail."  Nothing here tries to make up for it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence as SequenceOf
+
+import numpy as np
+
+from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
+from benchmark.model import Sequence, SequenceInfo
+from benchmark.tracker import Tracker
+from trackbench_texture.borders import cable_strip, fit_borders
+from trackbench_texture.classes import Region
+from trackbench_texture.descriptors import PixelKinds
+from trackbench_texture.model import TextureModel, grey_image, train
+from trackbench_texture.params import TextureParams
+
+
+class TextureTracker(Tracker[CameraTruth, CableState]):
+    """Texture descriptors, learned region classes and border lines fitted to the cable region.
+
+    Use: :meth:`fit` on labelled training sequences (or :meth:`use_model`
+    with a model an earlier fit returned), then :meth:`reset` and
+    :meth:`step` as for any tracker.
+
+    References
+    ----------
+    seeds/000, section 2.2 and Fig. 2.3 (Grau et al., [GCA98]).
+    """
+
+    name = "texture"
+    version = "1.0"
+    modality = "camera"
+    Params = TextureParams
+
+    def __init__(self, params: TextureParams | None = None) -> None:
+        super().__init__(params)
+        self._model: TextureModel | None = None
+        self._rng: np.random.Generator | None = None
+
+    @property
+    def model(self) -> TextureModel | None:
+        """The adopted model, or None before :meth:`fit` or :meth:`use_model`."""
+        return self._model
+
+    def fit(self, training: SequenceOf[Sequence], rng: np.random.Generator) -> TextureModel:
+        """Learn the region classes from the labelled frames of ``training``; adopt the model and return it.
+
+        Parameters
+        ----------
+        training : sequence of benchmark.model.Sequence
+            Camera sequences; frames without truth or with an unknown cable
+            are skipped.
+        rng : numpy.random.Generator
+            Draws the frames and pixels learned from and seeds the
+            clustering and the classifier.
+
+        Returns
+        -------
+        TextureModel
+            Picklable.
+
+        Raises
+        ------
+        DataError
+            If the training set has no labelled frame, shows no cable or no
+            ground, or a drawn frame is not an image (naming it).
+        """
+        self._model = train(training, self.params, rng)
+        return self._model
+
+    def use_model(self, model: TextureModel) -> None:
+        """Adopt a model an earlier :meth:`fit` returned, perhaps in another process.
+
+        Raises
+        ------
+        TypeError
+            If ``model`` is not a :class:`~trackbench_texture.model.TextureModel`.
+        """
+        if not isinstance(model, TextureModel):
+            raise TypeError(f"texture: expected a TextureModel from TextureTracker.fit, got {type(model).__name__}")
+        self._model = model
+
+    def _require_model(self) -> TextureModel:
+        if self._model is None:
+            raise RuntimeError("texture: no model; call fit(training, rng) or use_model(model) before reset and step")
+        return self._model
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: CameraTruth | None = None) -> None:
+        """Prepare for a new sequence: keep the random generator; the model must be there.
+
+        Parameters
+        ----------
+        info : SequenceInfo
+            Not used: the image size is read from each frame.
+        rng : numpy.random.Generator
+            Draws the pairs of pixels the border fits try.
+        init : CameraTruth, optional
+            Not used: every frame is classified on its own.
+
+        Raises
+        ------
+        RuntimeError
+            If no model was fitted or given.
+        """
+        self._require_model()
+        self._rng = rng
+
+    def classify(self, frame: CameraFrame) -> tuple[PixelKinds, np.ndarray]:
+        """The descriptors' pixels and the :class:`~trackbench_texture.classes.Region` of every pixel of a frame.
+
+        Raises
+        ------
+        RuntimeError
+            If no model was fitted or given.
+        DataError
+            If the observation is not an image, naming the frame.
+        """
+        model = self._require_model()
+        return model.analyse(grey_image(frame.observation, f"texture: frame {frame.index}"))
+
+    def step(self, frame: CameraFrame) -> CableState | None:
+        """Classify one frame and fit the cable's borders along its cable region.
+
+        Parameters
+        ----------
+        frame : CameraFrame
+            Its observation is a ``uint8`` grey (or BGR) image.
+
+        Returns
+        -------
+        CableState or None
+            None when the cable region is not cable-shaped
+            (:mod:`trackbench_texture.borders`).
+
+        Raises
+        ------
+        RuntimeError
+            If no model was fitted or given, or :meth:`reset` was not called.
+        DataError
+            If the observation is not an image, naming the frame.
+        """
+        kinds, regions = self.classify(frame)
+        if self._rng is None:
+            raise RuntimeError("texture: call reset(info, rng) before step")
+        p = self.params
+        strip = cable_strip(regions == Region.CABLE, p.min_region_px)
+        if strip is None:
+            return None
+        return fit_borders(
+            strip,
+            kinds.straight,
+            self._rng,
+            inlier_px=p.inlier_px,
+            trials=p.ransac_trials,
+            min_length_share=p.min_length_share,
+            min_inlier_share=p.min_inlier_share,
+            min_width_px=p.min_width_px,
+            max_width_px=p.max_width_px,
+            max_skew=math.radians(p.max_skew_deg),
+        )
