@@ -55,6 +55,22 @@ Share = Annotated[pydantic.FiniteFloat, Interval(ge=0, le=1)]
 """A share or fraction in ``[0, 1]``."""
 
 
+def require_order(params: Any, *pairs: tuple[str, str]) -> None:
+    """The cross-field rule most trackers share: each ``(low, high)`` pair of fields is ordered.
+
+    Call it from ``__post_init__``, e.g. ``require_order(self, ("min_width_px", "max_width_px"))``.
+
+    Raises
+    ------
+    ValueError
+        ``"low must not exceed high, got a > b"`` for the first pair out of order.
+    """
+    for low, high in pairs:
+        a, b = getattr(params, low), getattr(params, high)
+        if a > b:
+            raise ValueError(f"{low} must not exceed {high}, got {a} > {b}")
+
+
 def make_params(params_class: type, tracker: str, overrides: Mapping[str, Any] | None = None) -> Any:
     """Build and validate a tracker's parameters from their defaults and ``overrides``.
 

@@ -74,7 +74,7 @@ import pydantic
 from annotated_types import Ge, Interval
 
 from benchmark.modalities.camera.geometry import ImageSize, Line
-from benchmark.parameters import NonNegative, Positive, Share
+from benchmark.parameters import NonNegative, Positive, Share, require_order
 from trackbench_foresti.domains import restore_domain
 from trackbench_foresti.edges import EdgeMap, as_grey, canny_edges, check_grey_image
 from trackbench_foresti.grouping import GroupingParams, choose_pair
@@ -247,8 +247,7 @@ class FeatureParams:
         ValueError
             Naming the parameter and its value.
         """
-        if self.canny_low > self.canny_high:
-            raise ValueError(f"canny_low must not exceed canny_high, got {self.canny_low} > {self.canny_high}")
+        require_order(self, ("canny_low", "canny_high"))
         bins = round(180.0 / self.alpha_step_deg)
         if not math.isclose(bins * self.alpha_step_deg, 180.0, rel_tol=1e-9):
             raise ValueError(f"alpha_step_deg must divide 180, got {self.alpha_step_deg}")

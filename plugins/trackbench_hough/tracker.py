@@ -38,7 +38,7 @@ from benchmark.errors import DataError
 from benchmark.modalities.camera.geometry import cable_borders
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import SequenceInfo
-from benchmark.parameters import NonNegative, Positive
+from benchmark.parameters import NonNegative, Positive, require_order
 from benchmark.tracker import Tracker
 from trackbench_hough.edges import edge_image
 from trackbench_hough.lines import hough_lines, suppress_duplicates
@@ -114,10 +114,7 @@ class HoughParams:
         ValueError
             Naming the parameters and their values.
         """
-        if self.min_width_px > self.max_width_px:
-            raise ValueError(
-                f"min_width_px must not exceed max_width_px, got {self.min_width_px} > {self.max_width_px}"
-            )
+        require_order(self, ("min_width_px", "max_width_px"))
 
 
 class HoughTracker(Tracker[CameraTruth, CableState]):

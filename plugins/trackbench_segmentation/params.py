@@ -18,7 +18,7 @@ from typing import Annotated
 import pydantic
 from annotated_types import Ge, Interval
 
-from benchmark.parameters import NonNegative, Positive, Share
+from benchmark.parameters import NonNegative, Positive, Share, require_order
 
 
 @pydantic.dataclasses.dataclass(frozen=True)
@@ -143,7 +143,4 @@ class SegmentationParams:
         ValueError
             Naming the parameters and their values.
         """
-        if self.min_width_px > self.max_width_px:
-            raise ValueError(
-                f"min_width_px must not exceed max_width_px, got {self.min_width_px} > {self.max_width_px}"
-            )
+        require_order(self, ("min_width_px", "max_width_px"))

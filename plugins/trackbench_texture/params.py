@@ -34,7 +34,7 @@ from typing import Annotated
 import pydantic
 from annotated_types import Ge, Interval, Le
 
-from benchmark.parameters import NonNegative, Positive, Share
+from benchmark.parameters import NonNegative, Positive, Share, require_order
 
 OddSize = Annotated[int, Ge(3), Le(63)]
 """A mask size in px; even values are rounded up to the next odd one."""
@@ -91,8 +91,7 @@ class DescriptorParams:
         ValueError
             Naming the parameters and their values.
         """
-        if self.edge_low > self.edge_high:
-            raise ValueError(f"edge_low must not exceed edge_high, got {self.edge_low} > {self.edge_high}")
+        require_order(self, ("edge_low", "edge_high"))
 
 
 @pydantic.dataclasses.dataclass(frozen=True)
@@ -149,10 +148,7 @@ class TextureParams(DescriptorParams):
             Naming the parameters and their values.
         """
         super().__post_init__()
-        if self.min_width_px > self.max_width_px:
-            raise ValueError(
-                f"min_width_px must not exceed max_width_px, got {self.min_width_px} > {self.max_width_px}"
-            )
+        require_order(self, ("min_width_px", "max_width_px"))
 
     def descriptor_params(self) -> DescriptorParams:
         """The descriptor settings alone, as a model stores them."""

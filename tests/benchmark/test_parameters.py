@@ -137,3 +137,16 @@ def test_params_pydantic_cannot_validate_are_named():
 
     with pytest.raises(ParameterError, match=r"tracker 'opaque': its Params cannot be validated"):
         make_params(Opaque, "opaque")
+
+
+def test_require_order_names_the_first_pair_out_of_order() -> None:
+    import types
+
+    import pytest
+
+    from benchmark.parameters import require_order
+
+    values = types.SimpleNamespace(low=1.0, high=2.0, a=5, b=3)
+    require_order(values, ("low", "high"))
+    with pytest.raises(ValueError, match=r"^a must not exceed b, got 5 > 3$"):
+        require_order(values, ("low", "high"), ("a", "b"))
