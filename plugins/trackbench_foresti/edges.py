@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from benchmark.modalities.camera.io.video import grey_image
+from benchmark.modalities.camera.io.video import check_grey_image, grey_image
 
 
 @dataclass(frozen=True, eq=False)
@@ -52,14 +52,6 @@ class EdgeMap:
     def size(self) -> tuple[int, int]:
         """Image ``(W, H)`` in px."""
         return self.mask.shape[1], self.mask.shape[0]
-
-
-def check_grey_image(image: np.ndarray) -> None:
-    """Raise ValueError unless ``image`` is a non-empty 2-D ``uint8`` array."""
-    if not isinstance(image, np.ndarray) or image.dtype != np.uint8 or image.ndim != 2 or 0 in image.shape:
-        shape = getattr(image, "shape", None)
-        dtype = getattr(image, "dtype", type(image).__name__)
-        raise ValueError(f"image must be a 2-D uint8 grey array of shape (H, W), got {dtype} of shape {shape}")
 
 
 def as_grey(image: np.ndarray) -> np.ndarray:

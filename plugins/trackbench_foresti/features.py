@@ -74,9 +74,10 @@ import pydantic
 from annotated_types import Ge, Interval
 
 from benchmark.modalities.camera.geometry import ImageSize, Line
+from benchmark.modalities.camera.io.video import check_grey_image
 from benchmark.parameters import NonNegative, Positive, Share, require_order
 from trackbench_foresti.domains import restore_domain
-from trackbench_foresti.edges import EdgeMap, as_grey, canny_edges, check_grey_image
+from trackbench_foresti.edges import EdgeMap, as_grey, canny_edges
 from trackbench_foresti.grouping import GroupingParams, choose_pair
 from trackbench_foresti.hough import hough_lines
 from trackbench_foresti.reliability import is_reliable, length_and_robustness, reliability, strength

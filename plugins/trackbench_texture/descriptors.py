@@ -42,6 +42,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+from benchmark.modalities.camera.io.video import check_grey_image
 from trackbench_texture.params import DescriptorParams
 
 NAMES = ("straightness", "abruptness", "discontinuity", "granularity", "blurriness")
@@ -111,15 +112,6 @@ class PixelKinds:
         return self.straight, self.abrupt, self.ends, self.specks, self.soft
 
 
-def check_image(image: np.ndarray) -> None:
-    """Raise ValueError unless ``image`` is a non-empty 2-D ``uint8`` array."""
-    if not isinstance(image, np.ndarray) or image.dtype != np.uint8 or image.ndim != 2 or image.size == 0:
-        raise ValueError(
-            f"expected a non-empty 2-D uint8 grey image, got {getattr(image, 'dtype', type(image).__name__)} "
-            f"of shape {getattr(image, 'shape', None)}"
-        )
-
-
 def pixel_kinds(image: np.ndarray, params: DescriptorParams) -> PixelKinds:
     """Find the pixels the five descriptors count (see the module docstring).
 
@@ -143,7 +135,7 @@ def pixel_kinds(image: np.ndarray, params: DescriptorParams) -> PixelKinds:
     ----------
     seeds/000, section 2.2 (the descriptors of Grau et al.).
     """
-    check_image(image)
+    check_grey_image(image)
     grey = image.astype(np.float32)
     if params.smoothing_sigma > 0:
         grey = cv2.GaussianBlur(grey, (0, 0), params.smoothing_sigma, borderType=cv2.BORDER_REFLECT)

@@ -48,6 +48,13 @@ def to_grey(image: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(grey)
 
 
+def check_grey_image(image: object) -> None:
+    """Raise ValueError unless ``image`` is a 2-D ``uint8`` array, as :func:`grey_image` returns, naming what it is."""
+    if not isinstance(image, np.ndarray) or image.dtype != np.uint8 or image.ndim != 2 or image.size == 0:
+        dtype, shape = getattr(image, "dtype", type(image).__name__), getattr(image, "shape", None)
+        raise ValueError(f"expected a non-empty uint8 grey image of shape (H, W), got {dtype} of shape {shape}")
+
+
 def grey_image(observation: object, min_size_px: int = 1) -> np.ndarray:
     """A camera observation as the ``uint8`` grey image of shape ``(H, W)`` that camera trackers read.
 
@@ -70,10 +77,9 @@ def grey_image(observation: object, min_size_px: int = 1) -> np.ndarray:
     colour = image.dtype == np.uint8 and image.ndim == 3 and image.shape[2] in (1, 3, 4)
     if image.size and (colour or (image.dtype == np.uint16 and image.ndim == 2)):
         image = to_grey(image)
-    if image.dtype != np.uint8 or image.ndim != 2:
-        raise ValueError(f"expected a uint8 grey image of shape (H, W), got {image.dtype} of shape {image.shape}")
-    if min(image.shape) < max(min_size_px, 1):
+    if image.dtype == np.uint8 and image.ndim == 2 and min(image.shape) < max(min_size_px, 1):
         raise ValueError(f"image of shape {image.shape} is smaller than {max(min_size_px, 1)} px on a side")
+    check_grey_image(image)
     return image
 
 
