@@ -12,12 +12,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from benchmark.errors import DataError
 from benchmark.modalities.camera.geometry import cable_from_borders
+from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
-from trackbench_foresti.features import FeatureExtractor, FeatureParams, as_grey
+from trackbench_foresti.features import FeatureExtractor, FeatureParams
 
 
 class ForestiLinesTracker(Tracker[CameraTruth, CableState]):
@@ -48,10 +48,7 @@ class ForestiLinesTracker(Tracker[CameraTruth, CableState]):
         DataError
             If the observation is not a grey image, naming the frame.
         """
-        try:
-            image = as_grey(frame.observation)
-        except ValueError as exc:
-            raise DataError(f"foresti_lines: frame {frame.index}: {exc}") from exc
+        image = grey_frame(frame.observation, f"foresti_lines: frame {frame.index}")
         pair = self.features.measure(image)
         if pair is None:
             return None

@@ -90,6 +90,7 @@ from annotated_types import Ge
 from benchmark.errors import DataError
 from benchmark.filters.kalman import Gaussian, compile_kernels, predict, update
 from benchmark.modalities.camera.geometry import cable_from_borders
+from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import (
     CableState,
     CameraCalibration,
@@ -102,7 +103,7 @@ from benchmark.modalities.camera.model import (
 from benchmark.model import SequenceInfo
 from benchmark.parameters import Positive
 from benchmark.tracker import Tracker
-from trackbench_foresti.features import FeatureExtractor, FeatureParams, as_grey
+from trackbench_foresti.features import FeatureExtractor, FeatureParams
 from trackbench_foresti.measurement import PipeCamera, border_abscissae, border_jacobian, border_lines
 from trackbench_foresti.motion import advance, advance_jacobian, speed_vector
 
@@ -232,10 +233,7 @@ class ForestiEkfTracker(Tracker[CameraTruth, CableState]):
         """
         if self.belief is None or self.camera is None:
             raise RuntimeError("foresti_ekf: step() called before reset()")
-        try:
-            image = as_grey(frame.observation)
-        except ValueError as exc:
-            raise DataError(f"foresti_ekf: frame {frame.index}: {exc}") from exc
+        image = grey_frame(frame.observation, f"foresti_ekf: frame {frame.index}")
         camera, speeds = self.camera, self._speeds
         if self._started:
             self.belief = predict(

@@ -32,10 +32,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from benchmark.errors import DataError
 from benchmark.filters.kalman import Gaussian
 from benchmark.filters.kalman import compile_kernels as compile_filter_kernels
-from benchmark.modalities.camera.io.video import grey_image
+from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
@@ -127,10 +126,7 @@ class SegmentationTracker(Tracker[CameraTruth, CableState]):
         ----------
         seeds/000, section 2.3.
         """
-        try:
-            image = grey_image(frame.observation, min_size_px=3)
-        except ValueError as exc:
-            raise DataError(f"segmentation: frame {frame.index}: {exc}") from exc
+        image = grey_frame(frame.observation, f"segmentation: frame {frame.index}", min_size_px=3)
         p = self.params
         height, width = image.shape
         if self._started:

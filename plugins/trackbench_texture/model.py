@@ -27,32 +27,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from benchmark.errors import DataError
-from benchmark.modalities.camera.io.video import grey_image as read_grey
+from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState
 from benchmark.model import Frame, Sequence
 from trackbench_texture.classes import RegionClassifier, train_regions
 from trackbench_texture.descriptors import PixelKinds, densities, pixel_kinds, texture_descriptors
 from trackbench_texture.labels import cable_mask
 from trackbench_texture.params import DescriptorParams, TextureParams
-
-
-def grey_image(observation: object, where: str) -> np.ndarray:
-    """A camera observation as the ``uint8`` grey image of shape ``(H, W)`` the descriptors read.
-
-    The camera trackers' shared reader
-    (:func:`benchmark.modalities.camera.io.video.grey_image`) accepts grey,
-    BGR and BGRA ``uint8`` images and grey ``uint16`` ones.
-
-    Raises
-    ------
-    DataError
-        For anything else, naming ``where`` (the tracker and the frame) and
-        what was wrong.
-    """
-    try:
-        return read_grey(observation)
-    except ValueError as exc:
-        raise DataError(f"{where}: {exc}") from None
 
 
 @dataclass(frozen=True, eq=False)
@@ -125,7 +106,7 @@ def _reservoir(sequence: Sequence, k: int, rng: np.random.Generator) -> list[_La
     for seen, (frame, where) in enumerate(_labelled_frames(sequence)):
         slot = seen if seen < k else int(rng.integers(seen + 1))
         if slot < k:
-            item = _Labelled(grey_image(frame.observation, where), frame.truth.cable, where)
+            item = _Labelled(grey_frame(frame.observation, where), frame.truth.cable, where)
             if seen < k:
                 kept.append(item)
             else:

@@ -29,13 +29,14 @@ from collections.abc import Sequence as SequenceOf
 
 import numpy as np
 
+from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import Sequence, SequenceInfo
 from benchmark.tracker import Tracker
 from trackbench_texture.borders import cable_strip, fit_borders
 from trackbench_texture.classes import Region
 from trackbench_texture.descriptors import PixelKinds
-from trackbench_texture.model import TextureModel, grey_image, train
+from trackbench_texture.model import TextureModel, train
 from trackbench_texture.params import TextureParams
 
 
@@ -140,7 +141,7 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
             If the observation is not an image, naming the frame.
         """
         model = self._require_model()
-        return model.analyse(grey_image(frame.observation, f"texture: frame {frame.index}"))
+        return model.analyse(grey_frame(frame.observation, f"texture: frame {frame.index}"))
 
     def step(self, frame: CameraFrame) -> CableState | None:
         """Classify one frame and fit the cable's borders along its cable region.

@@ -6,7 +6,7 @@ import pickle
 
 import numpy as np
 import pytest
-from trackbench_texture.model import TextureModel, grey_image, train
+from trackbench_texture.model import TextureModel, train
 from trackbench_texture.params import TextureParams
 
 from benchmark.errors import DataError
@@ -81,30 +81,3 @@ def test_a_bad_training_image_is_a_data_error_naming_sequence_and_frame(drawn):
     params = TextureParams(**{**drawn.FAST, "frames_per_sequence": 10})
     with pytest.raises(DataError, match=r"'drawn/bad', frame 2: .*float64"):
         train([bad], params, np.random.default_rng(0))
-
-
-def test_grey_and_colour_images_are_accepted():
-    grey = np.arange(12, dtype=np.uint8).reshape(3, 4)
-    assert np.array_equal(grey_image(grey, "here"), grey)
-    colour = np.repeat(grey[:, :, None], 3, axis=2)
-    assert np.array_equal(grey_image(colour, "here"), grey)
-    assert grey_image((grey.astype(np.uint16) * 257), "here").dtype == np.uint8
-
-
-@pytest.mark.parametrize(
-    ("image", "detail"),
-    [
-        (np.full((4, 4), np.nan), "NaN"),
-        (np.zeros((4, 4), np.float32), "float32"),
-        (np.zeros(16, np.uint8), "shape (16,)"),
-        (np.zeros((0, 4), np.uint8), "shape (0, 4)"),
-        (np.zeros((4, 4, 2), np.uint8), "shape (4, 4, 2)"),
-        (np.zeros((4, 4), bool), "bool"),
-        ("not an image", "str"),
-    ],
-)
-def test_anything_else_is_a_data_error_naming_where(image, detail):
-    with pytest.raises(DataError) as error:
-        grey_image(image, "texture: frame 5")
-    assert str(error.value).startswith("texture: frame 5: ")
-    assert detail in str(error.value)

@@ -83,6 +83,17 @@ def grey_image(observation: object, min_size_px: int = 1) -> np.ndarray:
     return image
 
 
+def grey_frame(observation: object, where: str, min_size_px: int = 1) -> np.ndarray:
+    """:func:`grey_image` for a tracker's ``step``: what it cannot read is a DataError naming ``where``.
+
+    ``where`` names the tracker and the frame, e.g. ``"texture: frame 7"``.
+    """
+    try:
+        return grey_image(observation, min_size_px)
+    except ValueError as exc:
+        raise DataError(f"{where}: {exc}") from exc
+
+
 def _open(path: Path) -> cv2.VideoCapture:
     if not path.is_file():
         raise DataError(f"{path}: no such video file")

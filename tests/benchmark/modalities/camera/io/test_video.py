@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from benchmark.errors import DataError
-from benchmark.modalities.camera.io.video import VideoFile, grey_image, to_grey
+from benchmark.modalities.camera.io.video import VideoFile, grey_frame, grey_image, to_grey
 
 LEVELS = [20, 60, 100, 140, 180, 220]
 
@@ -101,3 +101,30 @@ def test_grey_image_passes_grey_through_and_converts_colour_and_16_bit() -> None
     assert np.array_equal(grey_image(grey.astype(np.uint16) * 257), grey)
     with pytest.raises(ValueError, match="smaller than 5 px"):
         grey_image(grey, min_size_px=5)
+
+
+def test_grey_frame_accepts_grey_colour_and_16_bit_images() -> None:
+    grey = np.arange(12, dtype=np.uint8).reshape(3, 4)
+    assert np.array_equal(grey_frame(grey, "here"), grey)
+    colour = np.repeat(grey[:, :, None], 3, axis=2)
+    assert np.array_equal(grey_frame(colour, "here"), grey)
+    assert grey_frame((grey.astype(np.uint16) * 257), "here").dtype == np.uint8
+
+
+@pytest.mark.parametrize(
+    ("image", "detail"),
+    [
+        (np.full((4, 4), np.nan), "NaN"),
+        (np.zeros((4, 4), np.float32), "float32"),
+        (np.zeros(16, np.uint8), "shape (16,)"),
+        (np.zeros((0, 4), np.uint8), "shape (0, 4)"),
+        (np.zeros((4, 4, 2), np.uint8), "shape (4, 4, 2)"),
+        (np.zeros((4, 4), bool), "bool"),
+        ("not an image", "str"),
+    ],
+)
+def test_grey_frame_makes_anything_else_a_data_error_naming_where(image: object, detail: str) -> None:
+    with pytest.raises(DataError) as error:
+        grey_frame(image, "texture: frame 5")
+    assert str(error.value).startswith("texture: frame 5: ")
+    assert detail in str(error.value)
