@@ -19,12 +19,15 @@ labelled nor what learned them.  The readings implemented here:
   ``min_confidence``: the thesis' "blurry texture" regions are those the
   descriptors cannot place, and no truth could label them.
 * The classifier is scikit-learn's histogram gradient boosting over the
-  five descriptors: it needs no scaling, handles the descriptors' skewed
-  distributions (many exact zeros) and classifies a whole image in
-  milliseconds.  Its training pixels are balanced between cable and
-  ground, so that the cable, a tenth of an image, is not drowned; the
-  cable region then spills over onto the ground, which the border fit
-  allows for (:mod:`trackbench_texture.borders`).
+  five descriptors: it needs no scaling and handles the descriptors' skewed
+  distributions (many exact zeros).  Its training pixels are balanced
+  between cable and ground, so that the cable, a tenth of an image, is not
+  drowned; the cable region then spills over onto the ground, which the
+  border fit allows for (:mod:`trackbench_texture.borders`).
+* An image is classified by the same trees turned into lookup tables
+  (:mod:`trackbench_texture.forest`), with scikit-learn's probabilities bit
+  for bit, in a millisecond or two: ten times faster than scikit-learn's
+  own tree walks.
 * scikit-learn runs on one native thread here: its OpenMP threads, spinning
   against the harness' own workers on a shared machine, made a fit forty
   times slower.
@@ -33,6 +36,7 @@ labelled nor what learned them.  The readings implemented here:
 from __future__ import annotations
 
 import enum
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,6 +46,7 @@ from threadpoolctl import threadpool_limits
 
 from benchmark.errors import DataError
 from trackbench_texture.descriptors import NAMES
+from trackbench_texture.forest import Forest
 
 
 class Region(enum.IntEnum):
@@ -109,6 +114,26 @@ class RegionClassifier:
         """The classes the classifier learned, in the order of its probabilities."""
         return tuple(Region(int(c)) for c in self.classifier.classes_)
 
+    @functools.cached_property
+    def forest(self) -> Forest:
+        """The classifier's trees as lookup tables, built on first use."""
+        return Forest.of(self.classifier)
+
+    def probabilities(self, descriptors: np.ndarray) -> np.ndarray:
+        """The class probabilities of descriptor vectors, equal to the classifier's ``predict_proba``.
+
+        Parameters
+        ----------
+        descriptors : numpy.ndarray
+            ``(N, 5)`` descriptor vectors.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(N, classes)`` probabilities, in the order of :attr:`regions`.
+        """
+        return self.classifier._loss.predict_proba(self.forest.raw_predict(descriptors))
+
     def classify(self, descriptors: np.ndarray) -> np.ndarray:
         """The region class of every pixel.
 
@@ -123,8 +148,7 @@ class RegionClassifier:
             ``uint8`` array of shape ``(H, W)`` of :class:`Region` values.
         """
         height, width, depth = descriptors.shape
-        with threadpool_limits(1):
-            probabilities = self.classifier.predict_proba(descriptors.reshape(-1, depth).astype(np.float64))
+        probabilities = self.probabilities(descriptors.reshape(-1, depth))
         best = np.argmax(probabilities, axis=1)
         regions = np.asarray(self.regions, dtype=np.uint8)[best]
         regions[probabilities[np.arange(len(best)), best] < self.min_confidence] = Region.UNDEFINED

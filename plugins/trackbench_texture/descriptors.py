@@ -176,6 +176,30 @@ def densities(kinds: PixelKinds, window: int) -> np.ndarray:
     return np.clip(np.stack([_density(layer, window) for layer in kinds.layers()], axis=-1), 0.0, 1.0)
 
 
+def densities_at(kinds: PixelKinds, window: int, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+    """The five descriptors at the pixels of a grid, ``densities(kinds, window)[np.ix_(rows, cols)]``.
+
+    Only the grid's values are stacked and clipped, not the whole image's.
+
+    Parameters
+    ----------
+    kinds : PixelKinds
+        The pixels each descriptor counts.
+    window : int
+        Side of the neighbourhood, px (even values rounded up to odd).
+    rows, cols : numpy.ndarray
+        Indices of the grid's rows and columns.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``float32`` array of shape ``(len(rows), len(cols), 5)`` with values in ``[0, 1]``, in the order of
+        :data:`NAMES`.
+    """
+    grid = np.ix_(rows, cols)
+    return np.clip(np.stack([_density(layer, window)[grid] for layer in kinds.layers()], axis=-1), 0.0, 1.0)
+
+
 def texture_descriptors(image: np.ndarray, params: DescriptorParams) -> np.ndarray:
     """The five descriptors at every pixel of a grey image.
 

@@ -31,7 +31,7 @@ from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState
 from benchmark.model import Frame, Sequence
 from trackbench_texture.classes import RegionClassifier, train_regions
-from trackbench_texture.descriptors import PixelKinds, densities, pixel_kinds, texture_descriptors
+from trackbench_texture.descriptors import PixelKinds, densities_at, pixel_kinds, texture_descriptors
 from trackbench_texture.labels import cable_mask
 from trackbench_texture.params import DescriptorParams, TextureParams
 
@@ -78,7 +78,7 @@ class TextureModel:
         height, width = image.shape
         rows = np.arange(min(offset, height - 1), height, step)
         cols = np.arange(min(offset, width - 1), width, step)
-        coarse = self.regions.classify(densities(kinds, settings.window_px)[np.ix_(rows, cols)])
+        coarse = self.regions.classify(densities_at(kinds, settings.window_px, rows, cols))
         nearest_row = np.clip(np.rint((np.arange(height) - rows[0]) / step).astype(int), 0, len(rows) - 1)
         nearest_col = np.clip(np.rint((np.arange(width) - cols[0]) / step).astype(int), 0, len(cols) - 1)
         return kinds, coarse[np.ix_(nearest_row, nearest_col)]

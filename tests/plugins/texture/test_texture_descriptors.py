@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from trackbench_texture.descriptors import NAMES, pixel_kinds, texture_descriptors
+from trackbench_texture.descriptors import NAMES, densities, densities_at, pixel_kinds, texture_descriptors
 from trackbench_texture.params import DescriptorParams
 
 PARAMS = DescriptorParams()
@@ -111,3 +111,14 @@ def test_blurriness_falls_where_the_intensity_changes_sharply():
 def test_rejects_anything_but_a_grey_uint8_image(image):
     with pytest.raises(ValueError, match="uint8 grey image"):
         texture_descriptors(image, PARAMS)
+
+
+@settings(max_examples=40, deadline=None)
+@given(image=images(), window=st.integers(3, 41), step=st.integers(1, 8))
+def test_the_descriptors_of_a_grid_are_those_of_the_whole_image_at_its_pixels(image, window, step):
+    kinds = pixel_kinds(image, PARAMS)
+    rows = np.arange(min(step // 2, image.shape[0] - 1), image.shape[0], step)
+    cols = np.arange(min(step // 2, image.shape[1] - 1), image.shape[1], step)
+    expected = densities(kinds, window)[np.ix_(rows, cols)]
+    actual = densities_at(kinds, window, rows, cols)
+    assert actual.dtype == expected.dtype and actual.tobytes() == expected.tobytes()
