@@ -10,13 +10,19 @@
     leaderboard   re-publish the leaderboard of an existing results database
     diagnose      the likelihood ceiling of a tracker's observation model on camera sequences
     make-dataset  write a suite's sequences to disk (PNG frames plus sequence files, or swath files)
+    cache         the frame cache: info (what it holds) and clear
 
 ``run`` forms a cell for every selected tracker, sequence and seed whose
-modalities match, runs the cells (in a process pool unless ``--jobs 0``),
-stores each finished cell in ``DIR/results.sqlite`` and writes
-``leaderboard.csv``, ``leaderboard.md`` and ``leaderboard.html`` into
-``DIR``.  One line per finished cell goes to stderr as progress; the board
-goes to stdout.
+modalities match, and runs the cells on an executor (``--executor local``:
+a pool of ``--jobs`` worker processes; ``--executor dask``: a Dask cluster,
+``--scheduler ADDRESS`` or a local one).  Simulated sequences are rendered
+once into the frame cache (``--cache DIR``, ``$TRACKBENCH_CACHE``, or the
+platform's cache folder; ``--no-cache`` renders in every cell) and read
+back by every other cell and run.  Each finished cell is stored in
+``DIR/results.sqlite``, and ``leaderboard.csv``, ``leaderboard.md`` and
+``leaderboard.html`` are written into ``DIR``.  One line per finished cell
+goes to stderr, under a progress bar on a terminal, and one line sums the
+run up at the end; the board goes to stdout.
 
 Exit status, as pytest's:
 
@@ -41,6 +47,8 @@ import click
 
 from benchmark import plugins
 from benchmark.errors import TrackbenchError
+from benchmark.executors import EXECUTORS
+from benchmark.frame_cache import CACHE_ENV
 from benchmark.registry import Registry
 from benchmark.runner import DEFAULT_TIMEOUT_S
 
@@ -180,6 +188,49 @@ def _show(publication: Publication) -> None:
         click.echo(f"wrote {path}", err=True)
 
 
+cache_option = click.option(
+    "--cache",
+    type=click.Path(file_okay=False, path_type=Path),
+    envvar=CACHE_ENV,
+    default=None,
+    help=f"Folder of the frame cache (default: ${CACHE_ENV}, else the platform's user cache folder).",
+)
+
+
+@main.group("cache")
+def cache_group() -> None:
+    """The frame cache: simulated sequences rendered once, read by every run."""
+
+
+@cache_group.command("info")
+@cache_option
+def cache_info(cache: Path | None) -> None:
+    """List the cached sequences, their sizes and the cache's folder."""
+    from benchmark.frame_cache import FrameCache
+
+    frames = FrameCache(cache)
+    entries = frames.entries()
+    for entry in entries:
+        count = "?" if entry.frames is None else entry.frames
+        size = f"{entry.size_bytes / 1e6:.1f} MB"
+        click.echo(f"{entry.name}  {entry.modality}  {count} frames  {size}  {entry.path.name}")
+    total = sum(entry.size_bytes for entry in entries)
+    leftovers = frames.leftovers()
+    extra = f", {len(leftovers)} leftover files" if leftovers else ""
+    click.echo(f"{frames.folder}: {len(entries)} sequences, {total / 1e6:.1f} MB{extra}")
+
+
+@cache_group.command("clear")
+@cache_option
+def cache_clear(cache: Path | None) -> None:
+    """Remove every cached sequence; the next run renders them again."""
+    from benchmark.frame_cache import FrameCache
+
+    frames = FrameCache(cache)
+    removed, freed = frames.clear()
+    click.echo(f"{frames.folder}: removed {removed} sequences, {freed / 1e6:.1f} MB")
+
+
 @main.command("run")
 @click.option("--suite", "suites", multiple=True, metavar="SUITE", help="Run every sequence of a suite (repeatable).")
 @click.option(
@@ -237,6 +288,21 @@ def _show(publication: Publication) -> None:
     help="Train the trackers that learn on this suite, sequence or sequence file (repeatable), instead of the "
     "training suite each scored suite names.",
 )
+@click.option(
+    "--executor",
+    type=click.Choice(EXECUTORS),
+    default="local",
+    show_default=True,
+    help="Run the cells in worker processes of this machine, or as tasks of a Dask cluster.",
+)
+@click.option(
+    "--scheduler",
+    metavar="ADDRESS",
+    help="The Dask scheduler to send the cells to (tcp://host:8786); without it --executor dask starts a local "
+    "cluster of --jobs workers.",
+)
+@cache_option
+@click.option("--no-cache", is_flag=True, help="Render every simulated sequence in every cell that reads it.")
 @click.pass_context
 def run(
     ctx: click.Context,
@@ -252,32 +318,46 @@ def run(
     timeout: float,
     params: tuple[str, ...],
     train: tuple[str, ...],
+    executor: str,
+    scheduler: str | None,
+    cache: Path | None,
+    no_cache: bool,
 ) -> None:
     """Run trackers on datasets, store the cells and publish the leaderboard.
 
     Exits with 1 after publishing if a cell ended in error or timeout.
     """
+    from benchmark.executors import open_executor
+    from benchmark.frame_cache import FrameCache
     from benchmark.harness import run_benchmark
+    from benchmark.progress import TerminalProgress
     from benchmark.selection import Selection, select_cells
 
     session: Session = ctx.obj
     registry = session.registry
     cells = select_cells(registry, Selection(trackers, suites, datasets, params, seeds, init, train))
     options = {key: list(value) if isinstance(value, tuple) else value for key, value in ctx.params.items()}
-    summary = run_benchmark(
-        cells,
-        registry.modalities,
-        out,
-        jobs=jobs,
-        timeout_s=timeout,
-        in_process=in_process,
-        resume=resume,
-        argv=sys.argv,
-        options={**options, "out": str(out), "disable": list(session.disable)},
-        problems=registry.problems,
-        log=lambda line: click.echo(line, err=True),
-    )
+    progress = TerminalProgress()
+    runner = open_executor(executor, jobs=jobs, in_process=in_process, scheduler=scheduler)  # type: ignore[arg-type]
+    try:
+        summary = run_benchmark(
+            cells,
+            registry.modalities,
+            out,
+            executor=runner,
+            frame_cache=None if no_cache else FrameCache(cache),
+            timeout_s=timeout,
+            resume=resume,
+            argv=sys.argv,
+            options={**options, "out": str(out), "disable": list(session.disable)},
+            problems=registry.problems,
+            log=progress.write,
+            progress=progress,
+        )
+    finally:
+        runner.close()
     _show(summary.publication)
+    click.echo(summary.describe(), err=True)
     if summary.interrupted:
         ctx.exit(EXIT_INTERRUPTED)
     failed = summary.statuses.total() - summary.statuses["ok"]

@@ -10,13 +10,17 @@ asks for (:func:`benchmark.selection.select_cells`) and
 3. with ``resume``, takes over every cell the database already finished
    with status ``ok`` (same tracker key, dataset identity, seed and
    initialisation) and runs only the others;
-4. fits the trackers that learn, once per training set, on the cells left
+4. reads every simulated sequence through the frame cache
+   (:mod:`benchmark.frame_cache`), so that each is rendered once, by the
+   first cell that reads it, and never again while the cache holds it;
+5. fits the trackers that learn, once per training set, on the cells left
    to run (:func:`benchmark.training.fit_models`), reusing a model stored
    in ``OUT/models``;
-5. runs the cells (:func:`benchmark.runner.run_cells`), storing each one in
-   its own transaction as it finishes, so an interrupted run loses nothing
-   finished;
-6. publishes the run's leaderboards (:func:`publish`): ranked per modality,
+6. runs the cells on an executor (:mod:`benchmark.executors`: warm local
+   worker processes, or a Dask cluster), storing each one in its own
+   transaction as it finishes, so an interrupted run loses nothing
+   finished, and telling a :class:`~benchmark.progress.Progress` about it;
+7. publishes the run's leaderboards (:func:`publish`): ranked per modality,
    written atomically to ``OUT/leaderboard.{csv,md,html}``, also after the
    user's Ctrl-C.
 
@@ -28,8 +32,10 @@ through a ``log`` callback, one line per event.
 from __future__ import annotations
 
 import collections
-import functools
+import dataclasses
 import math
+import resource
+import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -39,12 +45,15 @@ import filelock
 import pandas as pd
 
 from benchmark.errors import DataError
+from benchmark.executors import Executor
 from benchmark.files import make_folder
+from benchmark.frame_cache import FrameCache
 from benchmark.leaderboard import load_leaderboards
 from benchmark.modality import Modality
+from benchmark.progress import Progress, SilentProgress
 from benchmark.report import write_leaderboards
 from benchmark.results import CellResult
-from benchmark.runner import DEFAULT_TIMEOUT_S, Cell, run_cells, run_isolated
+from benchmark.runner import DEFAULT_TIMEOUT_S, Cell, run_cells
 from benchmark.store import DATABASE_NAME, ResultStore
 from benchmark.training import fit_models
 
@@ -84,17 +93,51 @@ class RunSummary:
         Cells of the run by status, resumed cells counted as ``ok``.
     interrupted : bool
         The user stopped the run (Ctrl-C); the cells not finished are not in it.
+    elapsed_s : float
+        Wall time of the run.
+    rendered : int
+        Sequences rendered into the frame cache by this run.
+    step_s, read_s : float
+        Time the cells run now spent in their trackers' ``step`` and in
+        getting their frames (rendering or reading them).
+    cpu_s : float or None
+        CPU time of this process and its worker processes over the run;
+        None when the cells ran elsewhere (a Dask cluster).
     """
 
     publication: Publication
     statuses: collections.Counter[str]
     interrupted: bool = False
+    elapsed_s: float = 0.0
+    rendered: int = 0
+    step_s: float = 0.0
+    read_s: float = 0.0
+    cpu_s: float | None = None
+
+    def describe(self) -> str:
+        """One line: cells by status, wall time, sequences rendered, where the time went."""
+        total = self.statuses.total()
+        counts = ", ".join(f"{count} {status}" for status, count in sorted(self.statuses.items())) or "none"
+        minutes, seconds = divmod(round(self.elapsed_s), 60)
+        line = (
+            f"{total} cells ({counts}) in {minutes}:{seconds:02d}; {self.rendered} sequences rendered; "
+            f"tracker steps {self.step_s:.1f} s, frames {self.read_s:.1f} s"
+        )
+        if self.cpu_s is not None:
+            line += f", CPU {self.cpu_s:.1f} s"
+        return f"{line}; interrupted" if self.interrupted else line
 
     @property
     def clean(self) -> bool:
         """Every cell ran ``ok``, no plugin was left out and nothing was interrupted."""
         failed = self.statuses.total() - self.statuses["ok"]
         return not (failed or self.publication.problems or self.interrupted)
+
+
+def _cpu_s() -> float:
+    """CPU time of this process and of its child processes that ended (pool workers once joined)."""
+    own, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
 
 
 def describe_result(result: CellResult) -> str:
@@ -156,6 +199,29 @@ def _lock(out: Path) -> filelock.BaseFileLock:
     return lock
 
 
+def _read_through(cells: list[Cell], cache: FrameCache) -> list[Cell]:
+    """The cells, and their training sets, reading every simulated sequence through ``cache``."""
+    result = []
+    for cell in cells:
+        training = cell.training
+        if training is not None and training.sequences:
+            training = dataclasses.replace(training, sequences=tuple(map(cache.wrap, training.sequences)))
+        result.append(dataclasses.replace(cell, sequence=cache.wrap(cell.sequence), training=training))
+    return result
+
+
+def _uncached(cells: Iterable[Cell], cache: FrameCache) -> list[Any]:
+    """The distinct simulated sequences of ``cells`` (and their training sets) not in ``cache`` yet."""
+    sequences = {}
+    for cell in cells:
+        training = () if cell.training is None else cell.training.sequences
+        for sequence in (cell.sequence, *training):
+            key = cache.key(sequence)
+            if key is not None:
+                sequences.setdefault(key, sequence)
+    return [sequence for sequence in sequences.values() if not cache.holds(sequence)]
+
+
 def run_benchmark(
     cells: Iterable[Cell],
     modalities: Mapping[str, Modality],
@@ -164,11 +230,14 @@ def run_benchmark(
     jobs: int | None = None,
     timeout_s: float | None = DEFAULT_TIMEOUT_S,
     in_process: bool = False,
+    executor: Executor | None = None,
+    frame_cache: FrameCache | None = None,
     resume: bool = False,
     argv: Sequence[str] = (),
     options: Mapping[str, Any] | None = None,
     problems: Sequence[str] = (),
     log: Log = lambda line: None,
+    progress: Progress | None = None,
 ) -> RunSummary:
     """Run cells, store every one as it finishes, and publish the run's leaderboards.
 
@@ -182,6 +251,12 @@ def run_benchmark(
         Folder of the results database and the leaderboards; created if missing.
     jobs, timeout_s, in_process
         As for :func:`benchmark.runner.run_cells`.
+    executor : Executor, optional
+        Where the cells run (:mod:`benchmark.executors`); by default the
+        local pool of ``jobs`` workers (or this process, ``in_process``).
+    frame_cache : FrameCache, optional
+        Where simulated sequences are rendered once and read back; None
+        renders them in every cell that reads them.
     resume : bool
         Take over the cells this database already finished with status
         ``ok`` (same tracker key, dataset identity, seed and initialisation)
@@ -192,7 +267,10 @@ def run_benchmark(
         Plugins left out (:attr:`benchmark.registry.Registry.problems`),
         recorded with the run and shown on its boards.
     log : callable
-        Receives a line for the resumed cells and for every finished cell.
+        Receives a line for the resumed cells, the frame cache, every
+        training and every finished cell.
+    progress : Progress, optional
+        Told how many cells run and when each finishes.
 
     Returns
     -------
@@ -206,10 +284,16 @@ def run_benchmark(
         If ``out`` cannot be written, another run holds its lock, or its
         database is not a trackbench database.
     """
+    from benchmark.executors.local import LocalExecutor
+
     todo = list(cells)
     statuses: collections.Counter[str] = collections.Counter()
-    ran = 0
+    ran = rendered = 0
+    step_s = read_s = 0.0
     interrupted = False
+    started, cpu_started = time.perf_counter(), _cpu_s()
+    executor = executor or LocalExecutor(jobs, in_process=in_process)
+    progress = progress or SilentProgress()
     lock = _lock(out)
     try:
         with ResultStore(out / DATABASE_NAME) as store:
@@ -220,19 +304,33 @@ def run_benchmark(
                 todo = [cell for cell in todo if cell.key not in done]
                 statuses["ok"] += len(done)
                 log(f"resume: {len(done)} cells already finished, {len(todo)} to run")
+            missing = []
+            if frame_cache is not None:
+                missing = _uncached(todo, frame_cache)
+                todo = _read_through(todo, frame_cache)
+                log(f"frame cache {frame_cache.folder}: {len(missing)} sequences to render")
             try:
-                todo = fit_models(
-                    todo, out, functools.partial(run_isolated, in_process=in_process), timeout_s, log
-                )
-                for result in run_cells(todo, jobs=jobs, timeout_s=timeout_s, in_process=in_process):
+                todo = fit_models(todo, out, executor.call, timeout_s, log)
+                progress.start(len(todo))
+                for result in run_cells(todo, timeout_s=timeout_s, executor=executor):
                     store.add_cell(run_id, result)
                     statuses[result.status] += 1
                     ran += 1
+                    step_s += sum(score.step_s for score in result.scores)
+                    read_s += result.read_s
                     log(describe_result(result))
+                    progress.advance(result, executor.running())
                 store.finish_run(run_id)
             except KeyboardInterrupt:
                 interrupted = True
                 log(f"interrupted: {ran} cells finished and kept, {len(todo) - ran} not run")
-            return RunSummary(publish(store, modalities, out, run_id), statuses, interrupted)
+            finally:
+                progress.close()
+                if frame_cache is not None:
+                    rendered = sum(frame_cache.holds(sequence) for sequence in missing)
+            publication = publish(store, modalities, out, run_id)
+            cpu_s = _cpu_s() - cpu_started if isinstance(executor, LocalExecutor) else None
+            elapsed_s = time.perf_counter() - started
+            return RunSummary(publication, statuses, interrupted, elapsed_s, rendered, step_s, read_s, cpu_s)
     finally:
         lock.release()

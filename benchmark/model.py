@@ -20,7 +20,7 @@ import enum
 from abc import ABC, abstractmethod
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Generic, TypeVar
+from typing import Any, ClassVar, Generic, TypeVar
 
 from benchmark.identity import DatasetIdentity, digest
 
@@ -104,7 +104,16 @@ class Sequence(ABC):
     Implementations produce frames lazily and must be picklable (cells run in
     worker processes), so they hold a definition or a path, never decoded
     frames.
+
+    Attributes
+    ----------
+    cache_frames : bool
+        The frames are a pure function of :attr:`identity` and worth keeping
+        once produced (simulated scenes): a run reads them through its frame
+        cache (:mod:`benchmark.frame_cache`).  False for data read from files.
     """
+
+    cache_frames: ClassVar[bool] = False
 
     @property
     @abstractmethod

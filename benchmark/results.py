@@ -156,6 +156,9 @@ class CellResult:
         The modality's error columns, in its scorer's order.
     training : str
         The training set of a tracker that learns (:mod:`benchmark.training`), else empty.
+    read_s : float
+        Wall time spent getting the frames (rendering, or reading them from
+        the frame cache or files); known for cells run now, not stored.
     """
 
     tracker: str
@@ -174,6 +177,7 @@ class CellResult:
     detail: str = ""
     error_columns: tuple[str, ...] = ()
     training: str = ""
+    read_s: float = 0.0
 
     @property
     def key(self) -> CellKey:

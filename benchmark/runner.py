@@ -26,23 +26,21 @@ result with status ``"error"`` and a message ``"ExceptionType: message
 (frame k)"``; a cell that runs past its time limit gets status
 ``"timeout"``.  Frames scored before the failure stay in the result.
 
-:func:`run_cells` runs every cell in a worker process of a pebble pool
-(:mod:`benchmark.workers`): a worker still busy a grace period after the
-limit is killed, and one that exits or crashes (``os._exit``, a
-segmentation fault) costs only its cell.  ``in_process=True`` runs the cells
-in the calling process instead, for debuggers and profilers: there a
-``step`` that never returns cannot be stopped, and a tracker that ends the
-process ends the run.  Only the user's own Ctrl-C (:class:`UserInterrupt`)
-stops a run.
+:func:`run_cells` runs every cell on an executor (:mod:`benchmark.executors`),
+by default in a worker process of a local pool: a worker still busy a
+grace period after the limit is killed, and one that exits or crashes
+(``os._exit``, a segmentation fault) costs only its cell.
+``in_process=True`` runs the cells in the calling process instead, for
+debuggers and profilers: there a ``step`` that never returns cannot be
+stopped, and a tracker that ends the process ends the run.  Only the
+user's own Ctrl-C (:class:`UserInterrupt`) stops a run.
 """
 
 from __future__ import annotations
 
-import concurrent.futures
 import dataclasses
 import functools
 import math
-import os
 import signal
 import threading
 import time
@@ -51,7 +49,7 @@ import zlib
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
@@ -61,6 +59,9 @@ from benchmark.model import Sequence
 from benchmark.registry import TrackerEntry
 from benchmark.results import CellKey, CellResult, FrameScore, Status
 from benchmark.training import Training
+
+if TYPE_CHECKING:
+    from benchmark.executors import Executor
 
 InitMode = Literal["truth", "none"]
 DEFAULT_TIMEOUT_S = 600.0
@@ -195,13 +196,14 @@ def _safe_text(render: Any, value: Any) -> str:
         return f"<{type(value).__name__} that cannot be shown>"
 
 
-def _describe(exc: BaseException) -> str:
+def describe_exception(exc: BaseException) -> str:
     """``ExceptionType: message`` on one line."""
     text = " ".join(_safe_text(str, exc).split())
     return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
 
 
-def _traceback(exc: BaseException) -> str:
+def traceback_text(exc: BaseException) -> str:
+    """The exception's traceback as text, or a placeholder when formatting it raises."""
     return _safe_text(lambda e: "".join(traceback.format_exception(e)), exc)
 
 
@@ -232,6 +234,7 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
     started = time.perf_counter()
     deadline = math.inf if timeout_s is None else started + timeout_s
     scores: list[FrameScore] = []
+    read_s = 0.0
     where = "before frame 0"
     status: Status = "ok"
     message = detail = ""
@@ -247,7 +250,9 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
             tracker.use_model(cell.training.load())  # type: ignore[attr-defined]
         frames = iter(cell.sequence.frames())
         where = "reading frame 0"
+        tick = time.perf_counter()
         first = next(frames, None)
+        read_s += time.perf_counter() - tick
         if first is None:
             raise ValueError(f"sequence {info.name!r} has no frames")
         modality.check_frame(first, f"sequence {info.name!r}, frame {first.index}")
@@ -267,7 +272,9 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
             outcome, errors = scorer.score(estimate, frame.truth, info)
             scores.append(FrameScore(frame.index, outcome, dict(zip(scorer.error_columns, errors)), step_s))
             where = f"reading frame {frame.index + 1}"
+            tick = time.perf_counter()
             following = next(frames, None)
+            read_s += time.perf_counter() - tick
             if following is None:
                 break
             modality.check_frame(following, f"sequence {info.name!r}, frame {following.index}")
@@ -280,48 +287,17 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
         raise
     except BaseException as exc:  # whatever a tracker raises, SystemExit included, ends only its cell
         status = "error"
-        message = f"{_describe(exc)} ({where})"
-        detail = _traceback(exc)
+        message = f"{describe_exception(exc)} ({where})"
+        detail = traceback_text(exc)
     return cell_result(
-        cell, status, message, scores=tuple(scores), elapsed_s=time.perf_counter() - started, detail=detail
+        cell,
+        status,
+        message,
+        scores=tuple(scores),
+        elapsed_s=time.perf_counter() - started,
+        read_s=read_s,
+        detail=detail,
     )
-
-
-def _grace_s(timeout_s: float) -> float:
-    """Extra time a worker gets before it is killed, so ``run_cell`` can stop on its own first."""
-    return max(1.0, 0.05 * timeout_s)
-
-
-def _exit_reason(code: int | None) -> str:
-    if code is not None and code < 0:
-        try:
-            return f"killed by {signal.Signals(-code).name}"
-        except ValueError:
-            return f"killed by signal {-code}"
-    return f"exit status {code}"
-
-
-def _from_future(cell: Cell, future: concurrent.futures.Future, timeout_s: float | None) -> CellResult:
-    from pebble import ProcessExpired
-
-    try:
-        return future.result()
-    except TimeoutError:
-        return cell_result(
-            cell,
-            "timeout",
-            f"no result within the {timeout_s:g} s limit; the worker was stopped and the frames are lost",
-            elapsed_s=float(timeout_s or 0.0),
-        )
-    except ProcessExpired as exc:
-        return cell_result(
-            cell,
-            "error",
-            f"the worker process ended ({_exit_reason(exc.exitcode)}) while running the cell; its frames are lost",
-            detail=_traceback(exc),
-        )
-    except Exception as exc:
-        return cell_result(cell, "error", f"{_describe(exc)} (worker process)", detail=_traceback(exc))
 
 
 def run_cells(
@@ -330,6 +306,7 @@ def run_cells(
     jobs: int | None = None,
     timeout_s: float | None = DEFAULT_TIMEOUT_S,
     in_process: bool = False,
+    executor: Executor | None = None,
 ) -> Iterator[CellResult]:
     """Run cells in worker processes and yield each result as it finishes.
 
@@ -348,6 +325,9 @@ def run_cells(
         Run the cells one after another in this process, for debuggers and
         profilers: the limit is then checked between frames only, and a
         tracker that ends the process ends the run.
+    executor : Executor, optional
+        Where to run them (:mod:`benchmark.executors`); by default a local
+        pool of ``jobs`` workers, or this process with ``in_process``.
 
     Yields
     ------
@@ -357,69 +337,14 @@ def run_cells(
     Raises
     ------
     UserInterrupt
-        On the user's Ctrl-C; the pool and its workers are stopped first.
+        On the user's Ctrl-C; the workers are stopped first.
 
     Notes
     -----
-    Closing the generator early stops the pool and its workers.
+    Closing the generator early stops the workers.
     """
+    from benchmark.executors.local import LocalExecutor
+
     todo = list(cells)
-    if jobs is None:
-        jobs = os.cpu_count() or 1
-    if jobs < 0:
-        raise ValueError(f"jobs must be >= 0, not {jobs}")
     with _sigint_is_user_interrupt():
-        if in_process:
-            for cell in todo:
-                yield run_cell(cell, timeout_s)
-        elif todo:
-            yield from _run_in_pool(todo, max(jobs, 1), timeout_s)
-
-
-def _run_in_pool(cells: list[Cell], jobs: int, timeout_s: float | None) -> Iterator[CellResult]:
-    from pebble import ProcessPool
-
-    from benchmark.workers import init_worker
-
-    hard_limit = None if timeout_s is None else timeout_s + _grace_s(timeout_s)
-    pool = ProcessPool(max_workers=min(jobs, len(cells)), initializer=init_worker, initargs=(os.getpid(),))
-    try:
-        futures = {pool.schedule(run_cell, args=(cell, timeout_s), timeout=hard_limit): cell for cell in cells}
-        for future in concurrent.futures.as_completed(futures):
-            yield _from_future(futures[future], future, timeout_s)
-    finally:
-        pool.stop()
-        pool.join()
-
-
-def run_isolated(function: Any, args: tuple[Any, ...], timeout_s: float | None, in_process: bool = False) -> Any:
-    """``function(*args)`` in a fresh worker process under a time limit (or here, with ``in_process``).
-
-    Used to fit the trackers that learn (:func:`benchmark.training.fit_models`)
-    with the cells' isolation: a fit that raises, exits or hangs costs only
-    its tracker's cells.
-
-    Raises
-    ------
-    Exception
-        Whatever ``function`` raised; ``TimeoutError`` past the limit;
-        ``RuntimeError`` if the worker process ended.
-    """
-    if in_process:
-        return function(*args)
-    from pebble import ProcessExpired, ProcessPool
-
-    from benchmark.workers import init_worker
-
-    pool = ProcessPool(max_workers=1, initializer=init_worker, initargs=(os.getpid(),))
-    try:
-        future = pool.schedule(function, args=args, timeout=timeout_s)
-        try:
-            return future.result()
-        except TimeoutError:
-            raise TimeoutError(f"no result within the {timeout_s:g} s limit; the worker was stopped") from None
-        except ProcessExpired as exc:
-            raise RuntimeError(f"the worker process ended ({_exit_reason(exc.exitcode)})") from None
-    finally:
-        pool.stop()
-        pool.join()
+        yield from (executor or LocalExecutor(jobs, in_process=in_process)).run(todo, timeout_s)

@@ -10,7 +10,15 @@ worker is prepared by :func:`init_worker` before its first cell:
 * it dies with its parent: if the main process is killed (``kill -9``), the
   kernel kills the worker too (``PR_SET_PDEATHSIG`` on Linux), or, where
   that is not available, a watch thread ends it within
-  :data:`PARENT_POLL_S`, so that no orphan runs on to the end of its cell.
+  :data:`PARENT_POLL_S`, so that no orphan runs on to the end of its cell;
+* it runs one native thread (:func:`limit_native_threads`): OpenBLAS,
+  OpenMP, OpenCV and numba otherwise start a thread per core in every
+  worker, and on two cores two workers then fight over them: ``--jobs 2``
+  was slower than ``--jobs 1``, and the board's frames per second measured
+  the fight rather than the tracker.
+
+A worker stays alive from cell to cell, so what it imports and loads once
+(plugins, compiled numba kernels, fitted models) serves all its cells.
 """
 
 from __future__ import annotations
@@ -22,11 +30,66 @@ import signal
 import sys
 import threading
 import time
+from pathlib import Path
 
 PARENT_POLL_S = 0.5
 """How often a worker without ``PR_SET_PDEATHSIG`` checks that its parent lives."""
 
 _PR_SET_PDEATHSIG = 1
+
+THREAD_VARIABLES = (
+    "OMP_NUM_THREADS",
+    "OPENBLAS_NUM_THREADS",
+    "MKL_NUM_THREADS",
+    "BLIS_NUM_THREADS",
+    "VECLIB_MAXIMUM_THREADS",
+    "NUMEXPR_NUM_THREADS",
+)
+"""Variables that native libraries loaded later in the process read for their thread count.
+
+Not ``NUMBA_NUM_THREADS``: numba reads it again when it compiles, and
+refuses a value other than that of its running threads.
+"""
+
+
+def limit_native_threads() -> None:
+    """Give every native thread pool of this process one thread, now and for libraries loaded later.
+
+    Pools already loaded (numpy's and OpenCV's OpenBLAS, an OpenMP runtime)
+    are limited through threadpoolctl, OpenCV's own pool and numba's
+    through their calls; the environment variables of
+    :data:`THREAD_VARIABLES` cover libraries a tracker loads afterwards
+    (scikit-learn's OpenMP runtime, say).
+
+    The process that starts workers calls it too, before it forks them
+    (:func:`benchmark.executors.local.worker_pool`): OpenCV cannot resize a
+    pool it inherited through ``fork`` (the call never returns), so the
+    workers inherit a pool of one instead, and a pool already of one is
+    left alone here.
+    """
+    for name in THREAD_VARIABLES:
+        os.environ[name] = "1"
+    import cv2
+    import threadpoolctl
+
+    numba = sys.modules.get("numba")
+    if numba is not None and numba.get_num_threads() != 1:  # first: it may load an OpenMP runtime
+        numba.set_num_threads(1)
+    threadpoolctl.threadpool_limits(1)
+    if cv2.getNumThreads() != 1:
+        cv2.setNumThreads(1)
+
+
+def native_threads() -> dict[str, int]:
+    """The thread count of every native pool of this process (library file or ``opencv``/``numba``)."""
+    import cv2
+    import threadpoolctl
+
+    counts = {Path(pool["filepath"]).name: pool["num_threads"] for pool in threadpoolctl.threadpool_info()}
+    counts["opencv"] = cv2.getNumThreads()
+    if "numba" in sys.modules:
+        counts["numba"] = sys.modules["numba"].get_num_threads()
+    return counts
 
 
 def _kill_on_parent_death() -> bool:
@@ -47,7 +110,7 @@ def _watch_parent(parent_pid: int) -> None:
 
 
 def init_worker(parent_pid: int) -> None:
-    """Prepare a worker process: leave Ctrl-C to the parent, and die with it.
+    """Prepare a worker process: leave Ctrl-C to the parent, die with it, run one native thread.
 
     Parameters
     ----------
@@ -59,3 +122,4 @@ def init_worker(parent_pid: int) -> None:
         threading.Thread(target=_watch_parent, args=(parent_pid,), name="watch-parent", daemon=True).start()
     if os.getppid() != parent_pid:  # the parent ended before the request above took effect
         os._exit(1)
+    limit_native_threads()

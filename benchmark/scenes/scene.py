@@ -64,6 +64,7 @@ class SimulatedScene(Sequence, Generic[SpecT, CacheT]):
     """
 
     spec_type: ClassVar[Any]
+    cache_frames: ClassVar[bool] = True
 
     def __init__(self, spec: SpecT) -> None:
         self._spec = spec

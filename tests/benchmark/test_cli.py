@@ -189,10 +189,10 @@ def test_resume_skips_ok_cells_and_redoes_failed_ones(
 def test_an_interrupted_run_keeps_its_cells_for_resume(
     invoke: Invoke, fakes: types.ModuleType, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    import benchmark.runner
+    import benchmark.executors.local
 
     out = tmp_path / "out"
-    real = benchmark.runner.run_cell
+    real = benchmark.executors.local.run_cell
     finished: list[str] = []
 
     def stop_after_two(cell, timeout_s=None):  # noqa: ANN001, ANN202
@@ -201,13 +201,13 @@ def test_an_interrupted_run_keeps_its_cells_for_resume(
         finished.append(cell.label())
         return real(cell, timeout_s)
 
-    monkeypatch.setattr(benchmark.runner, "run_cell", stop_after_two)
+    monkeypatch.setattr(benchmark.executors.local, "run_cell", stop_after_two)
     monkeypatch.setattr(fakes.Counting, "created", 0)
     args = ["run", "--tracker", "counting", "--seeds", "3", "--in-process", "--out", str(out)]
     assert invoke(*args).exit_code != 0
     assert len(cell_rows(out)) == 2
 
-    monkeypatch.setattr(benchmark.runner, "run_cell", real)
+    monkeypatch.setattr(benchmark.executors.local, "run_cell", real)
     result = invoke(*args, "--resume")
     assert result.exit_code == 0, result.output
     assert fakes.Counting.created == 2 + 4

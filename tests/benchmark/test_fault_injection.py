@@ -83,14 +83,19 @@ def assert_rows_as_expected(cells: pd.DataFrame, trackers: list[str]) -> None:
         assert row["message"].startswith(message), (tracker, row["message"])
 
 
-@pytest.mark.parametrize("jobs", ["0", "2"])
+@pytest.mark.parametrize(
+    "executor", [["--jobs", "0"], ["--jobs", "2"], ["--executor", "dask", "--jobs", "2"]], ids=["1", "2", "dask"]
+)
 def test_every_fault_becomes_its_cell_s_row_and_the_run_exits_1(
-    faults_installed: None, tmp_path: Path, jobs: str
+    faults_installed: None, site: Path, tmp_path: Path, executor: list[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
+    if "dask" in executor:
+        pytest.importorskip("distributed", reason="the Dask executor needs dask.distributed")
+        monkeypatch.setenv("PYTHONPATH", str(site))  # the cluster's worker processes import the plugin
     trackers = list(EXPECTED)
     selected = [word for tracker in trackers for word in ("--tracker", tracker)]
     limit = ["--timeout", f"{TIMEOUT_S}"]
-    result = invoke("run", "--suite", "faults", *selected, "--jobs", jobs, *limit, "--out", str(tmp_path))
+    result = invoke("run", "--suite", "faults", *selected, *executor, *limit, "--out", str(tmp_path))
     assert result.exit_code == 1, result.output
     assert "Traceback" not in result.output
     assert "7 of 9 cells did not end ok" in result.output

@@ -1,0 +1,214 @@
+"""Cells as tasks of a Dask cluster (``dask.distributed``).
+
+:class:`DaskExecutor` connects to the scheduler at ``--scheduler ADDRESS``,
+or starts a ``LocalCluster`` of ``--jobs`` single-threaded worker processes
+so that the same path runs on one machine.  Each cell is one task; results
+stream back to this process as they finish, and only this process writes
+the results database, so no database ever sits on a shared file system.
+
+A Dask worker does not run a tracker itself: it hands each cell to a pool
+of warm processes of its own (:func:`benchmark.executors.local.worker_pool`,
+one per worker thread), exactly as the local executor does.  So a cell that
+raises, exits, crashes or hangs becomes an ``error`` or ``timeout`` row in
+the same words wherever it ran, the process that ran it is replaced, and the
+Dask worker, its connection to the scheduler and the run carry on.  Should a
+Dask worker itself die, the cells it held are retried elsewhere by the
+scheduler, and after its allowed failures become error rows.
+
+Frames: a cell's sequence reads through the frame cache it was given
+(:class:`benchmark.frame_cache.FrameCache`).  Its default folder is
+resolved on the worker, so each machine renders what it lacks into its own
+cache; a ``--cache`` folder that every machine mounts is shared instead.
+Fitted models travel with the cells: a worker that cannot see the results
+folder gets the model's bytes and stores them in its own temporary folder.
+"""
+
+from __future__ import annotations
+
+import atexit
+import dataclasses
+import hashlib
+import logging
+import os
+import tempfile
+import threading
+import uuid
+from collections.abc import Callable, Iterator, Sequence
+from pathlib import Path
+from typing import Any
+
+from benchmark.errors import DataError
+from benchmark.executors.local import cell_from_future, hard_limit_s, value_from_future, worker_pool
+from benchmark.results import CellResult
+from benchmark.runner import Cell, cell_result, describe_exception, run_cell, traceback_text
+
+CONNECT_TIMEOUT_S = 20.0
+"""How long to wait for a scheduler before giving up."""
+
+_pool: Any = None
+_pool_lock = threading.Lock()
+
+
+def _worker_pool() -> Any:
+    """This Dask worker's pool of warm cell processes, one per worker thread, started on first use.
+
+    A worker under a nanny runs as a daemon process, which multiprocessing
+    forbids to have children, since they would outlive it.  The pool's
+    processes cannot: each dies with its parent (:func:`benchmark.workers.init_worker`),
+    so the flag is lifted here for workers started without
+    ``distributed.worker.daemon: false``.
+    """
+    global _pool
+    with _pool_lock:
+        if _pool is None:
+            import multiprocessing
+
+            from distributed import get_worker
+
+            multiprocessing.current_process()._config["daemon"] = False  # type: ignore[attr-defined]
+            _pool = worker_pool(get_worker().state.nthreads)
+            atexit.register(_pool.stop)
+        return _pool
+
+
+def _adopt_model(cell: Cell, model: bytes | None) -> Cell:
+    """``cell`` reading its fitted model from a file of this machine, written from ``model`` when missing."""
+    training = cell.training
+    if model is None or training is None or training.model_path is None or training.model_path.is_file():
+        return cell
+    path = Path(tempfile.gettempdir()) / "trackbench-models" / f"{hashlib.sha256(model).hexdigest()[:24]}.pickle"
+    if not path.is_file():
+        from benchmark.files import make_folder, write_bytes_atomically
+
+        write_bytes_atomically(make_folder(path.parent) / path.name, model, "fitted model")
+    return dataclasses.replace(cell, training=dataclasses.replace(training, model_path=path))
+
+
+def run_cell_on_worker(cell: Cell, timeout_s: float | None, model: bytes | None = None) -> CellResult:
+    """The Dask task of a cell: run it in this worker's warm process pool, under its time limit."""
+    try:
+        cell = _adopt_model(cell, model)
+    except Exception as exc:
+        return cell_result(cell, "error", f"{describe_exception(exc)} (storing the fitted model on the worker)")
+    future = _worker_pool().schedule(run_cell, args=(cell, timeout_s), timeout=hard_limit_s(timeout_s))
+    return cell_from_future(cell, future, timeout_s)
+
+
+def call_on_worker(function: Callable[..., Any], args: tuple[Any, ...], timeout_s: float | None) -> Any:
+    """The Dask task of :meth:`DaskExecutor.call`: ``function(*args)`` in this worker's process pool."""
+    return value_from_future(_worker_pool().schedule(function, args=args, timeout=timeout_s), timeout_s)
+
+
+class DaskExecutor:
+    """Cells as tasks of a Dask cluster; results come back here as they finish.
+
+    Parameters
+    ----------
+    scheduler : str, optional
+        Address of a running scheduler (``tcp://host:8786``).  Without it, a
+        local cluster of ``jobs`` worker processes with one thread each is
+        started, and stopped by :meth:`close`.
+    jobs : int, optional
+        Workers of the local cluster; None uses every core.
+
+    Raises
+    ------
+    DataError
+        If Dask is not installed or the scheduler cannot be reached.
+    """
+
+    def __init__(self, scheduler: str | None = None, jobs: int | None = None) -> None:
+        try:
+            from distributed import Client, LocalCluster
+        except ImportError:
+            raise DataError(
+                "--executor dask needs dask.distributed: pip install 'subsea-trackbench[dask]'"
+            ) from None
+        self._cluster = None
+        self._futures: dict[Any, Cell] = {}
+        if scheduler is None:
+            import dask
+
+            workers = max(jobs or os.cpu_count() or 1, 1)
+            with dask.config.set({"distributed.worker.daemon": False}):
+                self._cluster = LocalCluster(
+                    n_workers=workers,
+                    threads_per_worker=1,
+                    processes=True,
+                    dashboard_address=None,
+                    silence_logs=logging.ERROR,
+                )
+            self._client = Client(self._cluster)
+        else:
+            try:
+                self._client = Client(scheduler, timeout=CONNECT_TIMEOUT_S)
+            except (OSError, TimeoutError) as exc:
+                raise DataError(f"--scheduler {scheduler}: cannot reach the Dask scheduler: {exc}") from None
+
+    @property
+    def address(self) -> str:
+        """The scheduler's address."""
+        return self._client.scheduler.address
+
+    def _models(self, cells: Sequence[Cell]) -> dict[Path, Any]:
+        """Each fitted model the cells read, scattered to the cluster once as bytes."""
+        paths = {cell.training.model_path for cell in cells if cell.training is not None}
+        paths.discard(None)
+        return {path: self._client.scatter(path.read_bytes(), broadcast=False) for path in paths if path.is_file()}
+
+    def run(self, cells: Sequence[Cell], timeout_s: float | None) -> Iterator[CellResult]:
+        """Submit every cell as a task and yield each result as it comes back."""
+        from distributed import as_completed
+
+        if not cells:
+            return
+        models = self._models(cells)
+        tag = uuid.uuid4().hex[:8]
+        try:
+            for index, cell in enumerate(cells):
+                path = None if cell.training is None else cell.training.model_path
+                future = self._client.submit(
+                    run_cell_on_worker,
+                    cell,
+                    timeout_s,
+                    models.get(path) if path is not None else None,
+                    key=f"trackbench-cell-{tag}-{index}",
+                    pure=False,
+                )
+                self._futures[future] = cell
+            for future in as_completed(list(self._futures)):
+                cell = self._futures.pop(future)
+                try:
+                    yield future.result()
+                except Exception as exc:
+                    yield cell_result(
+                        cell, "error", f"{describe_exception(exc)} (Dask worker)", detail=traceback_text(exc)
+                    )
+        finally:
+            if self._futures:
+                self._client.cancel(list(self._futures))
+            self._futures = {}
+
+    def call(self, function: Callable[..., Any], args: tuple[Any, ...], timeout_s: float | None) -> Any:
+        """``function(*args)`` as a task, in a process of a worker's pool, under a time limit."""
+        return self._client.submit(call_on_worker, function, args, timeout_s, pure=False).result()
+
+    def running(self) -> list[str]:
+        """Labels of the cells the workers are processing now."""
+        try:
+            processing = {key for keys in self._client.processing().values() for key in keys}
+        except Exception:
+            return []
+        return [cell.label() for future, cell in list(self._futures.items()) if future.key in processing]
+
+    def close(self) -> None:
+        """Disconnect, and stop the local cluster if this executor started one."""
+        self._client.close()
+        if self._cluster is not None:
+            self._cluster.close()
+
+    def __enter__(self) -> DaskExecutor:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

@@ -1,0 +1,171 @@
+"""Cells in warm worker processes of this machine (pebble), or in this process.
+
+:class:`LocalExecutor` runs each batch of cells in a pebble process pool of
+``jobs`` workers, each prepared by :func:`benchmark.workers.init_worker`
+(one native thread, Ctrl-C left to the parent, killed with it).  A worker
+runs cell after cell, so the plugins it imported, the numba kernels it
+compiled and the models it read serve all its cells.  A worker still busy a
+grace period after a cell's time limit is killed, and one that exits or
+crashes (``os._exit``, a segmentation fault) costs only its cell: pebble
+starts another in its place.
+
+:func:`cell_from_future` turns whatever became of a cell's future into its
+result; the Dask executor uses it too, so that a cell fails the same way
+wherever it ran.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import os
+import signal
+from collections.abc import Callable, Iterator, Sequence
+from typing import Any
+
+from benchmark.results import CellResult
+from benchmark.runner import Cell, cell_result, describe_exception, run_cell, traceback_text
+
+
+def grace_s(timeout_s: float) -> float:
+    """Extra time a worker gets before it is killed, so ``run_cell`` can stop on its own first."""
+    return max(1.0, 0.05 * timeout_s)
+
+
+def hard_limit_s(timeout_s: float | None) -> float | None:
+    """When a worker still running a cell is killed: the cell's limit and a grace period."""
+    return None if timeout_s is None else timeout_s + grace_s(timeout_s)
+
+
+def _exit_reason(code: int | None) -> str:
+    if code is not None and code < 0:
+        try:
+            return f"killed by {signal.Signals(-code).name}"
+        except ValueError:
+            return f"killed by signal {-code}"
+    return f"exit status {code}"
+
+
+def cell_from_future(cell: Cell, future: concurrent.futures.Future, timeout_s: float | None) -> CellResult:
+    """The result of ``cell`` from its pebble future: its own result, or a timeout or error row."""
+    from pebble import ProcessExpired
+
+    try:
+        return future.result()
+    except TimeoutError:
+        return cell_result(
+            cell,
+            "timeout",
+            f"no result within the {timeout_s:g} s limit; the worker was stopped and the frames are lost",
+            elapsed_s=float(timeout_s or 0.0),
+        )
+    except ProcessExpired as exc:
+        return cell_result(
+            cell,
+            "error",
+            f"the worker process ended ({_exit_reason(exc.exitcode)}) while running the cell; its frames are lost",
+            detail=traceback_text(exc),
+        )
+    except Exception as exc:
+        return cell_result(cell, "error", f"{describe_exception(exc)} (worker process)", detail=traceback_text(exc))
+
+
+def value_from_future(future: concurrent.futures.Future, timeout_s: float | None) -> Any:
+    """The value of a pebble future of :meth:`LocalExecutor.call`, with the worker's fate as the exception."""
+    from pebble import ProcessExpired
+
+    try:
+        return future.result()
+    except TimeoutError:
+        raise TimeoutError(f"no result within the {timeout_s:g} s limit; the worker was stopped") from None
+    except ProcessExpired as exc:
+        raise RuntimeError(f"the worker process ended ({_exit_reason(exc.exitcode)})") from None
+
+
+def worker_pool(workers: int) -> Any:
+    """A pebble process pool whose workers are prepared by :func:`benchmark.workers.init_worker`.
+
+    This process is limited to one native thread first, so that the workers
+    forked from it inherit pools of one (:func:`benchmark.workers.limit_native_threads`).
+    """
+    from pebble import ProcessPool
+
+    from benchmark.workers import init_worker, limit_native_threads
+
+    limit_native_threads()
+    return ProcessPool(max_workers=workers, initializer=init_worker, initargs=(os.getpid(),))
+
+
+class LocalExecutor:
+    """Cells in a pool of warm worker processes on this machine, or in this process.
+
+    Parameters
+    ----------
+    jobs : int, optional
+        Worker processes; None uses every core (``os.cpu_count()``), and 0
+        or 1 run one cell at a time in one worker.
+    in_process : bool
+        Run the cells one after another in this process, for debuggers and
+        profilers: the limit is then checked between frames only, and a
+        tracker that ends the process ends the run.
+    """
+
+    def __init__(self, jobs: int | None = None, *, in_process: bool = False) -> None:
+        if jobs is None:
+            jobs = os.cpu_count() or 1
+        if jobs < 0:
+            raise ValueError(f"jobs must be >= 0, not {jobs}")
+        self.jobs = max(jobs, 1)
+        self.in_process = in_process
+        self._futures: dict[concurrent.futures.Future, Cell] = {}
+        self._current: Cell | None = None
+
+    def run(self, cells: Sequence[Cell], timeout_s: float | None) -> Iterator[CellResult]:
+        """Yield the result of each cell, in order of completion (input order in process)."""
+        if self.in_process:
+            from benchmark.workers import limit_native_threads
+
+            limit_native_threads()
+            for cell in cells:
+                self._current = cell
+                yield run_cell(cell, timeout_s)
+            self._current = None
+            return
+        if not cells:
+            return
+        pool = worker_pool(min(self.jobs, len(cells)))
+        try:
+            limit = hard_limit_s(timeout_s)
+            self._futures = {pool.schedule(run_cell, args=(cell, timeout_s), timeout=limit): cell for cell in cells}
+            for future in concurrent.futures.as_completed(self._futures):
+                cell = self._futures.pop(future)
+                yield cell_from_future(cell, future, timeout_s)
+        finally:
+            self._futures = {}
+            pool.stop()
+            pool.join()
+
+    def call(self, function: Callable[..., Any], args: tuple[Any, ...], timeout_s: float | None) -> Any:
+        """``function(*args)`` in a fresh worker process under a time limit (here, in process)."""
+        if self.in_process:
+            return function(*args)
+        pool = worker_pool(1)
+        try:
+            return value_from_future(pool.schedule(function, args=args, timeout=timeout_s), timeout_s)
+        finally:
+            pool.stop()
+            pool.join()
+
+    def running(self) -> list[str]:
+        """Labels of the cells a worker is running now."""
+        if self._current is not None:
+            return [self._current.label()]
+        return [cell.label() for future, cell in list(self._futures.items()) if future.running()]
+
+    def close(self) -> None:
+        """Nothing to stop: each :meth:`run` stops its pool when it ends."""
+
+    def __enter__(self) -> LocalExecutor:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

@@ -1,0 +1,74 @@
+"""Benchmarks of the frame cache and of a cell's memory; run with ``pytest benchmarks``.
+
+Not part of the test suite (``pytest`` collects ``tests/`` only).  The
+run-level figures (CPU of a whole run against its trackers' steps, cold and
+warm cache, ``--jobs 1`` against ``--jobs 2``) come from the summary line
+every ``trackbench run`` prints; README.md gives the commands.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import resource
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from benchmark.frame_cache import FrameCache
+from benchmark.plugins import load_registry
+
+CELL_SCRIPT = """
+import dataclasses, json, resource, sys
+from pathlib import Path
+from benchmark.executors.local import LocalExecutor
+from benchmark.frame_cache import FrameCache
+from benchmark.plugins import load_registry
+from benchmark.runner import Cell
+from benchmark.selection import select_trackers
+
+n_frames, cache = int(sys.argv[1]), Path(sys.argv[2])
+registry = load_registry()
+scene = registry.sequence("camera/S3")
+scene = type(scene)(dataclasses.replace(scene.spec, n_frames=n_frames))
+[entry] = select_trackers(registry, ["hough"])
+cell = Cell(entry, FrameCache(cache).wrap(scene), 0, modality=registry.modalities["camera"])
+[result] = LocalExecutor(1).run([cell], None)
+assert result.status == "ok" and len(result.scores) == n_frames, result.message
+peak_kib = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+print(json.dumps({"frames": n_frames, "peak_rss_mib": peak_kib / 1024}))
+"""
+
+
+def peak_rss_mib(n_frames: int, cache: Path) -> float:
+    """Peak RSS of the worker process that ran one hough cell of ``n_frames`` frames (rendered, then read)."""
+    output = subprocess.run(
+        [sys.executable, "-c", CELL_SCRIPT, str(n_frames), str(cache)], check=True, capture_output=True, text=True
+    ).stdout
+    return json.loads(output.splitlines()[-1])["peak_rss_mib"]
+
+
+def test_peak_memory_of_a_cell_is_flat_in_the_sequence_length(tmp_path: Path, benchmark) -> None:  # type: ignore[no-untyped-def]
+    peaks = {n: peak_rss_mib(n, tmp_path / "cache") for n in (100, 5000)}
+    benchmark.extra_info.update({f"peak_rss_mib_{n}_frames": round(peak, 1) for n, peak in peaks.items()})
+    benchmark.pedantic(lambda: None, rounds=1)
+    assert peaks[5000] <= 1.10 * peaks[100], peaks
+
+
+@pytest.fixture(scope="module")
+def scene():  # type: ignore[no-untyped-def]
+    return load_registry().sequence("camera/S1")
+
+
+def test_render_camera_s1(benchmark, scene) -> None:  # type: ignore[no-untyped-def]
+    benchmark.group = "frames of camera/S1 (248 frames)"
+    benchmark.pedantic(lambda: sum(1 for _ in type(scene)(scene.spec).frames()), rounds=3)
+
+
+def test_read_camera_s1_from_the_frame_cache(benchmark, scene, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    benchmark.group = "frames of camera/S1 (248 frames)"
+    cached = FrameCache(tmp_path).wrap(scene)
+    sum(1 for _ in cached.frames())
+    benchmark.pedantic(lambda: sum(1 for _ in cached.frames()), rounds=10)

@@ -1,0 +1,73 @@
+"""Cells on a real Dask cluster on localhost: the same board as the local pool, and the same isolation."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Iterator
+from pathlib import Path
+
+import pandas as pd
+import pytest
+from click.testing import CliRunner
+
+from benchmark.cli import main
+
+distributed = pytest.importorskip("distributed", reason="the Dask executor needs dask.distributed")
+
+SPEED_COLUMNS = {"fps", "ms_per_frame", "elapsed_s"}
+SELECTION = [
+    *("--tracker", "hough", "--tracker", "sonar_pf", "--tracker", "stereo_ekf"),
+    *("--dataset", "camera/S6", "--dataset", "sonar/concrete", "--dataset", "stereo/case1-slow"),
+    *("--seeds", "2"),
+]
+
+
+@pytest.fixture(scope="module")
+def cluster() -> Iterator[distributed.LocalCluster]:
+    """A scheduler and two single-threaded worker processes on localhost."""
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, silence_logs=logging.ERROR
+    ) as running:
+        yield running
+
+
+def board(out: Path) -> pd.DataFrame:
+    table = pd.read_csv(out / "leaderboard.csv")
+    columns = [column for column in table.columns if column not in SPEED_COLUMNS]
+    return table[columns].sort_values(["modality", "tracker", "dataset"]).reset_index(drop=True)
+
+
+def test_a_dask_cluster_gives_the_local_board_value_for_value(cluster, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    runner = CliRunner()
+    local = runner.invoke(main, ["run", *SELECTION, "--jobs", "2", "--out", str(tmp_path / "local")])
+    assert local.exit_code == 0, local.output
+    remote = runner.invoke(
+        main,
+        ["run", *SELECTION, "--executor", "dask", "--scheduler", cluster.scheduler_address]
+        + ["--out", str(tmp_path / "dask")],
+    )
+    assert remote.exit_code == 0, remote.output
+    assert "6 cells (6 ok)" in remote.stderr
+    mine, theirs = board(tmp_path / "local"), board(tmp_path / "dask")
+    assert len(mine) >= 3 and {"camera", "sonar", "stereo"} <= set(mine["modality"])
+    pd.testing.assert_frame_equal(mine, theirs)
+
+
+def test_a_scheduler_that_cannot_be_reached_is_a_usage_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr("benchmark.executors.dask_cluster.CONNECT_TIMEOUT_S", 1.0)
+    result = CliRunner().invoke(
+        main,
+        ["run", "--tracker", "hough", "--dataset", "camera/S6", "--executor", "dask"]
+        + ["--scheduler", "tcp://127.0.0.1:9", "--out", str(tmp_path)],
+    )
+    assert result.exit_code == 2
+    assert "tcp://127.0.0.1:9: cannot reach the Dask scheduler" in result.output
+
+
+def test_options_the_executor_does_not_take_are_refused(tmp_path: Path) -> None:
+    runner = CliRunner()
+    base = ["run", "--tracker", "hough", "--dataset", "camera/S6", "--out", str(tmp_path)]
+    scheduler_alone = runner.invoke(main, [*base, "--scheduler", "tcp://127.0.0.1:9"])
+    assert scheduler_alone.exit_code == 2 and "--scheduler needs --executor dask" in scheduler_alone.output
+    in_process = runner.invoke(main, [*base, "--executor", "dask", "--in-process"])
+    assert in_process.exit_code == 2 and "does not go with --executor dask" in in_process.output

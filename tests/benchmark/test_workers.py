@@ -1,0 +1,30 @@
+"""Worker processes run one native thread each, however many the process that started them had."""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+
+from benchmark.executors.local import LocalExecutor
+from benchmark.workers import native_threads
+
+
+def threads_after_loading_every_plugin() -> dict[str, int]:
+    """In a worker: import every plugin (scikit-learn's OpenMP runtime included), then report the pools."""
+    from benchmark.plugins import load_registry
+
+    load_registry()
+    import sklearn.ensemble  # noqa: F401  (loads its OpenMP runtime if no plugin did)
+
+    return native_threads()
+
+
+def test_a_worker_runs_one_blas_openmp_opencv_and_numba_thread() -> None:
+    cv2.setNumThreads(2)
+    image = np.random.default_rng(0).random((480, 640)).astype(np.float32)
+    cv2.GaussianBlur(image, (31, 31), 5.0)  # this process's OpenCV pool is up before the worker is forked
+    counts = LocalExecutor(1).call(threads_after_loading_every_plugin, (), 120.0)
+    assert any("openblas" in name for name in counts)
+    assert any("gomp" in name or "omp" in name for name in counts)
+    assert {"opencv", "numba"} <= set(counts)
+    assert all(count == 1 for count in counts.values()), counts
