@@ -45,11 +45,11 @@ code run by trackbench.
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import hashlib
 import os
 import pickle
+import sys
 import uuid
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -82,17 +82,13 @@ def default_cache_folder() -> Path:
 
 @functools.cache
 def _package_code_digest(module: str) -> str:
-    """A digest of every ``.py`` file of the top-level package that ``module`` belongs to."""
-    import importlib.util
-
-    top = module.partition(".")[0]
-    spec = importlib.util.find_spec(top)
-    folders = list(spec.submodule_search_locations or []) if spec else []
-    files = sorted(
-        (path.relative_to(folder).as_posix(), path) for folder in folders for path in Path(folder).rglob("*.py")
-    )
-    if not files and spec is not None and spec.origin:
-        files = [(Path(spec.origin).name, Path(spec.origin))]
+    """A digest of every ``.py`` file of the top-level package of ``module`` (or of the module alone)."""
+    package = sys.modules.get(module.partition(".")[0])
+    folders = [Path(folder) for folder in getattr(package, "__path__", [])]
+    files = sorted((path.relative_to(folder).as_posix(), path) for folder in folders for path in folder.rglob("*.py"))
+    if not files:
+        own = getattr(sys.modules.get(module), "__file__", None)
+        files = [(Path(own).name, Path(own))] if own else []
     hasher = hashlib.sha256()
     for name, path in files:
         hasher.update(name.encode())
@@ -169,14 +165,16 @@ class FrameCache:
         return sorted(found, key=lambda entry: (entry.name, entry.path.name))
 
     def leftovers(self) -> list[Path]:
-        """Temporary files and locks left by writers that were stopped, and locks of finished entries."""
+        """Temporary files left by writers that were stopped before they finished."""
         folder = self.folder
-        if not folder.is_dir():
-            return []
-        return sorted([*folder.glob(f".*{SUFFIX}.*.tmp"), *folder.glob("*.lock")])
+        return sorted(folder.glob(f".*{SUFFIX}.*.tmp")) if folder.is_dir() else []
+
+    def _locks(self) -> list[Path]:
+        folder = self.folder
+        return sorted(folder.glob("*.lock")) if folder.is_dir() else []
 
     def clear(self) -> tuple[int, int]:
-        """Remove every entry and leftover; return (entries removed, bytes freed).
+        """Remove every entry, leftover and lock; return (entries removed, bytes freed).
 
         Raises
         ------
@@ -184,7 +182,7 @@ class FrameCache:
             Naming a file that cannot be removed.
         """
         removed = freed = 0
-        for path in [entry.path for entry in self.entries()] + self.leftovers():
+        for path in [entry.path for entry in self.entries()] + self.leftovers() + self._locks():
             try:
                 size = path.stat().st_size
                 path.unlink()
@@ -259,7 +257,7 @@ def _read_entry(path: Path, name: str) -> Iterator[Frame]:
             ) from None
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclass(frozen=True)
 class CachedSequence(Sequence):
     """A sequence whose frames come from a :class:`FrameCache`; info and identity are the inner sequence's."""
 

@@ -52,10 +52,13 @@ class TerminalProgress:
         Where to draw (standard error by default).
     enabled : bool, optional
         Draw the bar; by default only when ``stream`` is a terminal.
+    refresh_s : float
+        Least time between two redraws of the bar.
     """
 
-    def __init__(self, stream: IO[str] | None = None, enabled: bool | None = None) -> None:
+    def __init__(self, stream: IO[str] | None = None, enabled: bool | None = None, refresh_s: float = 0.1) -> None:
         self._stream = stream or sys.stderr
+        self._refresh_s = refresh_s
         self._enabled = self._stream.isatty() if enabled is None else enabled
         self._bar = None
         self._failed = 0
@@ -65,7 +68,9 @@ class TerminalProgress:
             return
         from tqdm import tqdm
 
-        self._bar = tqdm(total=total, unit="cell", file=self._stream, dynamic_ncols=True, leave=False)
+        self._bar = tqdm(
+            total=total, unit="cell", file=self._stream, dynamic_ncols=True, leave=False, mininterval=self._refresh_s
+        )
 
     def write(self, line: str) -> None:
         """Print a log line, above the bar while there is one."""
