@@ -95,5 +95,5 @@ def canny_edges(image: np.ndarray, sigma: float, low: float, high: float) -> Edg
     mask = cv2.Canny(gu, gv, float(low), float(high), L2gradient=True) > 0
     gu_f, gv_f = gu.astype(np.float32), gv.astype(np.float32)
     modulus = cv2.magnitude(gu_f, gv_f)
-    phase = np.arctan2(-gv_f, gu_f)
+    phase = np.arctan2(np.negative(gv_f, out=gv_f), gu_f)
     return EdgeMap(mask=mask, modulus=modulus, phase=phase)
