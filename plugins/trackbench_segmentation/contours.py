@@ -70,7 +70,7 @@ def _follow(
     mask: np.ndarray, slope: float, reach: int, max_gap: int, min_rows: int
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     height, width = mask.shape
-    used = np.zeros((height, width), dtype=np.bool_)
+    free = mask.copy()
     capacity = max(16, int(mask.sum()))
     rows = np.empty(capacity, dtype=np.int64)
     cols = np.empty(capacity, dtype=np.int64)
@@ -79,10 +79,10 @@ def _follow(
     n_chains = 0
     for v0 in range(height - 1, -1, -1):
         for u0 in range(width):
-            if not mask[v0, u0] or used[v0, u0]:
+            if not free[v0, u0]:
                 continue
             first = n_points
-            used[v0, u0] = True
+            free[v0, u0] = False
             rows[n_points] = v0
             cols[n_points] = u0
             n_points += 1
@@ -95,7 +95,7 @@ def _follow(
                 best = -1
                 best_distance = 1e9
                 for u in range(centre - reach, centre + reach + 1):
-                    if 0 <= u < width and mask[v, u] and not used[v, u]:
+                    if 0 <= u < width and free[v, u]:
                         distance = abs(u - expected)
                         if distance < best_distance:
                             best, best_distance = u, distance
@@ -106,7 +106,7 @@ def _follow(
                     position = expected
                 else:
                     gap = 0
-                    used[v, best] = True
+                    free[v, best] = False
                     rows[n_points] = v
                     cols[n_points] = best
                     n_points += 1
@@ -239,23 +239,68 @@ def snap_to_edges(rows: np.ndarray, cols: np.ndarray, modulus: np.ndarray, radiu
     Returns
     -------
     numpy.ndarray
-        ``float64`` columns of the points, sub-pixel.
+        ``float64`` columns of the points, sub-pixel: the first column of the
+        window's maximum, moved by at most half a pixel towards the vertex of
+        the parabola through it and its two neighbours when that parabola
+        opens downwards.
     """
     if radius <= 0 or len(cols) == 0:
         return cols.astype(np.float64) + 0.5
+    return _snap(rows, cols, modulus, radius)
+
+
+@numba.njit(cache=True, nogil=True)
+def _snap(rows: np.ndarray, cols: np.ndarray, modulus: np.ndarray, radius: int) -> np.ndarray:
     width = modulus.shape[1]
-    offsets = np.arange(-radius + 1, radius + 1)
-    window = np.clip(cols[:, None] + offsets[None, :], 0, width - 1)
-    values = modulus[rows[:, None], window]
-    peak = window[np.arange(len(cols)), np.argmax(values, axis=1)]
-    left = modulus[rows, np.maximum(peak - 1, 0)].astype(np.float64)
-    centre = modulus[rows, peak].astype(np.float64)
-    right = modulus[rows, np.minimum(peak + 1, width - 1)].astype(np.float64)
-    curvature = left - 2.0 * centre + right
-    with np.errstate(divide="ignore", invalid="ignore"):
-        shift = np.where(curvature < 0, 0.5 * (left - right) / curvature, 0.0)
-    flat = values.max(axis=1) == values.min(axis=1)
-    return np.where(flat, cols + 0.5, peak + np.clip(shift, -0.5, 0.5))
+    snapped = np.empty(cols.shape[0], dtype=np.float64)
+    for k in range(cols.shape[0]):
+        row, col = rows[k], cols[k]
+        peak = min(max(col - radius + 1, 0), width - 1)
+        largest = smallest = modulus[row, peak]
+        for u in range(col - radius + 2, col + radius + 1):
+            value = modulus[row, min(max(u, 0), width - 1)]
+            if value > largest:
+                peak, largest = min(max(u, 0), width - 1), value
+            smallest = min(smallest, value)
+        if largest == smallest:
+            snapped[k] = col + 0.5
+            continue
+        left = np.float64(modulus[row, max(peak - 1, 0)])
+        centre = np.float64(modulus[row, peak])
+        right = np.float64(modulus[row, min(peak + 1, width - 1)])
+        curvature = left - 2.0 * centre + right
+        shift = 0.5 * (left - right) / curvature if curvature < 0 else 0.0
+        snapped[k] = peak + min(max(shift, -0.5), 0.5)
+    return snapped
+
+
+@numba.njit(cache=True, nogil=True)
+def label_changes(grey: np.ndarray, starts: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """The contour pixels under ``mask`` of the back projection of ``grey`` on mountains starting at ``starts``.
+
+    Parameters
+    ----------
+    grey : numpy.ndarray
+        ``uint8`` cell of shape ``(h, w)``.
+    starts : numpy.ndarray
+        ``int64`` grey levels where mountains start, increasing
+        (:func:`trackbench_segmentation.histogram.mountains`).
+    mask : numpy.ndarray
+        Boolean ``(h, w)``: the pixels that may be contour pixels.
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean ``(h, w)``, ``contour_mask(back_project(grey, starts)) & mask``
+        (:func:`contour_mask`, :func:`trackbench_segmentation.histogram.back_project`).
+    """
+    table = np.searchsorted(starts, np.arange(256), side="right")
+    height, width = grey.shape
+    changes = np.zeros((height, width), dtype=np.bool_)
+    for r in range(height):
+        for c in range(width - 1):
+            changes[r, c] = mask[r, c] and table[grey[r, c]] != table[grey[r, c + 1]]
+    return changes
 
 
 def compile_kernels() -> None:
@@ -264,3 +309,9 @@ def compile_kernels() -> None:
     mask[:, 1] = True
     rows, cols, starts = follow_chains(mask, 0.0, reach=1, max_gap=1, min_rows=2)
     split_chains(rows, cols, starts, 1.0)
+    modulus = np.ones((4, 4), np.float32)
+    snap_to_edges(rows, cols, modulus, 2)
+    grey = np.zeros((4, 4), np.uint8)
+    for cell in (np.s_[:, :], np.s_[:2, :2]):
+        for counted in (mask[cell], np.ones(grey[cell].shape, np.bool_)):
+            label_changes(grey[cell], np.zeros(1, np.int64), counted)

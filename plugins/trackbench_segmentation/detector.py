@@ -29,14 +29,15 @@ to 76.2 %, S6 94.6 to 75.2 %; ``smoothing_sigma`` in
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
 import cv2
 import numpy as np
 
-from trackbench_segmentation.contours import contour_mask, follow_chains, snap_to_edges, split_chains
-from trackbench_segmentation.histogram import gradient_modulus, segment_cell
+from trackbench_segmentation.contours import follow_chains, label_changes, snap_to_edges, split_chains
+from trackbench_segmentation.histogram import gradient_bins, gradient_modulus, mountain_starts
 from trackbench_segmentation.lines import Segments, group_collinear, select_long
 from trackbench_segmentation.pairing import BorderPair, PairRules, border_pairs, fuse, pair_lines
 from trackbench_segmentation.params import SegmentationParams
@@ -45,7 +46,8 @@ Cell = tuple[slice, slice]
 """Rows and columns of one cell."""
 
 
-def cell_pyramid(size: tuple[int, int], levels: int) -> list[Cell]:
+@functools.lru_cache(maxsize=16)
+def cell_pyramid(size: tuple[int, int], levels: int) -> tuple[Cell, ...]:
     """The cells of a pyramid over an image, coarsest first.
 
     Parameters
@@ -58,7 +60,7 @@ def cell_pyramid(size: tuple[int, int], levels: int) -> list[Cell]:
 
     Returns
     -------
-    list of (slice, slice)
+    tuple of (slice, slice)
         Row and column slices; level by level, each level row by row.
 
     References
@@ -75,7 +77,7 @@ def cell_pyramid(size: tuple[int, int], levels: int) -> list[Cell]:
         for r in range(parts):
             for c in range(parts):
                 cells.append((slice(row_edges[r], row_edges[r + 1]), slice(col_edges[c], col_edges[c + 1])))
-    return cells
+    return tuple(cells)
 
 
 @dataclass(frozen=True, slots=True)
@@ -111,6 +113,7 @@ def pair_rules(params: SegmentationParams) -> PairRules:
 def cell_lines(
     grey: np.ndarray,
     modulus: np.ndarray,
+    gradient_rows: np.ndarray,
     cell: Cell,
     params: SegmentationParams,
     prediction: Prediction | None,
@@ -123,6 +126,9 @@ def cell_lines(
         The smoothed ``uint8`` image, ``(H, W)``.
     modulus : numpy.ndarray
         Its gradient modulus (:func:`trackbench_segmentation.histogram.gradient_modulus`).
+    gradient_rows : numpy.ndarray
+        The modulus' rows of the joint histogram
+        (:func:`trackbench_segmentation.histogram.gradient_bins`).
     cell : (slice, slice)
         The cell's rows and columns.
     params : SegmentationParams
@@ -145,9 +151,11 @@ def cell_lines(
     height, width = grey.shape
     cell_modulus = modulus[rows, cols]
     mask = None if prediction is None else prediction.roi[rows, cols]
-    labels = segment_cell(
-        grey[rows, cols],
+    cell_grey = grey[rows, cols]
+    levels = mountain_starts(
+        cell_grey,
         cell_modulus,
+        gradient_rows[rows, cols],
         smooth_share=p.smooth_share,
         bin_width=p.gradient_bin,
         n_bins=p.gradient_bins,
@@ -155,9 +163,9 @@ def cell_lines(
         valley_ratio=p.valley_ratio,
         mask=mask,
     )
-    contours = contour_mask(labels)
-    if mask is not None:
-        contours &= mask
+    if levels is None:
+        return Segments.empty()
+    contours = label_changes(cell_grey, levels, np.ones(cell_grey.shape, np.bool_) if mask is None else mask)
     alpha = 0.0 if prediction is None else prediction.alpha
     chain_rows, chain_cols, starts = follow_chains(
         contours, alpha, reach=p.reach_px, max_gap=p.max_gap_rows, min_rows=p.min_segment_rows
@@ -207,7 +215,11 @@ def detect(image: np.ndarray, params: SegmentationParams, prediction: Prediction
     height, width = image.shape
     grey = image if p.smoothing_sigma == 0 else cv2.GaussianBlur(image, (0, 0), p.smoothing_sigma)
     modulus = gradient_modulus(grey)
-    found = [cell_lines(grey, modulus, cell, p, prediction) for cell in cell_pyramid((width, height), p.pyramid_levels)]
+    gradient_rows = gradient_bins(modulus, p.gradient_bin, p.gradient_bins)
+    found = [
+        cell_lines(grey, modulus, gradient_rows, cell, p, prediction)
+        for cell in cell_pyramid((width, height), p.pyramid_levels)
+    ]
     return fuse(
         found,
         (width, height),

@@ -32,7 +32,11 @@ The thesis leaves four things open; the readings made here are
 
 from __future__ import annotations
 
+import functools
+import math
+
 import cv2
+import numba
 import numpy as np
 
 GREY_LEVELS = 256
@@ -134,7 +138,107 @@ def contour_cut(modulus: np.ndarray, smooth_share: float, bin_width: float, n_bi
     with high gradient modulus, which are the contour pixels".
     """
     level = float(np.quantile(modulus, smooth_share))
+    return _row_above(level, bin_width, n_bins)
+
+
+def _row_above(level: float, bin_width: float, n_bins: int) -> int:
+    """The gradient row just above a modulus ``level``, at most ``n_bins``."""
     return int(min(n_bins, int(level / bin_width) + 1))
+
+
+@numba.njit(cache=True, nogil=True)
+def _count(
+    grey: np.ndarray, rows: np.ndarray, mask: np.ndarray, n_bins: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """Joint histogram of the pixels under ``mask`` (``rows`` from :func:`gradient_bins`) and its row totals."""
+    histogram = np.zeros((n_bins, GREY_LEVELS), dtype=np.int64)
+    totals = np.zeros(n_bins, dtype=np.int64)
+    height, width = grey.shape
+    for r in range(height):
+        for c in range(width):
+            if mask[r, c]:
+                histogram[rows[r, c], grey[r, c]] += 1
+                totals[rows[r, c]] += 1
+    return histogram, totals
+
+
+@numba.njit(cache=True, nogil=True)
+def _order_statistics(
+    modulus: np.ndarray, rows: np.ndarray, mask: np.ndarray, totals: np.ndarray, low_rank: int, high_rank: int
+) -> tuple[float, float]:
+    """The ``low_rank``-th and ``high_rank``-th smallest moduli under ``mask``, sought in the rows holding them."""
+    first = 0
+    below = 0
+    while below + totals[first] <= low_rank:
+        below += totals[first]
+        first += 1
+    last = first
+    size = totals[first]
+    while below + size <= high_rank:
+        last += 1
+        size += totals[last]
+    members = np.empty(size, dtype=modulus.dtype)
+    count = 0
+    height, width = modulus.shape
+    for r in range(height):
+        for c in range(width):
+            if mask[r, c] and first <= rows[r, c] <= last:
+                members[count] = modulus[r, c]
+                count += 1
+    members = np.partition(members, np.array([low_rank - below, high_rank - below]))
+    return members[low_rank - below], members[high_rank - below]
+
+
+def counted_cut(
+    modulus: np.ndarray,
+    rows: np.ndarray,
+    mask: np.ndarray,
+    totals: np.ndarray,
+    smooth_share: float,
+    bin_width: float,
+    n_bins: int,
+) -> int:
+    """:func:`contour_cut` of the moduli under ``mask``, mostly without sorting them all.
+
+    The quantile interpolates between two neighbouring order statistics and
+    the cut is a non-decreasing function of it, so when order statistics a
+    little below and above them give the same cut, that is the cut; only
+    otherwise is the quantile itself computed.  When ``bin_width`` is a power
+    of two, a modulus' gradient row (:func:`gradient_bins`, in single
+    precision) and its cut (in double precision) divide it exactly, so every
+    modulus of row ``k`` has the cut ``k + 1`` and the rows' totals suffice
+    when both order statistics share a row.
+
+    Parameters
+    ----------
+    modulus, rows, mask : numpy.ndarray
+        The cell's moduli, their gradient rows (:func:`gradient_bins`) and the
+        counted pixels, all ``(h, w)``; at least one pixel is counted.
+    totals : numpy.ndarray
+        Counted pixels per gradient row (the row sums of the joint histogram).
+    smooth_share, bin_width, n_bins : float, float, int
+        As in :func:`contour_cut`.
+
+    Returns
+    -------
+    int
+        Exactly ``contour_cut(modulus[mask], smooth_share, bin_width, n_bins)``.
+    """
+    last = int(totals.sum()) - 1
+    middle = int(smooth_share * last)
+    low_rank, high_rank = max(middle - 1, 0), min(middle + 2, last)
+    low_row, high_row = np.searchsorted(np.cumsum(totals), [low_rank, high_rank], side="right")
+    if low_row == high_row and _is_power_of_two(bin_width):
+        return int(low_row) + 1
+    low_modulus, high_modulus = _order_statistics(modulus, rows, mask, totals, low_rank, high_rank)
+    low, high = _row_above(float(low_modulus), bin_width, n_bins), _row_above(float(high_modulus), bin_width, n_bins)
+    return low if low == high else contour_cut(modulus[mask], smooth_share, bin_width, n_bins)
+
+
+def _is_power_of_two(value: float) -> bool:
+    """Whether ``value`` is ``2^k`` with ``|k| <= 32``: moduli divide by it exactly in single and double precision."""
+    mantissa, exponent = math.frexp(value)
+    return mantissa == 0.5 and -31 <= exponent <= 33
 
 
 def grey_projection(histogram: np.ndarray, cut: int) -> np.ndarray:
@@ -194,32 +298,57 @@ def mountains(projection: np.ndarray, sigma: float, valley_ratio: float) -> np.n
     """
     values = np.asarray(projection, dtype=np.float64)
     if sigma > 0:
-        radius = int(np.ceil(3.0 * sigma))
-        offsets = np.arange(-radius, radius + 1)
-        with np.errstate(over="ignore"):
-            kernel = np.exp(-0.5 * (offsets / sigma) ** 2)
-        values = np.convolve(np.pad(values, radius, mode="edge"), kernel / kernel.sum(), mode="valid")
-    rises = np.diff(values)
+        kernel = _smoothing_kernel(sigma)
+        radius = len(kernel) // 2
+        padded = np.concatenate((np.full(radius, values[0]), values, np.full(radius, values[-1])))
+        values = np.convolve(padded, kernel, mode="valid")
+    return _valleys(values, float(valley_ratio))
+
+
+@numba.njit(cache=True, nogil=True)
+def _valleys(values: np.ndarray, valley_ratio: float) -> np.ndarray:
+    """The deep valleys of a smoothed projection (see :func:`mountains`)."""
+    cuts = np.empty(len(values), dtype=np.int64)
+    count = 0
     # A valley: the profile stops falling and later rises; plateaus are cut at their first level.
-    signs = np.sign(rises)
-    nonzero = np.flatnonzero(signs)
-    cuts: list[int] = []
-    for before, after in zip(nonzero[:-1], nonzero[1:]):
-        if signs[before] < 0 and signs[after] > 0:
-            cuts.append(int(before) + 1)
-    while cuts:
-        edges = [0, *cuts, len(values)]
-        peaks = [float(values[a:b].max()) for a, b in zip(edges[:-1], edges[1:])]
+    falling_before = -1
+    for i in range(len(values) - 1):
+        rise = values[i + 1] - values[i]
+        if rise > 0 and falling_before >= 0:
+            cuts[count] = falling_before + 1
+            count += 1
+        if rise != 0:
+            falling_before = i if rise < 0 else -1
+    peaks = np.empty(count + 1)
+    while count > 0:
+        start = 0
+        for k in range(count + 1):
+            stop = cuts[k] if k < count else len(values)
+            peaks[k] = values[start:stop].max()
+            start = stop
         worst, worst_ratio = -1, valley_ratio
-        for k, cut in enumerate(cuts):
+        for k in range(count):
             lower_peak = min(peaks[k], peaks[k + 1])
-            ratio = values[cut] / lower_peak if lower_peak > 0 else 1.0
+            ratio = values[cuts[k]] / lower_peak if lower_peak > 0 else 1.0
             if ratio > worst_ratio:
                 worst, worst_ratio = k, ratio
         if worst < 0:
             break
-        del cuts[worst]
-    return np.asarray(cuts, dtype=np.int64)
+        cuts[worst : count - 1] = cuts[worst + 1 : count].copy()
+        count -= 1
+    return cuts[:count].copy()
+
+
+@functools.lru_cache(maxsize=8)
+def _smoothing_kernel(sigma: float) -> np.ndarray:
+    """The normalised Gaussian of ``sigma`` grey levels over ``+-ceil(3 sigma)`` that :func:`mountains` smooths with."""
+    radius = int(np.ceil(3.0 * sigma))
+    offsets = np.arange(-radius, radius + 1)
+    with np.errstate(over="ignore"):
+        kernel = np.exp(-0.5 * (offsets / sigma) ** 2)
+    kernel = kernel / kernel.sum()
+    kernel.flags.writeable = False
+    return kernel
 
 
 def back_project(grey: np.ndarray, starts: np.ndarray) -> np.ndarray:
@@ -280,9 +409,73 @@ def segment_cell(
     ----------
     seeds/000, section 2.3 and Fig. 2.4.
     """
-    counted_grey, counted_modulus = (grey, modulus) if mask is None else (grey[mask], modulus[mask])
-    if counted_grey.size == 0:
-        return np.zeros(grey.shape, np.uint8)
-    histogram = joint_histogram(counted_grey, counted_modulus, bin_width, n_bins)
-    cut = contour_cut(counted_modulus, smooth_share, bin_width, n_bins)
-    return back_project(grey, mountains(grey_projection(histogram, cut), sigma, valley_ratio))
+    if bin_width <= 0 or n_bins < 1:
+        raise ValueError(f"need a positive bin width and at least one bin, got {bin_width} and {n_bins}")
+    starts = mountain_starts(
+        grey,
+        modulus,
+        gradient_bins(modulus, bin_width, n_bins),
+        smooth_share=smooth_share,
+        bin_width=bin_width,
+        n_bins=n_bins,
+        sigma=sigma,
+        valley_ratio=valley_ratio,
+        mask=mask,
+    )
+    return np.zeros(grey.shape, np.uint8) if starts is None else back_project(grey, starts)
+
+
+def mountain_starts(
+    grey: np.ndarray,
+    modulus: np.ndarray,
+    rows: np.ndarray,
+    *,
+    smooth_share: float,
+    bin_width: float,
+    n_bins: int,
+    sigma: float,
+    valley_ratio: float,
+    mask: np.ndarray | None = None,
+) -> np.ndarray | None:
+    """The mountains of one cell's histogram, the segmentation of :func:`segment_cell` before back projection.
+
+    Parameters
+    ----------
+    grey, modulus : numpy.ndarray
+        The cell's ``uint8`` grey levels and gradient moduli, shape ``(h, w)``.
+    rows : numpy.ndarray
+        The moduli's gradient rows (:func:`gradient_bins` with ``bin_width``
+        and ``n_bins``), shape ``(h, w)``.
+    smooth_share, bin_width, n_bins, sigma, valley_ratio, mask
+        As in :func:`segment_cell`.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        The grey levels where mountains start (:func:`mountains`); None when
+        no pixel is counted, and every pixel is then labelled 0.
+
+    References
+    ----------
+    seeds/000, section 2.3 and Fig. 2.4.
+    """
+    counted = np.ones(grey.shape, dtype=np.bool_) if mask is None else np.ascontiguousarray(mask, dtype=np.bool_)
+    histogram, totals = _count(grey, rows, counted, n_bins)
+    if not totals.any():
+        return None
+    cut = counted_cut(modulus, rows, counted, totals, smooth_share, bin_width, n_bins)
+    return mountains(grey_projection(histogram, cut), sigma, valley_ratio)
+
+
+def compile_kernels() -> None:
+    """Compile (or load from numba's cache) the histogram kernels now, on a tiny cell."""
+    grey = np.zeros((4, 4), np.uint8)
+    modulus = np.zeros((4, 4), np.float32)
+    rows = gradient_bins(modulus, 1.0, 2)
+    # Whole images and the cells cut out of them are compiled for separately; a bin width that is not a power
+    # of two needs the order statistics.
+    for cell in (np.s_[:, :], np.s_[:2, :2]):
+        for bin_width in (1.0, 1.5):
+            mountain_starts(grey[cell], modulus[cell], rows[cell], smooth_share=0.5, bin_width=bin_width, n_bins=2,
+                            sigma=1.0, valley_ratio=1.0)
+    mountains(np.zeros(GREY_LEVELS, np.int64), 0.0, 1.0)

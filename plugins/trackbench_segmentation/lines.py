@@ -68,7 +68,7 @@ class Segments:
     @classmethod
     def empty(cls) -> Segments:
         """No segment."""
-        return cls(*(np.zeros(0) for _ in fields(cls)))
+        return cls(*(np.zeros(0) for _ in _NAMES))
 
     @classmethod
     def from_pieces(
@@ -119,14 +119,14 @@ class Segments:
         """All segments of ``parts``, in order."""
         if not parts:
             return cls.empty()
-        return cls(*(np.concatenate([getattr(part, f.name) for part in parts]) for f in fields(cls)))
+        return cls(*(np.concatenate([getattr(part, name) for part in parts]) for name in _NAMES))
 
     def __len__(self) -> int:
         return len(self.n)
 
     def take(self, index: np.ndarray) -> Segments:
         """The segments at ``index`` (integer indices or a boolean mask)."""
-        return Segments(*(getattr(self, f.name)[index] for f in fields(self)))
+        return Segments(*(getattr(self, name)[index] for name in _NAMES))
 
     @property
     def slope(self) -> np.ndarray:
@@ -139,7 +139,12 @@ class Segments:
     @property
     def intercept(self) -> np.ndarray:
         """``a`` of the least-squares line ``u = a + b v``."""
-        return (self.su - self.slope * self.sv) / self.n
+        return self.fit()[0]
+
+    def fit(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(a, b)`` of the least-squares lines ``u = a + b v``, :attr:`intercept` and :attr:`slope` at once."""
+        b = self.slope
+        return (self.su - b * self.sv) / self.n, b
 
     @property
     def angle(self) -> np.ndarray:
@@ -154,7 +159,7 @@ class Segments:
     @property
     def rms(self) -> np.ndarray:
         """Root mean square distance in px of the pixels from the fitted line."""
-        a, b = self.intercept, self.slope
+        a, b = self.fit()
         squares = (
             self.suu - 2 * a * self.su - 2 * b * self.suv + self.n * a * a + 2 * a * b * self.sv + b * b * self.svv
         )
@@ -177,6 +182,10 @@ class Segments:
     def longer_than(self, min_rows: float) -> Segments:
         """The segments spanning at least ``min_rows`` rows: short ones are discarded."""
         return self.take(self.span >= min_rows)
+
+
+_NAMES = tuple(f.name for f in fields(Segments))
+"""The attributes of :class:`Segments`, in order."""
 
 
 def pixel_line(a: float, b: float, top: float, bottom: float, size: ImageSize) -> Line:
@@ -323,9 +332,10 @@ def select_long(
     """
     if len(segments) == 0:
         return segments
-    keep = (segments.span >= min_rows) & (segments.mean_gradient >= min_gradient) & (segments.rms <= max_rms)
-    kept = segments.take(keep)
-    return kept.take(np.argsort(-kept.n, kind="stable")[:max_count])
+    keep = np.flatnonzero(
+        (segments.span >= min_rows) & (segments.mean_gradient >= min_gradient) & (segments.rms <= max_rms)
+    )
+    return segments.take(keep[np.argsort(-segments.n[keep], kind="stable")[:max_count]])
 
 
 def compile_kernels() -> None:

@@ -28,6 +28,7 @@ contains the pair of lines which has the highest score after the fusion"
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -111,9 +112,9 @@ def border_pairs(
     count = len(lines)
     if count < 2:
         return []
-    angle, v_low, v_high, span = lines.angle, lines.v_low, lines.v_high, lines.span
-    a, b = lines.intercept, lines.slope
-    first, second = np.triu_indices(count, 1)
+    a, b = lines.fit()
+    angle, v_low, v_high, span = np.arctan(b), lines.v_low, lines.v_high, lines.span
+    first, second = _pairs_of(count)
     overlap = np.minimum(v_high[first], v_high[second]) - np.maximum(v_low[first], v_low[second]) + 1.0
     candidates = (np.abs(angle[first] - angle[second]) <= 2.0 * rules.max_skew + 1e-9) & (
         overlap >= rules.min_overlap * np.minimum(span[first], span[second])
@@ -133,6 +134,14 @@ def border_pairs(
         found.append(BorderPair(int(i), int(j), borders, state, score))
     found.sort(key=lambda pair: -pair.score)
     return found
+
+
+@functools.lru_cache(maxsize=64)
+def _pairs_of(count: int) -> tuple[np.ndarray, np.ndarray]:
+    """Indices ``(i, j)``, ``i < j``, of every pair of ``count`` lines, in row-major order (read-only)."""
+    first, second = np.triu_indices(count, 1)
+    first.flags.writeable = second.flags.writeable = False
+    return first, second
 
 
 def pair_lines(lines: Segments, pairs: list[BorderPair]) -> Segments:

@@ -40,6 +40,7 @@ from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
 from trackbench_segmentation.contours import compile_kernels as compile_walk_kernels
 from trackbench_segmentation.detector import Prediction, detect
+from trackbench_segmentation.histogram import compile_kernels as compile_histogram_kernels
 from trackbench_segmentation.lines import compile_kernels as compile_group_kernels
 from trackbench_segmentation.params import SegmentationParams
 from trackbench_segmentation.tracking import CableKalman, region_of_interest
@@ -94,6 +95,7 @@ class SegmentationTracker(Tracker[CameraTruth, CableState]):
         """
         compile_filter_kernels()
         compile_walk_kernels()
+        compile_histogram_kernels()
         compile_group_kernels()
         self.filter.forget()
         self.prediction = None

@@ -6,7 +6,11 @@ import math
 
 import numpy as np
 import pytest
-from trackbench_segmentation.contours import contour_mask, follow_chains, snap_to_edges, split_chains
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+from trackbench_segmentation.contours import contour_mask, follow_chains, label_changes, snap_to_edges, split_chains
+from trackbench_segmentation.histogram import back_project
 
 
 def test_contour_pixels_mark_horizontal_label_changes():
@@ -88,3 +92,50 @@ def test_contour_points_snap_to_the_gradient_ridge():
     assert snapped[:2] == pytest.approx([11.0, 11.0])
     assert snapped[2] == pytest.approx(15.5)  # a flat window: the point stays
     assert snap_to_edges(rows, cols, modulus, 0) == pytest.approx(cols + 0.5)
+
+
+def _reference_snap(rows: np.ndarray, cols: np.ndarray, modulus: np.ndarray, radius: int) -> np.ndarray:
+    """:func:`snap_to_edges` on whole arrays: window maxima, parabola vertices, flat windows."""
+    width = modulus.shape[1]
+    window = np.clip(cols[:, None] + np.arange(-radius + 1, radius + 1)[None, :], 0, width - 1)
+    values = modulus[rows[:, None], window]
+    peak = window[np.arange(len(cols)), np.argmax(values, axis=1)]
+    left = modulus[rows, np.maximum(peak - 1, 0)].astype(np.float64)
+    centre = modulus[rows, peak].astype(np.float64)
+    right = modulus[rows, np.minimum(peak + 1, width - 1)].astype(np.float64)
+    curvature = left - 2.0 * centre + right
+    with np.errstate(divide="ignore", invalid="ignore"):
+        shift = np.where(curvature < 0, 0.5 * (left - right) / curvature, 0.0)
+    flat = values.max(axis=1) == values.min(axis=1)
+    return np.where(flat, cols + 0.5, peak + np.clip(shift, -0.5, 0.5))
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    modulus=arrays(
+        np.float32,
+        st.tuples(st.integers(1, 12), st.integers(1, 30)),
+        elements=st.sampled_from([0.0, 0.25, 0.9886953, 1.9773906, 2.966086, 7.5, 80.0]),
+    ),
+    radius=st.integers(1, 8),
+    seed=st.integers(0, 2**16),
+)
+def test_snapping_equals_the_whole_array_reading(modulus, radius, seed):
+    rng = np.random.default_rng(seed)
+    height, width = modulus.shape
+    rows, cols = rng.integers(0, height, 25), rng.integers(0, width, 25)
+    assert np.array_equal(snap_to_edges(rows, cols, modulus, radius), _reference_snap(rows, cols, modulus, radius))
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    grey=arrays(np.uint8, st.tuples(st.integers(1, 20), st.integers(1, 20))),
+    starts=st.lists(st.integers(1, 255), max_size=6, unique=True).map(sorted),
+    seed=st.integers(0, 2**16),
+)
+def test_label_changes_are_the_contours_of_the_back_projection(grey, starts, seed):
+    mask = np.random.default_rng(seed).random(grey.shape) < 0.7
+    levels = np.asarray(starts, dtype=np.int64)
+    assert np.array_equal(label_changes(grey, levels, mask), contour_mask(back_project(grey, levels)) & mask)
+    # Cells cut out of a larger image give the same contours.
+    assert np.array_equal(label_changes(grey[:, 1:], levels, mask[:, 1:]), label_changes(grey, levels, mask)[:, 1:])

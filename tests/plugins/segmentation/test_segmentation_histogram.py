@@ -10,6 +10,7 @@ from hypothesis.extra.numpy import arrays
 from trackbench_segmentation.histogram import (
     back_project,
     contour_cut,
+    counted_cut,
     gradient_bins,
     gradient_modulus,
     grey_projection,
@@ -110,3 +111,77 @@ def test_a_two_tone_cell_segments_into_its_two_regions():
 def test_bad_histogram_bins_are_refused():
     with pytest.raises(ValueError, match="bin"):
         joint_histogram(np.zeros((3, 3), np.uint8), np.zeros((3, 3), np.float32), 0.0, 4)
+
+
+def _reference_mountains(projection: np.ndarray, sigma: float, valley_ratio: float) -> np.ndarray:
+    """:func:`mountains` written out pixel by pixel, valley by valley."""
+    values = np.asarray(projection, dtype=np.float64)
+    if sigma > 0:
+        radius = int(np.ceil(3.0 * sigma))
+        with np.errstate(over="ignore"):
+            kernel = np.exp(-0.5 * (np.arange(-radius, radius + 1) / sigma) ** 2)
+        values = np.convolve(np.pad(values, radius, mode="edge"), kernel / kernel.sum(), mode="valid")
+    signs = np.sign(np.diff(values))
+    nonzero = np.flatnonzero(signs)
+    cuts = [int(b) + 1 for b, a in zip(nonzero[:-1], nonzero[1:]) if signs[b] < 0 and signs[a] > 0]
+    while cuts:
+        edges = [0, *cuts, len(values)]
+        peaks = [float(values[a:b].max()) for a, b in zip(edges[:-1], edges[1:])]
+        worst, worst_ratio = -1, valley_ratio
+        for k, cut in enumerate(cuts):
+            lower_peak = min(peaks[k], peaks[k + 1])
+            ratio = values[cut] / lower_peak if lower_peak > 0 else 1.0
+            if ratio > worst_ratio:
+                worst, worst_ratio = k, ratio
+        if worst < 0:
+            break
+        del cuts[worst]
+    return np.asarray(cuts, dtype=np.int64)
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    projection=arrays(np.int64, 256, elements=st.integers(0, 60)),
+    sigma=st.sampled_from([0.0, 0.7, 2.0, 3.0]),
+    ratio=st.floats(0.0, 1.0),
+)
+def test_mountains_equal_the_valley_by_valley_reading(projection, sigma, ratio):
+    assert np.array_equal(mountains(projection, sigma, ratio), _reference_mountains(projection, sigma, ratio))
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    grey=arrays(np.uint8, st.tuples(st.integers(3, 40), st.integers(3, 40)), elements=st.integers(0, 40)),
+    share=st.floats(0.05, 1.0),
+    bin_width=st.sampled_from([0.25, 0.5, 1.0, 1.5, 2.0, 3.7]),
+    n_bins=st.integers(2, 64),
+    mask_seed=st.integers(0, 2**16),
+)
+def test_the_counted_cut_is_the_quantile_cut(grey, share, bin_width, n_bins, mask_seed):
+    modulus = gradient_modulus(grey)
+    rows = gradient_bins(modulus, bin_width, n_bins)
+    mask = np.random.default_rng(mask_seed).random(grey.shape) < 0.6
+    mask[0, 0] = True
+    for counted in (np.ones(grey.shape, bool), mask):
+        totals = np.bincount(rows[counted], minlength=n_bins)
+        expected = contour_cut(modulus[counted], share, bin_width, n_bins)
+        assert counted_cut(modulus, rows, counted, totals, share, bin_width, n_bins) == expected
+
+
+@settings(max_examples=60, deadline=None)
+@given(grey=cells, sigma=st.floats(0.0, 6.0), ratio=st.floats(0.0, 1.0), mask_seed=st.integers(0, 2**16))
+def test_segmentation_equals_the_histogram_quantile_and_mountains(grey, sigma, ratio, mask_seed):
+    modulus = gradient_modulus(grey)
+    mask = np.random.default_rng(mask_seed).random(grey.shape) < 0.5
+    for counted in (None, mask):
+        labels = segment_cell(
+            grey, modulus, smooth_share=0.5, bin_width=1.0, n_bins=32, sigma=sigma, valley_ratio=ratio, mask=counted
+        )
+        pixels = np.ones(grey.shape, bool) if counted is None else counted
+        if not pixels.any():
+            assert not labels.any()
+            continue
+        histogram = joint_histogram(grey[pixels], modulus[pixels], 1.0, 32)
+        cut = contour_cut(modulus[pixels], 0.5, 1.0, 32)
+        starts = _reference_mountains(histogram[:cut].sum(axis=0), sigma, ratio)
+        assert np.array_equal(labels, back_project(grey, starts))
