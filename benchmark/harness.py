@@ -47,7 +47,7 @@ import pandas as pd
 from benchmark.errors import DataError
 from benchmark.executors import Executor
 from benchmark.files import make_folder
-from benchmark.frame_cache import FrameCache
+from benchmark.frame_cache import CachedSequence, FrameCache
 from benchmark.leaderboard import load_leaderboards
 from benchmark.modality import Modality
 from benchmark.progress import Progress, SilentProgress
@@ -210,16 +210,15 @@ def _read_through(cells: list[Cell], cache: FrameCache) -> list[Cell]:
     return result
 
 
-def _uncached(cells: Iterable[Cell], cache: FrameCache) -> list[Any]:
-    """The distinct simulated sequences of ``cells`` (and their training sets) not in ``cache`` yet."""
-    sequences = {}
+def _unrendered(cells: Iterable[Cell], cache: FrameCache) -> list[Path]:
+    """The cache files the cells' sequences (and training sets) read that do not exist yet, each once."""
+    paths = set()
     for cell in cells:
         training = () if cell.training is None else cell.training.sequences
         for sequence in (cell.sequence, *training):
-            key = cache.key(sequence)
-            if key is not None:
-                sequences.setdefault(key, sequence)
-    return [sequence for sequence in sequences.values() if not cache.holds(sequence)]
+            if isinstance(sequence, CachedSequence):
+                paths.add(cache.path(sequence.key))
+    return sorted(path for path in paths if not path.is_file())
 
 
 def run_benchmark(
@@ -304,10 +303,10 @@ def run_benchmark(
                 todo = [cell for cell in todo if cell.key not in done]
                 statuses["ok"] += len(done)
                 log(f"resume: {len(done)} cells already finished, {len(todo)} to run")
-            missing = []
+            missing: list[Path] = []
             if frame_cache is not None:
-                missing = _uncached(todo, frame_cache)
                 todo = _read_through(todo, frame_cache)
+                missing = _unrendered(todo, frame_cache)
                 log(f"frame cache {frame_cache.folder}: {len(missing)} sequences to render")
             try:
                 todo = fit_models(todo, out, executor.call, timeout_s, log)
@@ -319,17 +318,16 @@ def run_benchmark(
                     step_s += sum(score.step_s for score in result.scores)
                     read_s += result.read_s
                     log(describe_result(result))
-                    progress.advance(result, executor.running())
+                    progress.advance(result, executor.running)
                 store.finish_run(run_id)
             except KeyboardInterrupt:
                 interrupted = True
                 log(f"interrupted: {ran} cells finished and kept, {len(todo) - ran} not run")
             finally:
                 progress.close()
-                if frame_cache is not None:
-                    rendered = sum(frame_cache.holds(sequence) for sequence in missing)
+                rendered = sum(path.is_file() for path in missing)
             publication = publish(store, modalities, out, run_id)
-            cpu_s = _cpu_s() - cpu_started if isinstance(executor, LocalExecutor) else None
+            cpu_s = _cpu_s() - cpu_started if executor.runs_here else None
             elapsed_s = time.perf_counter() - started
             return RunSummary(publication, statuses, interrupted, elapsed_s, rendered, step_s, read_s, cpu_s)
     finally:

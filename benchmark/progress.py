@@ -12,6 +12,7 @@ the story.
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
 from typing import IO, Protocol
 
 from benchmark.results import CellResult
@@ -23,8 +24,12 @@ class Progress(Protocol):
     def start(self, total: int) -> None:
         """``total`` cells are about to run."""
 
-    def advance(self, result: CellResult, running: list[str]) -> None:
-        """A cell finished with ``result``; ``running`` are the labels of the cells still running."""
+    def advance(self, result: CellResult, running: Callable[[], list[str]]) -> None:
+        """A cell finished with ``result``; ``running()`` gives the labels of the cells still running.
+
+        ``running`` is a call, not a list, so that what nobody shows is never
+        asked of the executor (on Dask, a round trip to the scheduler).
+        """
 
     def close(self) -> None:
         """The run ended (finished or interrupted)."""
@@ -36,7 +41,7 @@ class SilentProgress:
     def start(self, total: int) -> None:
         pass
 
-    def advance(self, result: CellResult, running: list[str]) -> None:
+    def advance(self, result: CellResult, running: Callable[[], list[str]]) -> None:
         pass
 
     def close(self) -> None:
@@ -79,11 +84,12 @@ class TerminalProgress:
         else:
             print(line, file=self._stream, flush=True)
 
-    def advance(self, result: CellResult, running: list[str]) -> None:
+    def advance(self, result: CellResult, running: Callable[[], list[str]]) -> None:
         self._failed += result.status != "ok"
         if self._bar is None:
             return
-        now = f"running {'; '.join(running)}" if running else ""
+        labels = running()
+        now = f"running {'; '.join(labels)}" if labels else ""
         self._bar.set_postfix_str(f"{self._failed} failed{', ' + now if now else ''}", refresh=False)
         self._bar.update(1)
 

@@ -28,7 +28,16 @@ EXECUTORS: tuple[ExecutorName, ...] = ("local", "dask")
 
 
 class Executor(Protocol):
-    """Runs cells, and single functions, with the isolation and time limits of a cell."""
+    """Runs cells, and single functions, with the isolation and time limits of a cell.
+
+    Attributes
+    ----------
+    runs_here : bool
+        The cells run in this process or its child processes, so that this
+        process's resource usage counts their CPU time.
+    """
+
+    runs_here: bool
 
     def run(self, cells: Sequence[Cell], timeout_s: float | None) -> Iterator[CellResult]:
         """Run ``cells`` and yield each result as it finishes; closing the iterator stops the rest."""

@@ -117,6 +117,8 @@ class DaskExecutor:
         If Dask is not installed or the scheduler cannot be reached.
     """
 
+    runs_here = False
+
     def __init__(self, scheduler: str | None = None, jobs: int | None = None) -> None:
         try:
             from distributed import Client, LocalCluster

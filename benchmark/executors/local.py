@@ -109,6 +109,8 @@ class LocalExecutor:
         tracker that ends the process ends the run.
     """
 
+    runs_here = True
+
     def __init__(self, jobs: int | None = None, *, in_process: bool = False) -> None:
         if jobs is None:
             jobs = os.cpu_count() or 1
