@@ -307,9 +307,10 @@ def run_benchmark(
             if frame_cache is not None:
                 todo = _read_through(todo, frame_cache)
                 missing = _unrendered(todo, frame_cache)
-                log(f"frame cache {frame_cache.folder}: {len(missing)} sequences to render")
             try:
                 todo = fit_models(todo, out, executor.call, timeout_s, log)
+                if frame_cache is not None:  # a reused model needs none of its training sequences
+                    log(f"frame cache {frame_cache.folder}: {len(_unrendered(todo, frame_cache))} sequences to render")
                 progress.start(len(todo))
                 for result in run_cells(todo, timeout_s=timeout_s, executor=executor):
                     store.add_cell(run_id, result)
