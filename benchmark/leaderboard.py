@@ -7,7 +7,10 @@ all frames with an estimate and a truth, and ``fps`` is all frames over all
 ``step`` time (:func:`benchmark.results.summarise` applied to the pooled
 frames).  ``correct_sd_pct`` is the spread over seeds: the sample standard
 deviation of the per-seed ``correct_pct`` (empty for a single seed), so that
-a stochastic tracker's mean is read with its variation.  A row with dataset
+a stochastic tracker's mean is read with its variation.  Every rate and
+RMSE also has its 95 % interval (``correct_lo_pct`` to ``correct_hi_pct``), a bootstrap
+over seeds (:mod:`benchmark.intervals`), and ``deterministic`` says
+whether all seeds gave the same frames (empty for a single seed).  A row with dataset
 ``(all)`` pools each tracker over every dataset of the board and comes
 first.  A tracker name that ran with several
 parameter sets, or a dataset name that stood for several datasets (a file
@@ -34,6 +37,7 @@ from typing import TYPE_CHECKING
 
 import pandas as pd
 
+from benchmark.intervals import seed_intervals
 from benchmark.modality import Modality
 from benchmark.model import Outcome
 from benchmark.results import summarise
@@ -57,10 +61,17 @@ def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str,
     return tuple(column for column in frames.columns if str(column).startswith("err_"))
 
 
+def interval_columns(metric: str) -> tuple[str, str]:
+    """The columns of the low and high end of a rate's or RMSE's 95 % interval, unit last: ``correct_lo_pct``."""
+    name, unit = metric.rsplit("_", 1)
+    return f"{name}_lo_{unit}", f"{name}_hi_{unit}"
+
+
 def board_columns(errors: tuple[str, ...]) -> list[str]:
     """Columns of a board whose modality has the error columns ``errors``."""
     rmse = ["rmse_" + column.removeprefix("err_") for column in errors]
-    return [*LEADING_COLUMNS, *RATE_COLUMNS, SPREAD_COLUMN, *rmse, "fps", "status"]
+    intervals = [column for metric in (*RATE_COLUMNS, *rmse) for column in interval_columns(metric)]
+    return [*LEADING_COLUMNS, *RATE_COLUMNS, SPREAD_COLUMN, *rmse, "fps", "deterministic", *intervals, "status"]
 
 
 def pooled_status(cells: pd.DataFrame) -> str:
@@ -148,7 +159,9 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
     def row(group: pd.DataFrame, label: str, dataset: str, init: str) -> dict[str, object]:
         summary = summarise(pool(group), errors)
         summary["frames"] = int(summary["frames"])
-        per_seed = [summarise(pool(cells_of_seed), errors)["correct_pct"] for _, cells_of_seed in group.groupby("seed")]
+        seeds = [pool(cells_of_seed) for _, cells_of_seed in group.groupby("seed")]
+        per_seed = [summarise(frames_of_seed, errors)["correct_pct"] for frames_of_seed in seeds]
+        intervals, deterministic = seed_intervals(seeds, errors)
         return {
             "tracker": label,
             "dataset": dataset,
@@ -157,6 +170,9 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
             "seeds": int(group["seed"].nunique()),
             **summary,
             SPREAD_COLUMN: pd.Series(per_seed, dtype=float).std(ddof=1),
+            "deterministic": deterministic,
+            **{column: end for metric, ends in intervals.items()
+               for column, end in zip(interval_columns(metric), ends)},
             "status": pooled_status(group),
         }
 

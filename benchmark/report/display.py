@@ -12,6 +12,8 @@ import math
 
 import pandas as pd
 
+from benchmark.leaderboard import interval_columns
+
 
 def one_line(text: object) -> str:
     """``text`` on one line: every run of whitespace, newlines included, becomes one space."""
@@ -35,15 +37,50 @@ def format_value(column: str, value: object) -> str:
     return str(value)
 
 
+def _with_interval(column: str, value: object, low: object, high: object) -> str:
+    """``value [low, high]``, or the value alone when the interval is unknown or a point."""
+    shown = format_value(column, value)
+    ends = format_value(column, low), format_value(column, high)
+    if not shown or not all(ends) or ends[0] == ends[1]:
+        return shown
+    return f"{shown} [{ends[0]}, {ends[1]}]"
+
+
+def _intervals(board: pd.DataFrame) -> dict[str, tuple[str, str]]:
+    """The columns of ``board`` that have both ends of an interval, to those ends."""
+    ends = {column: interval_columns(column) for column in board.columns if "_" in column}
+    return {column: pair for column, pair in ends.items() if set(pair) <= set(board.columns)}
+
+
+def _shown_columns(board: pd.DataFrame) -> list[str]:
+    """The columns of ``board`` but the interval ends, which are shown beside their values."""
+    hidden = {end for pair in _intervals(board).values() for end in pair}
+    return [column for column in board.columns if column not in hidden]
+
+
 def display_table(board: pd.DataFrame) -> pd.DataFrame:
-    """The board as rounded text, for Markdown, HTML and the terminal."""
-    return pd.DataFrame(
-        {column: [format_value(column, value) for value in board[column].tolist()] for column in board.columns},
-        columns=board.columns,
-        dtype=object,
-    )
+    """The board as rounded text, for Markdown, HTML and the terminal.
+
+    A value with an interval over seeds (columns ``*_lo_*`` and ``*_hi_*``,
+    :func:`benchmark.leaderboard.interval_columns`) is shown as
+    ``value [low, high]`` in its own column, and ``deterministic`` as yes or no.
+    """
+    ends = _intervals(board)
+    shown = _shown_columns(board)
+    table = {}
+    for column in shown:
+        if column in ends:
+            low, high = ends[column]
+            table[column] = [
+                _with_interval(column, *values) for values in zip(board[column], board[low], board[high], strict=True)
+            ]
+        elif column == "deterministic":
+            table[column] = ["" if pd.isna(value) else ("yes" if value else "no") for value in board[column]]
+        else:
+            table[column] = [format_value(column, value) for value in board[column].tolist()]
+    return pd.DataFrame(table, columns=shown, dtype=object)
 
 
 def alignment(board: pd.DataFrame) -> list[str]:
-    """``"right"`` for numeric columns, ``"left"`` for the others."""
-    return ["right" if pd.api.types.is_numeric_dtype(board[column]) else "left" for column in board.columns]
+    """Per column of :func:`display_table`: ``"right"`` for numeric columns, ``"left"`` for the others."""
+    return ["right" if pd.api.types.is_numeric_dtype(board[column]) else "left" for column in _shown_columns(board)]
