@@ -41,8 +41,9 @@ def trackbench_register_modalities(registry: Registry) -> None:
     """Add modalities, kinds of sensor data, to the registry.
 
     Call :meth:`Registry.add_modality` with a :class:`benchmark.modality.Modality`:
-    its frame and estimate types, scorer, file readers, exporter and scene
-    kinds.  Trackers and sequences name a modality by its ``name``.
+    its frame and estimate types, scorer, file readers, exporter, scene
+    kinds and, optionally, how to draw a frame for the reports.  Trackers
+    and sequences name a modality by its ``name``.
 
     Parameters
     ----------

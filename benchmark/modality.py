@@ -13,7 +13,10 @@ in its ``trackbench_register_modalities`` hook, and declares:
   per-frame outcome rule (correct, false or missed);
 * the :class:`Reader` objects that open its files and folders, and the
   exporter that writes a sequence in its on-disk form;
-* the scene kinds a suite file may name to simulate its sequences.
+* the scene kinds a suite file may name to simulate its sequences;
+* optionally, its :data:`Drawer`: a small picture of a frame with the truth
+  and the tracker's estimate drawn on it, which the runner keeps for the
+  first frame of each run of failures (:mod:`benchmark.drawing`).
 
 The built-in modalities, :mod:`benchmark.modalities.camera`,
 :mod:`~benchmark.modalities.sonar` and :mod:`~benchmark.modalities.stereo`,
@@ -28,6 +31,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol
 
+import numpy as np
+
 from benchmark.errors import DataError
 from benchmark.model import Frame, Outcome, Sequence, SequenceInfo
 
@@ -39,6 +44,14 @@ SceneFactory = Callable[[Mapping[str, Any], str], Sequence]
 
 Exporter = Callable[[Sequence, Path, str], Path]
 """Writes a sequence into a folder under a file stem and returns the file that opens it again."""
+
+Drawer = Callable[[Frame, Any], np.ndarray]
+"""Draws a frame and an estimate (or None) as a small ``uint8`` BGR picture ``(H, W, 3)``.
+
+The observation is drawn with the frame's truth in green and the estimate
+in red (:data:`benchmark.drawing.TRUTH_BGR`, :data:`~benchmark.drawing.ESTIMATE_BGR`);
+the frame is left unchanged.
+"""
 
 
 class EstimateError(TypeError):
@@ -117,6 +130,9 @@ class Modality:
         factory that builds one sequence of it.
     description : str
         One line for listings.
+    draw : Drawer or None
+        Draws a frame with its truth and an estimate, for the pictures of
+        failed frames in reports; None draws nothing.
     """
 
     name: str
@@ -128,6 +144,7 @@ class Modality:
     exporter: Exporter | None = None
     scene_kinds: Mapping[str, SceneFactory] = field(default_factory=dict)
     description: str = ""
+    draw: Drawer | None = None
 
     def check_frame(self, frame: Frame, where: str) -> None:
         """Raise :class:`~benchmark.errors.DataError`, prefixed by ``where``, unless ``frame`` is of this modality."""

@@ -3,10 +3,12 @@
 Every frame a tracker processes gets a :class:`FrameScore`: its detection
 outcome (seeds/004, section VI-C, Table V), the estimate's errors (one per
 error column of the modality's scorer) and the time the tracker's ``step``
-took.  A :class:`CellResult` holds a cell's identity, how it ended and its
-frame scores; it is what worker processes hand back and what the store
-writes.  :func:`summarise` turns frame scores, of one cell or pooled over
-many, into the rates, RMSEs and speed of a leaderboard row.
+took.  A :class:`CellResult` holds a cell's identity, how it ended, its
+frame scores and a :class:`Picture` of the first frame of each run of
+failures (where its modality draws frames); it is what worker processes
+hand back and what the store writes.  :func:`summarise` turns frame
+scores, of one cell or pooled over many, into the rates, RMSEs and speed
+of a leaderboard row.
 
 Column names carry their units (``conventions.md`` section 4): angles are
 reported in degrees, distances in px (camera) or m (sonar, stereo).
@@ -48,6 +50,29 @@ class FrameScore:
     outcome: Outcome | None
     errors: Mapping[str, float] = field(default_factory=dict)
     step_s: float = 0.0
+
+
+@dataclass(frozen=True)
+class Picture:
+    """A small picture of a failed frame with the truth and the tracker's estimate drawn on it.
+
+    Made by the modality's drawer (:attr:`benchmark.modality.Modality.draw`)
+    for the first frame of each run of failures of a cell
+    (:func:`benchmark.runner.run_cell`).
+
+    Attributes
+    ----------
+    frame : int
+        Frame index in its sequence.
+    outcome : str
+        The frame's outcome, ``"false"`` or ``"missed"``.
+    png : bytes
+        The picture, a BGR image encoded as PNG.
+    """
+
+    frame: int
+    outcome: str
+    png: bytes
 
 
 def frame_table(scores: Iterable[FrameScore]) -> pd.DataFrame:
@@ -159,6 +184,10 @@ class CellResult:
     read_s : float
         Wall time spent getting the frames (rendering, or reading them from
         the frame cache or files); known for cells run now, not stored.
+    pictures : tuple of Picture
+        Pictures of the first frame of each run of failed frames, in frame
+        order, at most :data:`benchmark.runner.MAX_PICTURES`; empty when the
+        modality draws nothing.
     """
 
     tracker: str
@@ -178,6 +207,7 @@ class CellResult:
     error_columns: tuple[str, ...] = ()
     training: str = ""
     read_s: float = 0.0
+    pictures: tuple[Picture, ...] = ()
 
     @property
     def key(self) -> CellKey:

@@ -12,6 +12,14 @@ modality's types is a data error, so trackers can rely on them.  Timing
 covers ``step`` only, so frames per second compare trackers rather than
 image decoders, as in the thesis' Table 5.3 (seeds/000, section 5.2.5).
 
+Where the modality draws frames (:attr:`benchmark.modality.Modality.draw`),
+the first frame of each run of failures (consecutive frames that are all
+false or all missed) is drawn with its truth and the tracker's estimate
+right after it is scored, up to :data:`MAX_PICTURES` per cell, and kept in
+the result as a PNG (:class:`benchmark.results.Picture`), so that a report
+shows why a number moved.  Drawing is not timed, and a drawer that fails
+costs only its picture: the cell and its scores stay as they are.
+
 A cell is identified by its dataset's identity (:mod:`benchmark.identity`),
 which is known without reading a frame: all reading of the cell's data
 happens in :func:`run_cell`, inside the cell's time limit.  The generator of
@@ -53,11 +61,12 @@ from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
+from benchmark.drawing import encode_png
 from benchmark.identity import DatasetIdentity
-from benchmark.modality import EstimateError, Modality
-from benchmark.model import Sequence
+from benchmark.modality import Drawer, EstimateError, Modality
+from benchmark.model import Frame, Outcome, Sequence
 from benchmark.registry import TrackerEntry
-from benchmark.results import CellKey, CellResult, FrameScore, Status
+from benchmark.results import CellKey, CellResult, FrameScore, Picture, Status
 from benchmark.training import Training
 
 if TYPE_CHECKING:
@@ -66,6 +75,11 @@ if TYPE_CHECKING:
 InitMode = Literal["truth", "none"]
 DEFAULT_TIMEOUT_S = 600.0
 """Time limit of one cell unless the caller sets another."""
+
+MAX_PICTURES = 6
+"""Most pictures of failed frames one cell keeps."""
+
+_FAILURES = (Outcome.FALSE, Outcome.MISSED)
 
 
 @dataclass(frozen=True)
@@ -207,6 +221,16 @@ def traceback_text(exc: BaseException) -> str:
     return _safe_text(lambda e: "".join(traceback.format_exception(e)), exc)
 
 
+def _picture(draw: Drawer, frame: Frame, estimate: Any, outcome: Outcome) -> Picture | None:
+    """The frame drawn with ``estimate`` as a PNG, or None when drawing or encoding it fails."""
+    try:
+        return Picture(int(frame.index), str(outcome), encode_png(draw(frame, estimate)))
+    except UserInterrupt:
+        raise
+    except BaseException:  # a picture is never worth a cell
+        return None
+
+
 def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
     """Run one cell and score every frame; never raises for the cell's own faults.
 
@@ -224,7 +248,9 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
     -------
     CellResult
         Status ``"ok"`` with all frames scored, or ``"error"`` /
-        ``"timeout"`` with the frames scored before.
+        ``"timeout"`` with the frames scored before; with the pictures of
+        the first frame of each run of false or missed frames (a run ends
+        where the outcome changes), at most :data:`MAX_PICTURES`.
 
     References
     ----------
@@ -234,6 +260,8 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
     started = time.perf_counter()
     deadline = math.inf if timeout_s is None else started + timeout_s
     scores: list[FrameScore] = []
+    pictures: list[Picture] = []
+    previous: Outcome | None = None
     read_s = 0.0
     where = "before frame 0"
     status: Status = "ok"
@@ -241,6 +269,7 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
     try:
         modality = cell.modality
         scorer = modality.scorer
+        draw = modality.draw
         where = "reading the sequence's info"
         info = cell.sequence.info
         where = "creating the tracker"
@@ -271,6 +300,11 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
                 raise EstimateError(f"tracker {cell.tracker.name!r} returned an invalid estimate: {exc}") from exc
             outcome, errors = scorer.score(estimate, frame.truth, info)
             scores.append(FrameScore(frame.index, outcome, dict(zip(scorer.error_columns, errors)), step_s))
+            if outcome in _FAILURES and outcome != previous and len(pictures) < MAX_PICTURES and draw is not None:
+                picture = _picture(draw, frame, estimate, outcome)
+                if picture is not None:
+                    pictures.append(picture)
+            previous = outcome
             where = f"reading frame {frame.index + 1}"
             tick = time.perf_counter()
             following = next(frames, None)
@@ -297,6 +331,7 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
         elapsed_s=time.perf_counter() - started,
         read_s=read_s,
         detail=detail,
+        pictures=tuple(pictures),
     )
 
 

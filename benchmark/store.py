@@ -1,9 +1,9 @@
 """The results database: runs, cells and per-frame scores in SQLite.
 
 Every ``trackbench run`` is a row of ``runs``; every finished cell is a row
-of ``cells`` together with its frame rows, written in one transaction, so a
-run that is killed keeps every cell it finished and loses only those in
-flight.  Only the main process writes; worker processes hand their results
+of ``cells`` together with its frame rows and its pictures, written in one
+transaction, so a run that is killed keeps every cell it finished and loses
+only those in flight.  Only the main process writes; worker processes hand their results
 back to it.
 
 Schema (``PRAGMA user_version`` = :data:`SCHEMA_VERSION`)::
@@ -15,6 +15,7 @@ Schema (``PRAGMA user_version`` = :data:`SCHEMA_VERSION`)::
     run_cells(run_id -> runs, cell_id -> cells)
     frames(cell_id -> cells, position, frame, outcome, step_ms)
     frame_errors(cell_id, position, name, value)
+    pictures(cell_id -> cells, frame, outcome, png BLOB)
 
 ``training`` names the training set of a tracker that learns (empty for
 the others; :mod:`benchmark.training`).  ``problems`` lists, one line each, what went wrong in a run outside any
@@ -31,13 +32,18 @@ error column (``err_d_px``, ``err_alpha_deg``, ... for cameras; the names
 carry units, ``conventions.md`` section 4), so that every modality's columns
 fit the same table; a non-finite error is simply not stored.
 
+``pictures`` holds, per cell, the PNG pictures of the first frame of each
+run of false or missed frames (:class:`benchmark.results.Picture`), keyed
+by the sequence's frame index; a cell whose modality draws nothing has none.
+
 ``run_cells`` lists the cells that make up a run's results: those it ran
 and those it took over from earlier runs with ``--resume``.
 
-A database of schema version 1 (no ``problems``, no ``dataset_key``) or 2
-(no ``training``) is upgraded in place when opened; version 1's cells get
-their ``dataset`` as ``dataset_key``, which no identity's key equals, so
-they are shown but never resumed.  Any SQLite error, such as a file damaged on disk, is
+A database of schema version 1 (no ``problems``, no ``dataset_key``), 2
+(no ``training``) or 3 (no ``pictures``) is upgraded in place when opened,
+its cells keeping no pictures; version 1's cells get their ``dataset`` as
+``dataset_key``, which no identity's key equals, so they are shown but
+never resumed.  Any SQLite error, such as a file damaged on disk, is
 reported as a :class:`~benchmark.errors.DataError` naming the file.
 """
 
@@ -56,11 +62,12 @@ from typing import TYPE_CHECKING, Any, Concatenate, ParamSpec, TypeVar
 import pandas as pd
 
 from benchmark.errors import DataError
+from benchmark.results import Picture
 
 if TYPE_CHECKING:
     from benchmark.results import CellKey, CellResult
 
-SCHEMA_VERSION = 3
+SCHEMA_VERSION = 4
 DATABASE_NAME = "results.sqlite"
 
 _SCHEMA = """
@@ -115,6 +122,13 @@ CREATE TABLE IF NOT EXISTS frame_errors (
     PRIMARY KEY (cell_id, position, name),
     FOREIGN KEY (cell_id, position) REFERENCES frames(cell_id, position)
 );
+CREATE TABLE IF NOT EXISTS pictures (
+    cell_id INTEGER NOT NULL REFERENCES cells(id),
+    frame INTEGER NOT NULL,
+    outcome TEXT NOT NULL,
+    png BLOB NOT NULL,
+    PRIMARY KEY (cell_id, frame)
+);
 """
 
 _UPGRADES = {
@@ -128,6 +142,7 @@ ALTER TABLE cells ADD COLUMN training TEXT NOT NULL DEFAULT '';
     2: """
 ALTER TABLE cells ADD COLUMN training TEXT NOT NULL DEFAULT '';
 """,
+    3: "",
 }
 """Schema version to the SQL that brings it to :data:`SCHEMA_VERSION` (``_SCHEMA`` then adds what is missing)."""
 
@@ -348,8 +363,38 @@ class ResultStore:
                     if math.isfinite(float(value))
                 ),
             )
+            self._db.executemany(
+                "INSERT OR IGNORE INTO pictures (cell_id, frame, outcome, png) VALUES (?, ?, ?, ?)",
+                ((cell_id, int(shot.frame), str(shot.outcome), bytes(shot.png)) for shot in result.pictures),
+            )
             self._db.execute("INSERT INTO run_cells (run_id, cell_id) VALUES (?, ?)", (run_id, cell_id))
         return cell_id
+
+    @_reports_database_errors
+    def pictures(self, cell_ids: Iterable[int]) -> dict[int, list[Picture]]:
+        """The pictures of failed frames of the given cells (see :attr:`benchmark.results.CellResult.pictures`).
+
+        Parameters
+        ----------
+        cell_ids : iterable of int
+            The cells.
+
+        Returns
+        -------
+        dict
+            Cell id to its pictures in frame order, for the cells that have any.
+        """
+        ids = sorted({int(cell_id) for cell_id in cell_ids})
+        found: dict[int, list[Picture]] = {}
+        for chunk in _chunks(ids):
+            marks = ", ".join("?" * len(chunk))
+            rows = self._db.execute(
+                f"SELECT cell_id, frame, outcome, png FROM pictures WHERE cell_id IN ({marks}) ORDER BY cell_id, frame",
+                chunk,
+            )
+            for cell_id, frame, outcome, png in rows:
+                found.setdefault(int(cell_id), []).append(Picture(int(frame), str(outcome), bytes(png)))
+        return found
 
     @_reports_database_errors
     def find_ok_cells(self, keys: Iterable[CellKey]) -> dict[CellKey, int]:

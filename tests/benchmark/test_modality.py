@@ -12,9 +12,9 @@ from benchmark.errors import DataError
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.modalities.camera.model import CableState, CameraTruth
 from benchmark.modalities.sonar.modality import SONAR
-from benchmark.modalities.sonar.model import PipeEstimate
+from benchmark.modalities.sonar.model import PipeEstimate, SonarTruth, Swath
 from benchmark.modalities.stereo.modality import STEREO
-from benchmark.modalities.stereo.model import StereoMeasurement
+from benchmark.modalities.stereo.model import StereoMeasurement, StereoTruth, TargetEstimate
 from benchmark.modality import ANY_FILE, EstimateError, Modality, Reader
 from benchmark.model import Frame
 
@@ -90,8 +90,22 @@ def test_a_minimal_modality_needs_only_its_types_and_scorer() -> None:
 
     minimal = Modality("ping", Ping, Ping, Ping, Scorer())
     assert minimal.readers == () and minimal.exporter is None and dict(minimal.scene_kinds) == {}
+    assert minimal.draw is None
     minimal.check_frame(Frame(0, Ping(1.0), Ping(1.0)), "here")
     with pytest.raises(EstimateError, match="negative"):
         minimal.check_estimate(Ping(-1.0))
     reader = Reader(lambda path: None, "anything", suffixes=(ANY_FILE,))  # type: ignore[arg-type, return-value]
     assert Modality("ping", Ping, Ping, Ping, Scorer(), readers=(reader,)).claims == ("any other file",)
+
+
+def test_the_built_in_modalities_draw_their_frames_as_bgr_pictures() -> None:
+    frames = {
+        CAMERA: (Frame(0, np.zeros((4, 6), np.uint8), TRUTH), CableState(0.0, 0.0, 2.0, 0.0)),
+        SONAR: (Frame(0, Swath(np.array([-1.0, 1.0]), np.array([5.0, 5.0])), SonarTruth(0.0, 4.5, 0.0, 0.1)),
+                PipeEstimate(0.5)),
+        STEREO: (Frame(0, None, StereoTruth(TargetEstimate((5.0, 0.0), (1.0, 0.0)), (0.0, 0.0), 0.0)), None),
+    }
+    for modality, (frame, estimate) in frames.items():
+        assert modality.draw is not None, modality.name
+        picture = modality.draw(frame, estimate)
+        assert picture.dtype == np.uint8 and picture.ndim == 3 and picture.shape[2] == 3, modality.name

@@ -2,6 +2,7 @@
 
 import dataclasses
 import math
+import pickle
 import sys
 
 import numpy as np
@@ -11,7 +12,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from benchmark.model import Outcome
-from benchmark.results import CellKey, CellResult, FrameScore, frame_table, summarise
+from benchmark.results import CellKey, CellResult, FrameScore, Picture, frame_table, summarise
 
 COLUMNS = ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
 
@@ -89,6 +90,15 @@ def test_a_cell_result_summarises_with_its_modality_s_error_columns():
     assert "rmse_d_px" not in summary
     assert result().frames["frame"].tolist() == [0, 1]
     assert not any(key.startswith("rmse_") for key in result(error_columns=()).summary())
+
+
+def test_a_cell_result_has_no_pictures_unless_given_and_pickles_with_them():
+    assert result().pictures == ()
+    pictured = result(pictures=(Picture(1, "missed", b"\x89PNG\r\n\x1a\n..."),))
+    again = pickle.loads(pickle.dumps(pictured))
+    assert again == pictured and again.pictures[0].png == b"\x89PNG\r\n\x1a\n..."
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        again.pictures[0].frame = 2  # type: ignore[misc]
 
 
 ordinary = st.one_of(st.just(0.0), st.floats(1e-100, 1e100), st.floats(-1e100, -1e-100))

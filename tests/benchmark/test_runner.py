@@ -4,10 +4,14 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import pickle
+import time
 import types
 from collections.abc import Callable, Iterator
 from typing import Any
 
+import cv2
+import numpy as np
 import pandas as pd
 import pytest
 from hypothesis import given, settings
@@ -19,8 +23,8 @@ from benchmark.modalities.camera.model import CameraTruth
 from benchmark.modalities.sonar.model import SonarTruth
 from benchmark.model import Frame, Outcome, Sequence, SequenceInfo
 from benchmark.registry import Registry
-from benchmark.results import CellResult
-from benchmark.runner import Cell, cell_result, cell_rng, run_cell, run_cells
+from benchmark.results import CellResult, Picture
+from benchmark.runner import MAX_PICTURES, Cell, cell_result, cell_rng, run_cell, run_cells
 
 MakeCell = Callable[..., Cell]
 
@@ -175,6 +179,7 @@ def test_pool_isolates_a_hanging_and_a_raising_tracker(make_cell: MakeCell) -> N
     assert results["perfect"].status == "ok" and results["perfect"].summary()["correct_pct"] == 100.0
     inline = run_cell(make_cell("noisy", seed=3))
     pd.testing.assert_frame_equal(without_timing(results["noisy"]), without_timing(inline))
+    assert results["noisy"].pictures == inline.pictures and len(inline.pictures) >= 2
 
 
 # ---------------------------------------------------------------- frames are checked against the cell's modality
@@ -245,6 +250,128 @@ def test_a_cell_needs_its_modality_by_keyword(fake_registry: Registry, fakes: ty
         Cell(entry, fakes.FakeSequence(), 0)  # type: ignore[call-arg]
     with pytest.raises(TypeError):
         Cell(entry, fakes.FakeSequence(), 0, "truth", CAMERA)  # type: ignore[misc]
+
+
+# ---------------------------------------------------------------- pictures of failed frames
+class Scripted:
+    """A camera scorer whose outcomes follow a script, a letter a frame: correct, false, missed, or ``-`` unscored."""
+
+    error_columns = ("err_d_px",)
+    LETTERS = {"c": Outcome.CORRECT, "f": Outcome.FALSE, "m": Outcome.MISSED, "-": None}
+
+    def __init__(self, script: str) -> None:
+        self.script = script
+
+    def check(self, estimate: Any) -> None:
+        pass
+
+    def score(self, estimate: Any, truth: Any, info: SequenceInfo) -> tuple[Outcome | None, tuple[float, ...]]:
+        index = round((truth.cable.d + 6.0) / 1.5)  # the fake sequence's truth_at(index)
+        return self.LETTERS[self.script[index]], (float(index),)
+
+
+class Recorder:
+    """A drawer that notes what it drew and draws a 2 x 3 picture of the frame's index."""
+
+    def __init__(self) -> None:
+        self.calls: list[tuple[int, Any]] = []
+
+    def __call__(self, frame: Frame, estimate: Any) -> np.ndarray:
+        self.calls.append((frame.index, estimate))
+        return np.full((2, 3, 3), frame.index, dtype=np.uint8)
+
+
+def scripted_cell(fake_registry: Registry, fakes: types.ModuleType, script: str, draw: Any) -> Cell:
+    modality = dataclasses.replace(CAMERA, scorer=Scripted(script), draw=draw)
+    return Cell(fake_registry.trackers["perfect"], fakes.FakeSequence(n_frames=len(script)), 0, modality=modality)
+
+
+def decoded(picture: Picture) -> np.ndarray:
+    return cv2.imdecode(np.frombuffer(picture.png, np.uint8), cv2.IMREAD_UNCHANGED)
+
+
+def test_pictures_are_kept_of_the_first_frame_of_each_run_of_failures(
+    fake_registry: Registry, fakes: types.ModuleType
+) -> None:
+    drawer = Recorder()
+    result = run_cell(scripted_cell(fake_registry, fakes, "cffmm-ffcmfc", drawer))
+    assert result.status == "ok"
+    assert [(p.frame, p.outcome) for p in result.pictures] == [
+        (1, "false"), (3, "missed"), (6, "false"), (9, "missed"), (10, "false")
+    ]
+    assert drawer.calls == [(index, fakes.truth_at(index).cable) for index in (1, 3, 6, 9, 10)]
+    for picture in result.pictures:
+        assert decoded(picture).shape == (2, 3, 3) and (decoded(picture) == picture.frame).all()
+
+
+def test_a_cell_keeps_at_most_six_pictures_and_draws_no_more(fake_registry: Registry, fakes: types.ModuleType) -> None:
+    drawer = Recorder()
+    result = run_cell(scripted_cell(fake_registry, fakes, "fm" * 5 + "c" + "f" * 3, drawer))
+    assert MAX_PICTURES == 6
+    assert [p.frame for p in result.pictures] == [0, 1, 2, 3, 4, 5]
+    assert [index for index, _ in drawer.calls] == [0, 1, 2, 3, 4, 5]
+
+
+def test_a_cell_without_failures_or_without_a_drawer_keeps_no_pictures(
+    fake_registry: Registry, fakes: types.ModuleType
+) -> None:
+    drawer = Recorder()
+    assert run_cell(scripted_cell(fake_registry, fakes, "cc-cc", drawer)).pictures == () and drawer.calls == []
+    assert run_cell(scripted_cell(fake_registry, fakes, "ffmm", None)).pictures == ()
+
+
+def not_a_picture(frame: Frame, estimate: Any) -> Any:
+    """A string at frame 1, a float picture at frame 6, else a good picture."""
+    return {1: "a picture", 6: np.zeros((2, 2, 3))}.get(frame.index, np.zeros((2, 2, 3), np.uint8))
+
+
+@pytest.mark.parametrize(
+    "failure",
+    [RuntimeError("no ink"), SystemExit(3), KeyboardInterrupt(), MemoryError()],
+    ids=lambda failure: type(failure).__name__,
+)
+def test_a_drawer_that_fails_costs_only_its_picture(
+    fake_registry: Registry, fakes: types.ModuleType, failure: BaseException
+) -> None:
+    script = "cffmm-ffcmfc"
+
+    def broken(frame: Frame, estimate: Any) -> np.ndarray:
+        if frame.index == 3:
+            raise failure
+        return not_a_picture(frame, estimate)
+
+    plain = run_cell(scripted_cell(fake_registry, fakes, script, None))
+    result = run_cell(scripted_cell(fake_registry, fakes, script, broken))
+    assert (result.status, result.message, result.detail) == ("ok", "", "")
+    pd.testing.assert_frame_equal(without_timing(result), without_timing(plain))
+    assert [p.frame for p in result.pictures] == [9, 10]
+
+
+def test_drawing_is_not_timed_as_the_tracker_s_step(fake_registry: Registry, fakes: types.ModuleType) -> None:
+    def slow(frame: Frame, estimate: Any) -> np.ndarray:
+        time.sleep(0.2)
+        return np.zeros((2, 2, 3), np.uint8)
+
+    result = run_cell(scripted_cell(fake_registry, fakes, "cfc", slow))
+    assert [p.frame for p in result.pictures] == [1]
+    assert result.scores[1].step_s < 0.1 <= 0.2 <= result.elapsed_s
+
+
+def test_the_built_in_camera_drawer_pictures_a_blind_tracker_s_first_miss(
+    make_cell: MakeCell, fakes: types.ModuleType
+) -> None:
+    (picture,) = run_cell(make_cell("blind")).pictures
+    assert (picture.frame, picture.outcome) == (0, "missed")
+    image = decoded(picture)
+    assert image.shape == (fakes.HEIGHT, fakes.WIDTH, 3) and image.dtype == np.uint8
+    assert np.all(image == (0, 255, 0), axis=2).any()  # the true borders
+
+
+def test_a_result_with_pictures_pickles(make_cell: MakeCell) -> None:
+    result = run_cell(make_cell("noisy", seed=3))
+    assert result.pictures
+    again = pickle.loads(pickle.dumps(result))
+    assert again.pictures == result.pictures and isinstance(again.pictures[0], Picture)
 
 
 # ---------------------------------------------------------------- cell_result

@@ -14,7 +14,7 @@ import pytest
 
 from benchmark.errors import DataError
 from benchmark.model import Outcome
-from benchmark.results import CellKey, CellResult, FrameScore
+from benchmark.results import CellKey, CellResult, FrameScore, Picture
 from benchmark.store import CELL_COLUMNS, SCHEMA_VERSION, ResultStore
 
 ERRORS = ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
@@ -128,6 +128,33 @@ def test_a_failing_write_leaves_no_partial_cell(tmp_path: Path, results: dict[st
         assert store.frame_tables(range(1, 10)).empty
         store.add_cell(run, good)
         assert len(store.cells(run)) == 1
+
+
+PICTURES = (Picture(1, "false", b"\x89PNG first"), Picture(2, "missed", b"\x89PNG second\x00\xff"))
+
+
+def test_pictures_round_trip_with_their_cell_in_frame_order(tmp_path: Path, results: dict[str, CellResult]) -> None:
+    pictured = dataclasses.replace(results["noisy"], pictures=PICTURES[::-1])
+    with ResultStore(tmp_path / "r.sqlite") as store:
+        run = store.start_run([], {})
+        pictured_id = store.add_cell(run, pictured)
+        bare_id = store.add_cell(run, results["blind"])
+        assert store.pictures([pictured_id, bare_id, 999]) == {pictured_id: list(PICTURES)}
+    with ResultStore(tmp_path / "r.sqlite") as reopened:
+        (stored,) = reopened.pictures(range(1, 3)).values()
+    assert [type(picture.png) for picture in stored] == [bytes, bytes] and stored == list(PICTURES)
+
+
+def test_a_failing_write_leaves_no_pictures_behind(tmp_path: Path, results: dict[str, CellResult]) -> None:
+    good = dataclasses.replace(results["noisy"], pictures=PICTURES)
+    broken = dataclasses.replace(good, pictures=(*PICTURES, Picture("not an int", "false", b"")))  # type: ignore[arg-type]
+    with ResultStore(tmp_path / "r.sqlite") as store:
+        run = store.start_run([], {})
+        with pytest.raises(ValueError):
+            store.add_cell(run, broken)
+        assert store.cells(all_runs=True).empty and store.pictures(range(1, 10)) == {}
+        cell_id = store.add_cell(run, good)
+        assert store.pictures([cell_id]) == {cell_id: list(PICTURES)}
 
 
 def test_a_run_shows_its_own_and_its_resumed_cells_latest_per_key(
@@ -286,10 +313,12 @@ def test_a_version_1_database_is_upgraded_in_place(tmp_path: Path, results: dict
         assert store.frame_tables([7])["err_d_px"].tolist() == [1.5]
         assert store.run_problems(1) == []
         assert store.find_ok_cells([results["noisy"].key, old_key]) == {old_key: 7}
+        assert store.pictures([7]) == {}
         run = store.start_run([], {}, problems=["a problem"])
-        new_id = store.add_cell(run, results["noisy"])
+        new_id = store.add_cell(run, dataclasses.replace(results["noisy"], pictures=PICTURES))
     with ResultStore(path) as reopened:
         assert reopened.cells(all_runs=True)["id"].tolist() == [7, new_id]
+        assert reopened.pictures([7, new_id]) == {new_id: list(PICTURES)}
         assert reopened.find_ok_cells([results["noisy"].key]) == {results["noisy"].key: new_id}
         assert reopened.run_problems() == ["a problem"]
     connection = sqlite3.connect(path)
@@ -312,8 +341,28 @@ def test_a_version_2_database_gets_an_empty_training_column(tmp_path: Path, resu
         store.add_cell(store.start_run([], {}), trained)
         assert store.cells(all_runs=True)["training"].tolist() == ["", "camera-train"]
     connection = sqlite3.connect(path)
-    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 3
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION
     connection.close()
+
+
+def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, results: dict[str, CellResult]) -> None:
+    path = tmp_path / "r.sqlite"
+    with ResultStore(path) as store:
+        old_id = store.add_cell(store.start_run([], {}), results["noisy"])
+    connection = sqlite3.connect(path)
+    connection.executescript("DROP TABLE pictures; PRAGMA user_version = 3;")
+    connection.close()
+    with ResultStore(path) as store:
+        assert store.cells(all_runs=True)["id"].tolist() == [old_id]
+        assert len(store.frame_tables([old_id])) == len(results["noisy"].scores)
+        assert store.pictures([old_id]) == {}
+        new_id = store.add_cell(store.start_run([], {}), dataclasses.replace(results["noisy"], pictures=PICTURES))
+        assert store.pictures([old_id, new_id]) == {new_id: list(PICTURES)}
+    connection = sqlite3.connect(path)
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 4
+    columns = [(row[1], row[2], row[5]) for row in connection.execute("PRAGMA table_info(pictures)")]
+    connection.close()
+    assert columns == [("cell_id", "INTEGER", 1), ("frame", "INTEGER", 2), ("outcome", "TEXT", 0), ("png", "BLOB", 0)]
 
 
 def test_a_database_damaged_mid_file_is_a_data_error_naming_it(tmp_path: Path) -> None:

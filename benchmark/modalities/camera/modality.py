@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from benchmark.hookspecs import hookimpl
+from benchmark.modalities.camera.draw import draw_camera_frame
 from benchmark.modalities.camera.io.export import export_camera_sequence
 from benchmark.modalities.camera.io.image_folder import ImageFolder
 from benchmark.modalities.camera.io.sequence_file import ImageSequenceFile
@@ -33,6 +34,7 @@ CAMERA = Modality(
     exporter=export_camera_sequence,
     scene_kinds={"camera": CameraScene.from_dict},
     description="grey images of a cable or pipe; estimates are cable states (d, alpha, w, beta), maybe with a pose",
+    draw=draw_camera_frame,
 )
 """Camera frames hold a ``uint8`` grey image (seeds/000 section 4.2, seeds/004 section II)."""
 

@@ -7,6 +7,7 @@ group, exactly as a third-party sensor would be.
 from __future__ import annotations
 
 from benchmark.hookspecs import hookimpl
+from benchmark.modalities.sonar.draw import draw_sonar_frame
 from benchmark.modalities.sonar.io import SWATH_SUFFIX, SwathFile, export_swath_file
 from benchmark.modalities.sonar.model import PipeEstimate, SonarTruth, Swath
 from benchmark.modalities.sonar.scenes.scene import SonarScene
@@ -24,6 +25,7 @@ SONAR = Modality(
     exporter=export_swath_file,
     scene_kinds={"sonar": SonarScene.from_dict},
     description="multibeam echo-sounder swaths over a pipe; estimates are across-track positions",
+    draw=draw_sonar_frame,
 )
 """Sonar frames hold one ping of a multibeam echo sounder (seeds/003)."""
 

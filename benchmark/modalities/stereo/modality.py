@@ -7,6 +7,7 @@ group, exactly as a third-party sensor would be.
 from __future__ import annotations
 
 from benchmark.hookspecs import hookimpl
+from benchmark.modalities.stereo.draw import draw_stereo_frame
 from benchmark.modalities.stereo.model import StereoMeasurement, StereoTruth, TargetEstimate
 from benchmark.modalities.stereo.scenes.images import StereoImageScene
 from benchmark.modalities.stereo.scenes.scene import StereoScene
@@ -22,6 +23,7 @@ STEREO = Modality(
     scorer=StereoScorer(),
     scene_kinds={"stereo": StereoScene.from_dict, "stereo-images": StereoImageScene.from_dict},
     description="a target boat seen from a chase boat; estimates are its position and velocity",
+    draw=draw_stereo_frame,
 )
 """Stereo frames hold a measurement of the target, None, or an image pair (seeds/002)."""
 

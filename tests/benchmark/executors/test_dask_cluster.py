@@ -11,6 +11,8 @@ import pytest
 from click.testing import CliRunner
 
 from benchmark.cli import main
+from benchmark.results import Picture
+from benchmark.store import DATABASE_NAME, ResultStore
 
 distributed = pytest.importorskip("distributed", reason="the Dask executor needs dask.distributed")
 
@@ -37,6 +39,14 @@ def board(out: Path) -> pd.DataFrame:
     return table[columns].sort_values(["modality", "tracker", "dataset"]).reset_index(drop=True)
 
 
+def pictures(out: Path) -> dict[tuple[str, str, int], list[Picture]]:
+    """The pictures of failed frames of a run's cells, by tracker, dataset and seed."""
+    with ResultStore(out / DATABASE_NAME) as store:
+        cells = store.cells()
+        found = store.pictures(cells["id"])
+    return {(row.tracker, row.dataset, int(row.seed)): found.get(int(row.id), []) for row in cells.itertuples()}
+
+
 def test_a_dask_cluster_gives_the_local_board_value_for_value(cluster, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     runner = CliRunner()
     local = runner.invoke(main, ["run", *SELECTION, "--jobs", "2", "--out", str(tmp_path / "local")])
@@ -51,6 +61,8 @@ def test_a_dask_cluster_gives_the_local_board_value_for_value(cluster, tmp_path:
     mine, theirs = board(tmp_path / "local"), board(tmp_path / "dask")
     assert len(mine) >= 3 and {"camera", "sonar", "stereo"} <= set(mine["modality"])
     pd.testing.assert_frame_equal(mine, theirs)
+    local_pictures = pictures(tmp_path / "local")
+    assert any(local_pictures.values()) and pictures(tmp_path / "dask") == local_pictures
 
 
 def test_a_scheduler_that_cannot_be_reached_is_a_usage_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
