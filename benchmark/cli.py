@@ -11,6 +11,9 @@
     diagnose      the likelihood ceiling of a tracker's observation model on camera sequences
     make-dataset  write a suite's sequences to disk (PNG frames plus sequence files, or swath files)
     cache         the frame cache: info (what it holds) and clear
+    nightly       run, add the run to the history database, report its changes, rewrite the site
+    compare       what changed between two runs of the history
+    report        rebuild the site from the history without running anything
 
 ``run`` forms a cell for every selected tracker, sequence and seed whose
 modalities match, and runs the cells on an executor (``--executor local``:
@@ -33,6 +36,8 @@ Exit status, as pytest's:
 * 2: nothing ran: a usage or data error (an unknown name, a bad parameter,
   an unreadable file, a broken plugin, a results folder in use), reported
   as one line ``Error: ...`` without a traceback;
+* 3: ``nightly`` found a regression (the run is kept in the history and
+  the site written);
 * 130: the user's Ctrl-C; finished cells are kept and published.
 """
 
@@ -40,6 +45,7 @@ from __future__ import annotations
 
 import dataclasses
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -53,7 +59,8 @@ from benchmark.registry import Registry
 from benchmark.runner import DEFAULT_TIMEOUT_S
 
 if TYPE_CHECKING:
-    from benchmark.harness import Publication
+    from benchmark.harness import Publication, RunSummary
+    from benchmark.history.regressions import Thresholds
     from benchmark.store import ResultStore
 
 DEFAULT_OUT = Path("reports") / "latest"
@@ -231,38 +238,86 @@ def cache_clear(cache: Path | None) -> None:
     click.echo(f"{frames.folder}: removed {removed} sequences, {freed / 1e6:.1f} MB")
 
 
+_RUN_OPTIONS = [
+    click.option(
+        "--suite", "suites", multiple=True, metavar="SUITE", help="Run every sequence of a suite (repeatable)."
+    ),
+    click.option(
+        "--tracker", "trackers", multiple=True, metavar="NAME", help="Run this tracker (repeatable; default all)."
+    ),
+    click.option(
+        "--dataset",
+        "datasets",
+        multiple=True,
+        metavar="NAME|PATH",
+        help="A registered sequence (suite/name) or a sequence file, image folder or video (repeatable).",
+    ),
+    click.option("--seeds", type=click.IntRange(min=1), default=1, show_default=True, help="Run seeds 0..N-1."),
+    click.option(
+        "--jobs",
+        type=click.IntRange(min=0),
+        default=None,
+        help="Worker processes (default: all cores; 0 or 1: one worker, one cell at a time).",
+    ),
+    click.option(
+        "--in-process",
+        is_flag=True,
+        help="Run cells in this process, for debuggers and profilers: no time limit inside a step, "
+        "and a tracker that exits or crashes ends the run.",
+    ),
+    click.option(
+        "--init",
+        type=click.Choice(["truth", "none"]),
+        default="truth",
+        show_default=True,
+        help="Initialise trackers from the first frame's ground truth, or not.",
+    ),
+    click.option("--resume", is_flag=True, help="Skip cells this database already finished with status ok."),
+    click.option(
+        "--timeout",
+        type=click.FloatRange(min=0, min_open=True),
+        default=DEFAULT_TIMEOUT_S,
+        show_default=True,
+        metavar="SECONDS",
+        help="Time limit of each cell.",
+    ),
+    click.option("--param", "params", multiple=True, metavar="TRACKER.KEY=VALUE", help="Override a tracker parameter."),
+    click.option(
+        "--train",
+        "train",
+        multiple=True,
+        metavar="SUITE|NAME|PATH",
+        help="Train the trackers that learn on this suite, sequence or sequence file (repeatable), instead of the "
+        "training suite each scored suite names.",
+    ),
+    click.option(
+        "--executor",
+        type=click.Choice(EXECUTORS),
+        default="local",
+        show_default=True,
+        help="Run the cells in worker processes of this machine, or as tasks of a Dask cluster.",
+    ),
+    click.option(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="The Dask scheduler to send the cells to (tcp://host:8786); without it --executor dask starts a local "
+        "cluster of --jobs workers.",
+    ),
+    cache_option,
+    click.option("--no-cache", is_flag=True, help="Render every simulated sequence in every cell that reads it."),
+]
+"""The options of ``run`` that choose and run the cells, shared by ``nightly``; ``--out`` is each command's own."""
+
+
+def run_options(command: Callable[..., Any]) -> Callable[..., Any]:
+    """Add the options of :data:`_RUN_OPTIONS` to a command, in the order ``--help`` lists them."""
+    for option in reversed(_RUN_OPTIONS):
+        command = option(command)
+    return command
+
+
 @main.command("run")
-@click.option("--suite", "suites", multiple=True, metavar="SUITE", help="Run every sequence of a suite (repeatable).")
-@click.option(
-    "--tracker", "trackers", multiple=True, metavar="NAME", help="Run this tracker (repeatable; default all)."
-)
-@click.option(
-    "--dataset",
-    "datasets",
-    multiple=True,
-    metavar="NAME|PATH",
-    help="A registered sequence (suite/name) or a sequence file, image folder or video (repeatable).",
-)
-@click.option("--seeds", type=click.IntRange(min=1), default=1, show_default=True, help="Run seeds 0..N-1.")
-@click.option(
-    "--jobs",
-    type=click.IntRange(min=0),
-    default=None,
-    help="Worker processes (default: all cores; 0 or 1: one worker, one cell at a time).",
-)
-@click.option(
-    "--in-process",
-    is_flag=True,
-    help="Run cells in this process, for debuggers and profilers: no time limit inside a step, "
-    "and a tracker that exits or crashes ends the run.",
-)
-@click.option(
-    "--init",
-    type=click.Choice(["truth", "none"]),
-    default="truth",
-    show_default=True,
-    help="Initialise trackers from the first frame's ground truth, or not.",
-)
+@run_options
 @click.option(
     "--out",
     type=click.Path(file_okay=False, path_type=Path),
@@ -270,42 +325,21 @@ def cache_clear(cache: Path | None) -> None:
     show_default=True,
     help="Folder for results.sqlite and the leaderboards.",
 )
-@click.option("--resume", is_flag=True, help="Skip cells this database already finished with status ok.")
-@click.option(
-    "--timeout",
-    type=click.FloatRange(min=0, min_open=True),
-    default=DEFAULT_TIMEOUT_S,
-    show_default=True,
-    metavar="SECONDS",
-    help="Time limit of each cell.",
-)
-@click.option("--param", "params", multiple=True, metavar="TRACKER.KEY=VALUE", help="Override a tracker parameter.")
-@click.option(
-    "--train",
-    "train",
-    multiple=True,
-    metavar="SUITE|NAME|PATH",
-    help="Train the trackers that learn on this suite, sequence or sequence file (repeatable), instead of the "
-    "training suite each scored suite names.",
-)
-@click.option(
-    "--executor",
-    type=click.Choice(EXECUTORS),
-    default="local",
-    show_default=True,
-    help="Run the cells in worker processes of this machine, or as tasks of a Dask cluster.",
-)
-@click.option(
-    "--scheduler",
-    metavar="ADDRESS",
-    help="The Dask scheduler to send the cells to (tcp://host:8786); without it --executor dask starts a local "
-    "cluster of --jobs workers.",
-)
-@cache_option
-@click.option("--no-cache", is_flag=True, help="Render every simulated sequence in every cell that reads it.")
 @click.pass_context
-def run(
+def run(ctx: click.Context, out: Path, **options: Any) -> None:
+    """Run trackers on datasets, store the cells and publish the leaderboard.
+
+    Exits with 1 after publishing if a cell ended in error or timeout.
+    """
+    summary = _run_benchmark(ctx, out, **options)
+    if not summary.clean:
+        ctx.exit(EXIT_FAILED)
+
+
+def _run_benchmark(
     ctx: click.Context,
+    out: Path,
+    *,
     suites: tuple[str, ...],
     trackers: tuple[str, ...],
     datasets: tuple[str, ...],
@@ -313,7 +347,6 @@ def run(
     jobs: int | None,
     in_process: bool,
     init: str,
-    out: Path,
     resume: bool,
     timeout: float,
     params: tuple[str, ...],
@@ -322,10 +355,10 @@ def run(
     scheduler: str | None,
     cache: Path | None,
     no_cache: bool,
-) -> None:
-    """Run trackers on datasets, store the cells and publish the leaderboard.
+) -> RunSummary:
+    """Run the cells the options of :func:`run_options` select into ``out``, show the board and say how it went.
 
-    Exits with 1 after publishing if a cell ended in error or timeout.
+    Exits with 130 on the user's Ctrl-C, after publishing the cells finished.
     """
     from benchmark.executors import open_executor
     from benchmark.frame_cache import FrameCache
@@ -363,8 +396,162 @@ def run(
     failed = summary.statuses.total() - summary.statuses["ok"]
     if failed:
         click.echo(f"{failed} of {summary.statuses.total()} cells did not end ok.", err=True)
+    return summary
+
+
+DEFAULT_HISTORY = Path("reports") / "history.sqlite"
+DEFAULT_SITE = Path("reports") / "site"
+EXIT_REGRESSION = 3
+"""``nightly`` found a regression (after storing the run and writing the site)."""
+
+history_option = click.option(
+    "--history",
+    default=str(DEFAULT_HISTORY),
+    show_default=True,
+    metavar="FILE|URL",
+    help="The history database: an SQLite file or an SQLAlchemy URL (postgresql://...).",
+)
+site_option = click.option(
+    "--site",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=DEFAULT_SITE,
+    show_default=True,
+    help="Folder the static HTML report is written to.",
+)
+
+
+def threshold_options(command: Callable[..., Any]) -> Callable[..., Any]:
+    """Add ``--min-effect METRIC=VALUE`` and ``--window N``, the thresholds of a regression."""
+    command = click.option(
+        "--window",
+        type=click.IntRange(min=1),
+        default=5,
+        show_default=True,
+        help="Compare with this many earlier runs (for speed: on the same machine).",
+    )(command)
+    return click.option(
+        "--min-effect",
+        "min_effects",
+        multiple=True,
+        metavar="METRIC=VALUE",
+        help="Smallest change that counts for a metric: points for a rate (default 2), a share for an RMSE "
+        "or fps (default 0.1) (repeatable).",
+    )(command)
+
+
+def _thresholds(min_effects: tuple[str, ...], window: int) -> Thresholds:
+    from benchmark.history.regressions import Thresholds
+
+    overrides = {}
+    for text in min_effects:
+        metric, sep, value = text.partition("=")
+        try:
+            overrides[metric.strip()] = float(value)
+        except ValueError:
+            sep = ""
+        if not sep or not metric.strip():
+            raise click.BadParameter(f"expected METRIC=NUMBER, got {text!r}", param_hint="--min-effect")
+    return Thresholds(window=window, overrides=overrides)
+
+
+@main.command("nightly")
+@run_options
+@click.option(
+    "--out",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=Path("reports") / "nightly",
+    show_default=True,
+    help="Folder for the run's results.sqlite and leaderboards.",
+)
+@history_option
+@site_option
+@threshold_options
+@click.pass_context
+def nightly(
+    ctx: click.Context,
+    out: Path,
+    history: str,
+    site: Path,
+    min_effects: tuple[str, ...],
+    window: int,
+    **options: Any,
+) -> None:
+    """Run the benchmark, add the run to the history, report its changes and rewrite the site.
+
+    Takes every option of run.  Exits with 3 when a regression was found,
+    else with 1 when a cell failed, as run does.
+    """
+    from datetime import UTC, datetime
+
+    from benchmark.history.database import History
+    from benchmark.history.nightly import describe_changes, record_nightly
+    from benchmark.history.regressions import find_changes
+    from benchmark.site import build_site
+
+    thresholds = _thresholds(min_effects, window)
+    started = datetime.now(UTC).isoformat(timespec="seconds")
+    summary = _run_benchmark(ctx, out, **options)
+    registry = ctx.obj.registry
+    with History(history) as database:
+        run_id = record_nightly(
+            database,
+            out,
+            summary.publication.run_id,
+            registry.modalities,
+            started=started,
+            argv=sys.argv,
+            seeds=options["seeds"],
+        )
+        changes = find_changes(database.cells(), run_id, thresholds)
+        index = build_site(database, site, registry.modalities, thresholds=thresholds)
+    click.echo(describe_changes(changes, f"Changes of nightly run {run_id}"))
+    click.echo(f"history {history}: run {run_id}; site {index}", err=True)
+    if (changes["verdict"] == "regression").any():
+        ctx.exit(EXIT_REGRESSION)
     if not summary.clean:
         ctx.exit(EXIT_FAILED)
+
+
+@main.command("compare")
+@click.argument("run_a", type=int)
+@click.argument("run_b", type=int)
+@history_option
+@threshold_options
+def compare(run_a: int, run_b: int, history: str, min_effects: tuple[str, ...], window: int) -> None:
+    """Print what changed from nightly run RUN_A to RUN_B of the history.
+
+    Speeds are compared only when both ran on the same machine.
+    """
+    from benchmark.errors import DataError
+    from benchmark.history.database import History
+    from benchmark.history.nightly import describe_changes
+    from benchmark.history.regressions import find_changes
+
+    thresholds = _thresholds(min_effects, window)
+    with History(history, must_exist=True) as database:
+        cells = database.cells([run_a, run_b])
+    missing = sorted({run_a, run_b} - set(cells["run_id"]))
+    if missing:
+        raise DataError(f"history database {history}: no run {', '.join(map(str, missing))}")
+    click.echo(describe_changes(find_changes(cells, run_b, thresholds, against=[run_a]), f"Run {run_a} -> {run_b}"))
+
+
+@main.command("report")
+@history_option
+@site_option
+@threshold_options
+@click.pass_obj
+def report_command(session: Session, history: str, site: Path, min_effects: tuple[str, ...], window: int) -> None:
+    """Rebuild the static HTML report from the history database, without running anything."""
+    from benchmark.errors import DataError
+    from benchmark.history.database import History
+    from benchmark.site import build_site
+
+    with History(history, must_exist=True) as database:
+        if database.runs().empty:
+            raise DataError(f"history database {history}: no runs yet (run 'trackbench nightly' first)")
+        index = build_site(database, site, session.registry.modalities, thresholds=_thresholds(min_effects, window))
+    click.echo(f"wrote {index}")
 
 
 def _results_store(out: Path) -> ResultStore:

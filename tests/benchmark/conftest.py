@@ -23,7 +23,10 @@ import annotated_types
 import cv2
 import numpy as np
 import pytest
+from click.testing import CliRunner, Result
 
+import benchmark.plugins
+from benchmark.cli import main
 from benchmark.errors import DataError
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.modalities.camera.model import CableState, CameraTruth
@@ -289,3 +292,27 @@ def make_image() -> ImageMaker:
         return image
 
     return make
+
+
+Invoke = Callable[..., Result]
+
+
+@pytest.fixture
+def loads(fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch) -> list[tuple[str, ...]]:
+    """Serve the fake registry to the CLI; records the ``disable`` argument of every load."""
+    calls: list[tuple[str, ...]] = []
+
+    def load_registry(disable: tuple[str, ...] = (), strict: bool = False) -> Registry:
+        calls.append(tuple(disable))
+        return fakes.make_registry()
+
+    monkeypatch.setattr(benchmark.plugins, "load_registry", load_registry)
+    return calls
+
+
+@pytest.fixture
+def invoke(loads: list[tuple[str, ...]]) -> Invoke:
+    def run(*args: str) -> Result:
+        return CliRunner().invoke(main, list(args))
+
+    return run

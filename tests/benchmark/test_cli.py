@@ -5,14 +5,13 @@ from __future__ import annotations
 import dataclasses
 import sqlite3
 import types
-from collections.abc import Callable
 from pathlib import Path
 
 import cv2
 import numpy as np
 import pandas as pd
 import pytest
-from click.testing import CliRunner, Result
+from click.testing import CliRunner
 
 import benchmark.plugins
 from benchmark.cli import main
@@ -23,28 +22,7 @@ from benchmark.model import Frame, SequenceInfo
 from benchmark.registry import Registry
 from benchmark.tracker import Tracker
 
-Invoke = Callable[..., Result]
-
-
-@pytest.fixture
-def loads(fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch) -> list[tuple[str, ...]]:
-    """Serve the fake registry to the CLI; records the ``disable`` argument of every load."""
-    calls: list[tuple[str, ...]] = []
-
-    def load_registry(disable: tuple[str, ...] = (), strict: bool = False) -> Registry:
-        calls.append(tuple(disable))
-        return fakes.make_registry()
-
-    monkeypatch.setattr(benchmark.plugins, "load_registry", load_registry)
-    return calls
-
-
-@pytest.fixture
-def invoke(loads: list[tuple[str, ...]]) -> Invoke:
-    def run(*args: str) -> Result:
-        return CliRunner().invoke(main, list(args))
-
-    return run
+from .conftest import Invoke
 
 
 def board(out: Path) -> pd.DataFrame:

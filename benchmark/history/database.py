@@ -1,0 +1,339 @@
+"""The history database: every nightly run, its machine and commit, and each cell's summary, frames and pictures.
+
+A nightly run (``trackbench nightly``) appends one row to ``runs`` and one
+row per cell to ``cells``, copied from the run's results database
+(:mod:`benchmark.store`) in one transaction.  Tables::
+
+    runs(id, started, finished, version, commit, machine_key, machine JSON, argv JSON, seeds)
+    cells(id, run_id -> runs, tracker, tracker_version, tracker_key, params JSON, dataset,
+          dataset_key, modality, seed, init, training, status, message, frames, elapsed_s,
+          metrics JSON)
+    cell_frames(cell_id -> cells, frames BLOB)
+    cell_pictures(cell_id -> cells, frame, outcome, png BLOB)
+
+``metrics`` holds the cell's rates, RMSEs and fps
+(:func:`benchmark.results.summarise`); ``cell_frames`` its frame table
+(outcome, errors and step time of every frame, compressed JSON) and
+``cell_pictures`` the frames it failed on, drawn
+(:class:`benchmark.results.Picture`), so that the site can be rebuilt from
+the history alone.  Frames and pictures (about 0.5 MB for a camera cell
+that failed often) are kept for the last :data:`DETAILED_RUNS` runs only;
+the summaries of every run stay, for the trends.
+
+A *series* is what nightly runs are compared along: a tracker's name, the
+dataset's identity key, the seed and the initialisation.  The tracker's
+version and parameters (``tracker_key`` hashes them) are not part of it:
+a change of either is exactly what the regression view must catch, and the
+report names it beside the change.
+
+The database is SQLite by default; any SQLAlchemy URL (``postgresql://...``)
+works too, so a team can share one history.  Any database error is a
+:class:`~benchmark.errors.DataError` naming the database.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import zlib
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any, Concatenate, ParamSpec, TypeVar
+
+import pandas as pd
+import sqlalchemy as sa
+from sqlalchemy.exc import SQLAlchemyError
+
+from benchmark.errors import DataError
+from benchmark.leaderboard import error_columns
+from benchmark.modality import Modality
+from benchmark.results import Picture, summarise
+from benchmark.store import ResultStore
+
+DETAILED_RUNS = 30
+"""How many of the latest runs keep their cells' frame tables and pictures."""
+
+SERIES = ["tracker", "dataset_key", "seed", "init"]
+"""The columns of :meth:`History.cells` that identify a series of comparable cells."""
+
+_metadata = sa.MetaData()
+_runs = sa.Table(
+    "runs",
+    _metadata,
+    sa.Column("id", sa.Integer, primary_key=True),
+    sa.Column("started", sa.String(32), nullable=False),
+    sa.Column("finished", sa.String(32), nullable=False),
+    sa.Column("version", sa.String(64), nullable=False),
+    sa.Column("commit", sa.String(64), nullable=False),
+    sa.Column("machine_key", sa.String(32), nullable=False),
+    sa.Column("machine", sa.Text, nullable=False),
+    sa.Column("argv", sa.Text, nullable=False),
+    sa.Column("seeds", sa.Integer, nullable=False),
+)
+_cells = sa.Table(
+    "cells",
+    _metadata,
+    sa.Column("id", sa.Integer, primary_key=True),
+    sa.Column("run_id", sa.Integer, sa.ForeignKey("runs.id"), nullable=False, index=True),
+    sa.Column("tracker", sa.String(200), nullable=False),
+    sa.Column("tracker_version", sa.String(64), nullable=False),
+    sa.Column("tracker_key", sa.String(200), nullable=False),
+    sa.Column("params", sa.Text, nullable=False),
+    sa.Column("dataset", sa.Text, nullable=False),
+    sa.Column("dataset_key", sa.String(200), nullable=False),
+    sa.Column("modality", sa.String(64), nullable=False),
+    sa.Column("seed", sa.Integer, nullable=False),
+    sa.Column("init", sa.String(16), nullable=False),
+    sa.Column("training", sa.Text, nullable=False),
+    sa.Column("status", sa.String(16), nullable=False),
+    sa.Column("message", sa.Text, nullable=False),
+    sa.Column("frames", sa.Integer, nullable=False),
+    sa.Column("elapsed_s", sa.Float, nullable=False),
+    sa.Column("metrics", sa.Text, nullable=False),
+)
+_cell_frames = sa.Table(
+    "cell_frames",
+    _metadata,
+    sa.Column("cell_id", sa.Integer, sa.ForeignKey("cells.id"), primary_key=True),
+    sa.Column("frames", sa.LargeBinary, nullable=False),
+)
+_cell_pictures = sa.Table(
+    "cell_pictures",
+    _metadata,
+    sa.Column("cell_id", sa.Integer, sa.ForeignKey("cells.id"), primary_key=True),
+    sa.Column("frame", sa.Integer, primary_key=True),
+    sa.Column("outcome", sa.String(16), nullable=False),
+    sa.Column("png", sa.LargeBinary, nullable=False),
+)
+
+_P = ParamSpec("_P")
+_T = TypeVar("_T")
+
+
+def _reports_database_errors(method: Callable[Concatenate[History, _P], _T]) -> Callable[Concatenate[History, _P], _T]:
+    @functools.wraps(method)
+    def wrapper(self: History, /, *args: _P.args, **kwargs: _P.kwargs) -> _T:
+        try:
+            return method(self, *args, **kwargs)
+        except SQLAlchemyError as exc:
+            raise DataError(f"history database {self.location}: {type(exc).__name__}: {exc}") from exc
+
+    return wrapper
+
+
+def database_url(location: str | Path) -> str:
+    """An SQLAlchemy URL as given, or the URL of an SQLite file at a path."""
+    text = str(location)
+    return text if "://" in text else f"sqlite:///{Path(text).expanduser().resolve()}"
+
+
+def _pack(frames: pd.DataFrame) -> bytes:
+    return zlib.compress(frames.to_json(orient="split", index=False, double_precision=15).encode())
+
+
+def _unpack(blob: bytes) -> pd.DataFrame:
+    from io import StringIO
+
+    return pd.read_json(StringIO(zlib.decompress(blob).decode()), orient="split")
+
+
+class History:
+    """A history database, created on first use.
+
+    Parameters
+    ----------
+    location : str or path-like
+        An SQLite file (its folder is created) or an SQLAlchemy URL.
+    must_exist : bool
+        Refuse an SQLite file that does not exist yet, instead of creating it.
+
+    Raises
+    ------
+    DataError
+        If the database cannot be opened or is not a trackbench history;
+        every method raises it, naming the database, for any database error.
+    """
+
+    def __init__(self, location: str | Path, *, must_exist: bool = False) -> None:
+        self.location = str(location)
+        url = database_url(location)
+        if url.startswith("sqlite:///"):
+            path = Path(url.removeprefix("sqlite:///"))
+            if must_exist and not path.is_file():
+                raise DataError(f"history database {self.location}: no such file (run 'trackbench nightly' first)")
+            path.parent.mkdir(parents=True, exist_ok=True)
+        self._engine = sa.create_engine(url)
+        self._create()
+
+    @_reports_database_errors
+    def _create(self) -> None:
+        """Create the tables that are missing; refuse a database whose tables of our names are not ours."""
+        _metadata.create_all(self._engine)
+        inspector = sa.inspect(self._engine)
+        for table in _metadata.sorted_tables:
+            found = {column["name"] for column in inspector.get_columns(table.name)}
+            if not set(table.columns.keys()) <= found:
+                raise DataError(
+                    f"history database {self.location}: its table {table.name!r} is not a trackbench history's "
+                    "(columns missing); the database was left unchanged"
+                )
+
+    def close(self) -> None:
+        """Release the database's connections."""
+        self._engine.dispose()
+
+    def __enter__(self) -> History:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    @_reports_database_errors
+    def record(
+        self,
+        results: ResultStore,
+        run_id: int,
+        modalities: Mapping[str, Modality],
+        *,
+        started: str,
+        version: str,
+        commit: str,
+        machine: Mapping[str, Any],
+        machine_key: str,
+        argv: Sequence[str],
+        seeds: int,
+    ) -> int:
+        """Copy a finished run of a results database into the history and return its history id.
+
+        Parameters
+        ----------
+        results : ResultStore
+            The run's results database.
+        run_id : int
+            The run in ``results`` (its cells, run or resumed).
+        modalities : Mapping
+            The registered modalities, whose scorers name the error columns.
+        started, version, commit, machine, machine_key, argv, seeds
+            When the nightly started (ISO 8601), trackbench's version and git
+            commit, the machine (:mod:`benchmark.history.machine`), the
+            command line and the number of seeds.
+        """
+        cells = results.cells(run_id)
+        frames = results.frame_tables(cells["id"])
+        pictures = results.pictures(cells["id"])
+        by_cell = {int(cell_id): group.drop(columns="cell_id") for cell_id, group in frames.groupby("cell_id")}
+        with self._engine.begin() as connection:
+            history_run = connection.execute(
+                _runs.insert().values(
+                    started=started,
+                    finished=datetime.now(UTC).isoformat(timespec="seconds"),
+                    version=version,
+                    commit=commit,
+                    machine_key=machine_key,
+                    machine=json.dumps(dict(machine)),
+                    argv=json.dumps(list(argv)),
+                    seeds=seeds,
+                )
+            ).inserted_primary_key[0]
+            for cell in cells.itertuples(index=False):
+                table = by_cell.get(int(cell.id), frames.iloc[0:0].drop(columns="cell_id"))
+                columns = error_columns(modalities.get(cell.modality), table)
+                cell_id = connection.execute(
+                    _cells.insert().values(
+                        run_id=history_run,
+                        **{name: getattr(cell, name) for name in _COPIED},
+                        seed=int(cell.seed),
+                        frames=int(cell.frames),
+                        elapsed_s=float(cell.elapsed_s),
+                        metrics=json.dumps(summarise(table, columns)),
+                    )
+                ).inserted_primary_key[0]
+                connection.execute(_cell_frames.insert().values(cell_id=cell_id, frames=_pack(table)))
+                rows = [
+                    {"cell_id": cell_id, "frame": p.frame, "outcome": p.outcome, "png": p.png}
+                    for p in pictures.get(int(cell.id), [])
+                ]
+                if rows:
+                    connection.execute(_cell_pictures.insert(), rows)
+            self._forget_details(connection)
+        return int(history_run)
+
+    @staticmethod
+    def _forget_details(connection: sa.Connection) -> None:
+        """Drop the frame tables and pictures of the runs older than the last :data:`DETAILED_RUNS`."""
+        kept = sa.select(_runs.c.id).order_by(_runs.c.id.desc()).limit(DETAILED_RUNS)
+        old_cells = sa.select(_cells.c.id).where(_cells.c.run_id.not_in(kept.scalar_subquery()))
+        for table in (_cell_frames, _cell_pictures):
+            connection.execute(table.delete().where(table.c.cell_id.in_(old_cells.scalar_subquery())))
+
+    @_reports_database_errors
+    def runs(self) -> pd.DataFrame:
+        """Every run, oldest first: ``id``, ``started``, ``finished``, ``version``, ``commit``, ``machine_key``,
+        ``machine`` (a dict), ``argv`` (a list) and ``seeds``."""
+        with self._engine.connect() as connection:
+            table = pd.DataFrame(connection.execute(sa.select(_runs).order_by(_runs.c.id)).mappings().all())
+        if table.empty:
+            return pd.DataFrame(columns=[column.name for column in _runs.columns])
+        return table.assign(machine=table["machine"].map(json.loads), argv=table["argv"].map(json.loads))
+
+    @_reports_database_errors
+    def cells(self, run_ids: Iterable[int] | None = None) -> pd.DataFrame:
+        """The cells of some runs (default: all), one row each, their metrics as columns.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The columns of ``cells`` (``params`` as a dict) with ``metrics``
+            spread into ``correct_pct``, ``false_pct``, ``missed_pct``,
+            ``rmse_*`` and ``fps``, plus the run's ``started`` and
+            ``machine_key``; ordered by run, then cell.
+        """
+        query = sa.select(_cells, _runs.c.started, _runs.c.machine_key).join(_runs).order_by(_cells.c.id)
+        if run_ids is not None:
+            query = query.where(_cells.c.run_id.in_([int(run) for run in run_ids]))
+        with self._engine.connect() as connection:
+            table = pd.DataFrame(connection.execute(query).mappings().all())
+        if table.empty:
+            return pd.DataFrame(columns=[*(column.name for column in _cells.columns), "started", "machine_key"])
+        metrics = pd.DataFrame([json.loads(text) for text in table["metrics"]], index=table.index)
+        table = table.drop(columns="metrics").assign(params=table["params"].map(json.loads))
+        return pd.concat([table, metrics.drop(columns=["frames"], errors="ignore")], axis=1)
+
+    @_reports_database_errors
+    def frames(self, cell_id: int) -> pd.DataFrame:
+        """The frame table of a cell: ``frame``, ``outcome``, the error columns and ``step_ms``."""
+        with self._engine.connect() as connection:
+            blob = connection.execute(
+                sa.select(_cell_frames.c.frames).where(_cell_frames.c.cell_id == int(cell_id))
+            ).scalar_one_or_none()
+        if blob is None:
+            raise DataError(
+                f"history database {self.location}: no frame table of cell {cell_id} "
+                f"(only the last {DETAILED_RUNS} runs keep theirs)"
+            )
+        return _unpack(blob)
+
+    @_reports_database_errors
+    def pictures(self, cell_id: int) -> list[Picture]:
+        """The pictures of the frames a cell failed on, in frame order."""
+        query = sa.select(_cell_pictures).where(_cell_pictures.c.cell_id == int(cell_id)).order_by("frame")
+        with self._engine.connect() as connection:
+            rows = connection.execute(query).mappings().all()
+        return [Picture(int(row["frame"]), str(row["outcome"]), bytes(row["png"])) for row in rows]
+
+
+_COPIED = (
+    "tracker",
+    "tracker_version",
+    "tracker_key",
+    "params",
+    "dataset",
+    "dataset_key",
+    "modality",
+    "init",
+    "training",
+    "status",
+    "message",
+)
+"""Columns of a results database's cells copied as they are."""

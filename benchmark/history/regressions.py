@@ -1,0 +1,300 @@
+"""Regressions: what changed in a nightly run against the runs before it, and where each metric stepped.
+
+For each tracker, dataset and metric a run is compared with the earlier
+runs of the same series (:data:`benchmark.history.database.SERIES`):
+
+* **Accuracy** (rates and RMSEs) compares the run's per-seed values with
+  those of the last ``window`` earlier runs.  It is a change when the 95 %
+  percentile-bootstrap interval of the difference of the means (seeds
+  resampled within each side, :func:`scipy.stats.bootstrap`) excludes
+  zero *and* the difference reaches the metric's minimum effect: 2 points
+  for a rate, 10 % of the earlier value for an RMSE.  A deterministic
+  tracker, or a single seed on both sides, has a point interval, so the
+  minimum effect alone decides.
+* **Speed** (fps) compares the run's median over seeds with the median of
+  the last ``window`` earlier runs *on the same machine*; a change is a
+  relative difference of at least 10 %.  Cells that spent less than
+  ``min_step_s`` in their trackers' steps are too short to time.
+
+A change for the worse is a regression, for the better an improvement.
+:func:`steps` finds where a metric's level changed over the whole history
+(penalised change-point detection, ``ruptures``), as a trend plot shows
+it.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+import ruptures
+from scipy.stats import DegenerateDataWarning, bootstrap
+
+from benchmark.history.database import SERIES
+
+CHANGE_COLUMNS = [
+    "tracker",
+    "dataset",
+    "metric",
+    "kind",
+    "before",
+    "after",
+    "change",
+    "low",
+    "high",
+    "verdict",
+    "cause",
+]
+"""Columns of :func:`find_changes`'s table."""
+
+
+def lower_is_better(metric: str) -> bool:
+    """Whether a smaller value of ``metric`` is better (errors and failure rates)."""
+    return metric.startswith("rmse_") or metric in ("false_pct", "missed_pct")
+
+
+@dataclass(frozen=True)
+class Thresholds:
+    """The minimum effects, and how many earlier runs make the baseline.
+
+    Attributes
+    ----------
+    rate_points : float
+        Minimum change of a rate, percentage points.
+    rmse_relative : float
+        Minimum change of an RMSE, as a share of the earlier value.
+    speed_relative : float
+        Minimum change of fps, as a share of the earlier median.
+    window : int
+        The earlier runs a run is compared with.
+    min_step_s : float
+        Speed is judged only where tonight's cells spent at least this
+        long in ``step`` together: the fps of a few milliseconds is noise.
+    overrides : Mapping
+        Metric name to its own minimum effect (points for a rate, a share
+        for an RMSE or fps), e.g. ``{"rmse_d_px": 0.2}``.
+    """
+
+    rate_points: float = 2.0
+    rmse_relative: float = 0.10
+    speed_relative: float = 0.10
+    window: int = 5
+    min_step_s: float = 2.0
+    overrides: Mapping[str, float] = field(default_factory=dict)
+
+    def minimum_effect(self, metric: str, before: float) -> float:
+        """The smallest change of ``metric`` from ``before`` that counts, in the metric's units."""
+        if metric.endswith("_pct"):
+            return self.overrides.get(metric, self.rate_points)
+        share = self.overrides.get(metric, self.speed_relative if metric == "fps" else self.rmse_relative)
+        return share * abs(before)
+
+
+def accuracy_metrics(cells: pd.DataFrame) -> list[str]:
+    """The rates and RMSEs present in a table of cells."""
+    return ["correct_pct", "false_pct", "missed_pct", *(c for c in cells.columns if str(c).startswith("rmse_"))]
+
+
+def _varies(sample: np.ndarray) -> bool:
+    return sample.size > 1 and bool(np.ptp(sample) > 0)
+
+
+def _difference_interval(after: np.ndarray, before: np.ndarray) -> tuple[float, float]:
+    """95 % percentile-bootstrap interval of ``mean(after) - mean(before)``, seeds resampled within each side.
+
+    A side of one value, or of equal values, is taken as exact.
+    """
+    def difference(a: np.ndarray, b: np.ndarray, axis: int = -1) -> np.ndarray:
+        return np.mean(a, axis=axis) - np.mean(b, axis=axis)
+
+    varying = [sample for sample in (after, before) if _varies(sample)]
+    if not varying:
+        point = float(after.mean() - before.mean())
+        return point, point
+    if len(varying) == 1:
+        sample = varying[0]
+        sign = 1.0 if sample is after else -1.0
+        fixed = before.mean() if sample is after else after.mean()
+        data: tuple[np.ndarray, ...] = (sample,)
+
+        def statistic(a: np.ndarray, axis: int = -1) -> np.ndarray:
+            return sign * (np.mean(a, axis=axis) - fixed)
+    else:
+        data, statistic = (after, before), difference
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegenerateDataWarning)
+        result = bootstrap(
+            data, statistic, vectorized=True, n_resamples=2000, method="percentile", rng=np.random.default_rng(0)
+        )
+    return float(result.confidence_interval.low), float(result.confidence_interval.high)
+
+
+def _verdict(metric: str, change: float, significant: bool, minimum: float) -> str:
+    if not significant or abs(change) < minimum or change == 0:
+        return ""
+    worse = change > 0 if lower_is_better(metric) else change < 0
+    return "regression" if worse else "improvement"
+
+
+def _values(cells: pd.DataFrame, column: str) -> str:
+    return ", ".join(sorted({str(value) for value in cells[column]}))
+
+
+def _cause(now: pd.DataFrame, earlier: pd.DataFrame) -> str:
+    """What differs between the cells of two runs besides their results: the tracker's version and parameters."""
+    causes = []
+    if _values(now, "tracker_version") != _values(earlier, "tracker_version"):
+        causes.append(f"version {_values(earlier, 'tracker_version')} -> {_values(now, 'tracker_version')}")
+    params_now, params_earlier = pd.DataFrame(list(now["params"])), pd.DataFrame(list(earlier["params"]))
+    for name in sorted(set(params_now.columns) | set(params_earlier.columns)):
+        old = _values(params_earlier, name) if name in params_earlier else "(none)"
+        new = _values(params_now, name) if name in params_now else "(none)"
+        if old != new:
+            causes.append(f"{name} {old} -> {new}")
+    if not causes and _values(now, "tracker_key") != _values(earlier, "tracker_key"):
+        causes.append("training or tracker key changed")
+    return "; ".join(causes)
+
+
+def find_changes(
+    history_cells: pd.DataFrame,
+    run_id: int,
+    thresholds: Thresholds | None = None,
+    against: Sequence[int] | None = None,
+) -> pd.DataFrame:
+    """The changes of a run against the runs before it (or other given runs), regressions first.
+
+    Parameters
+    ----------
+    history_cells : pandas.DataFrame
+        Cells of the history (:meth:`benchmark.history.database.History.cells`),
+        at least those of ``run_id`` and the runs before it.
+    run_id : int
+        The run to judge.
+    thresholds : Thresholds, optional
+        Minimum effects and baseline window; the defaults above.
+    against : sequence of int, optional
+        The runs to compare with (``trackbench compare``); by default the
+        last ``thresholds.window`` runs before ``run_id`` that share a series
+        with it (for speed: on the same machine).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns :data:`CHANGE_COLUMNS`: per tracker, dataset and metric with
+        a verdict, the earlier and current values (mean over seeds, or
+        median for fps), their difference with its interval, ``kind``
+        (``accuracy`` or ``speed``), ``verdict`` (``regression`` or
+        ``improvement``) and ``cause`` (the tracker's version or parameters
+        that changed, if any).  Only cells with status ``ok`` count.
+    """
+    thresholds = thresholds or Thresholds()
+    cells = history_cells[history_cells["status"] == "ok"]
+    now = cells[cells["run_id"] == run_id]
+    rows: list[dict[str, object]] = []
+    if now.empty:
+        return pd.DataFrame(columns=CHANGE_COLUMNS)
+    machine = now["machine_key"].iloc[0]
+    candidates = cells["run_id"].isin(against) if against is not None else cells["run_id"] < run_id
+    earlier_all = cells[candidates & cells.set_index(SERIES).index.isin(now.set_index(SERIES).index)]
+    for (tracker, dataset_key), current in now.groupby(["tracker", "dataset_key"], sort=True):
+        earlier = earlier_all[(earlier_all["tracker"] == tracker) & (earlier_all["dataset_key"] == dataset_key)]
+        if earlier.empty:
+            continue
+        accuracy_runs = sorted(earlier["run_id"].unique())[-thresholds.window :]
+        baseline = earlier[earlier["run_id"].isin(accuracy_runs)]
+        shared = dict(tracker=tracker, dataset=current["dataset"].iloc[-1], cause=_cause(current, baseline))
+        for metric in accuracy_metrics(current):
+            after = current[metric].dropna().to_numpy(dtype=float) if metric in current else np.array([])
+            before = baseline[metric].dropna().to_numpy(dtype=float) if metric in baseline else np.array([])
+            if not after.size or not before.size:
+                continue
+            low, high = _difference_interval(after, before)
+            change = float(after.mean() - before.mean())
+            minimum = thresholds.minimum_effect(metric, float(before.mean()))
+            verdict = _verdict(metric, change, low > 0 or high < 0, minimum)
+            if verdict:
+                rows.append(
+                    dict(shared, metric=metric, kind="accuracy", before=float(before.mean()),
+                         after=float(after.mean()), change=change, low=low, high=high, verdict=verdict)
+                )
+        same_machine = earlier[earlier["machine_key"] == machine]
+        speed_runs = sorted(same_machine["run_id"].unique())[-thresholds.window :]
+        speeds = same_machine[same_machine["run_id"].isin(speed_runs)].groupby("run_id")["fps"].median().dropna()
+        fps_now = float(current["fps"].median())
+        step_s = float((current["frames"] / current["fps"]).sum())
+        if len(speeds) and math.isfinite(fps_now) and step_s >= thresholds.min_step_s:
+            before_fps = float(speeds.median())
+            change = fps_now - before_fps
+            verdict = _verdict("fps", change, True, thresholds.minimum_effect("fps", before_fps))
+            if verdict:
+                rows.append(
+                    dict(shared, metric="fps", kind="speed", before=before_fps, after=fps_now, change=change,
+                         low=math.nan, high=math.nan, verdict=verdict)
+                )
+    table = pd.DataFrame(rows, columns=CHANGE_COLUMNS)
+    order = table.assign(_regression=table["verdict"] != "regression")
+    return order.sort_values(["_regression", "tracker", "dataset", "metric"]).drop(columns="_regression").reset_index(
+        drop=True
+    )
+
+
+@dataclass(frozen=True)
+class Step:
+    """A change of level in a metric's history.
+
+    Attributes
+    ----------
+    run_id : int
+        The first run at the new level.
+    before, after : float
+        The median level before and from that run.
+    """
+
+    run_id: int
+    before: float
+    after: float
+
+
+def steps(levels: pd.Series, minimum_effect: float) -> list[Step]:
+    """Where a metric's level stepped over its history.
+
+    Parameters
+    ----------
+    levels : pandas.Series
+        One value per run (e.g. the mean over seeds), indexed by run id in
+        run order; NaN values are skipped.
+    minimum_effect : float
+        The smallest step that counts, in the metric's units: the penalty
+        of the change-point search (an L1 cost, robust to single outliers)
+        is set so that only steps of about this size over a few runs pay
+        for themselves, and smaller steps found are dropped.  The latest
+        run is a step of its own when it leaves the level of the runs
+        before it by this much (a new level needs two runs to be found
+        otherwise), so tonight's change shows at once.
+
+    Returns
+    -------
+    list of Step
+        In run order.
+    """
+    values = levels.dropna()
+    if len(values) < 2 or minimum_effect <= 0:
+        return []
+    signal = values.to_numpy(dtype=float).reshape(-1, 1)
+    ends = ruptures.Pelt(model="l1", min_size=2, jump=1).fit(signal).predict(pen=1.5 * minimum_effect)
+    found = []
+    for start, end, stop in zip([0, *ends[:-2]], ends[:-1], ends[1:]):
+        before, after = float(np.median(signal[start:end])), float(np.median(signal[end:stop]))
+        if abs(after - before) >= minimum_effect:
+            found.append(Step(int(values.index[end]), before, after))
+    # A segment needs two runs, so the latest run alone cannot start one: it is a step when it leaves its level.
+    start = ends[-2] if len(ends) > 1 else 0
+    level, latest = float(np.median(signal[start:-1])), float(signal[-1, 0])
+    if abs(latest - level) >= minimum_effect:
+        found.append(Step(int(values.index[-1]), level, latest))
+    return found

@@ -1,0 +1,98 @@
+from __future__ import annotations
+
+import sqlite3
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from benchmark.errors import DataError
+from benchmark.history.database import History, database_url
+from benchmark.modalities.camera.modality import CAMERA
+from benchmark.results import Picture
+from benchmark.store import ResultStore
+
+from ..conftest import Invoke
+
+
+def record(history: History, out: Path, **overrides: object) -> int:
+    with ResultStore(out / "results.sqlite") as results:
+        run = results.latest_run()
+        assert run is not None
+        fields = dict(started="2026-11-01T00:00:00+00:00", version="0.1", commit="abc", machine={"cpu": "x"},
+                      machine_key="m1", argv=["trackbench", "nightly"], seeds=2)
+        fields.update(overrides)
+        return history.record(results, run, {"camera": CAMERA}, **fields)  # type: ignore[arg-type]
+
+
+def test_a_recorded_run_keeps_cells_metrics_frames_and_pictures(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "noisy", "--seeds", "2", "--in-process", "--out", str(out)).exit_code == 0
+    with History(tmp_path / "h" / "history.sqlite") as history:
+        run_id = record(history, out)
+        runs = history.runs()
+        assert runs[["id", "commit", "machine_key", "seeds"]].values.tolist() == [[run_id, "abc", "m1", 2]]
+        assert runs["machine"].iloc[0] == {"cpu": "x"}
+        cells = history.cells([run_id])
+        board = pd.read_csv(out / "leaderboard.csv")
+        assert set(cells["seed"]) == {0, 1}
+        assert {"correct_pct", "false_pct", "missed_pct", "rmse_d_px", "fps"} <= set(cells.columns)
+        with ResultStore(out / "results.sqlite") as results:
+            stored = results.cells()
+            first = int(stored["id"].iloc[0])
+            expected = results.frame_tables([first]).drop(columns="cell_id")
+            pictures = results.pictures([first]).get(first, [])
+        same = (cells["dataset_key"] == stored["dataset_key"].iloc[0]) & (cells["seed"] == stored["seed"].iloc[0])
+        mine = cells[same]
+        frames = history.frames(int(mine["id"].iloc[0]))
+        pd.testing.assert_frame_equal(frames, expected, check_dtype=False)
+        assert history.pictures(int(mine["id"].iloc[0])) == pictures
+        pooled = board[(board["tracker"] == "noisy") & (board["dataset"] != "(all)")]
+        assert len(pooled) == cells["dataset_key"].nunique()
+
+
+def test_pictures_round_trip_as_bytes(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "blind", "--in-process", "--out", str(out)).exit_code == 0
+    with History(tmp_path / "history.sqlite") as history:
+        run_id = record(history, out)
+        cell = int(history.cells([run_id])["id"].iloc[0])
+        pictures = history.pictures(cell)
+        assert pictures and all(isinstance(p, Picture) and p.png.startswith(b"\x89PNG") for p in pictures)
+        assert {p.outcome for p in pictures} <= {"false", "missed"}
+
+
+def test_urls_and_paths() -> None:
+    assert database_url("postgresql://u@h/db") == "postgresql://u@h/db"
+    assert database_url("x.sqlite").startswith("sqlite:///") and database_url("x.sqlite").endswith("/x.sqlite")
+
+
+def test_a_file_that_is_no_database_is_a_data_error_naming_it(tmp_path: Path) -> None:
+    bad = tmp_path / "history.sqlite"
+    bad.write_bytes(b"not a database at all" * 100)
+    with pytest.raises(DataError, match="history.sqlite"):
+        History(bad)
+
+
+def test_another_programs_tables_are_left_alone(tmp_path: Path) -> None:
+    other = tmp_path / "other.sqlite"
+    with sqlite3.connect(other) as connection:
+        connection.execute("CREATE TABLE runs (x TEXT)")
+    with pytest.raises(DataError, match="other.sqlite"):
+        History(other)
+
+
+def test_only_the_latest_runs_keep_frames_and_pictures(
+    invoke: Invoke, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr("benchmark.history.database.DETAILED_RUNS", 2)
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "blind", "--in-process", "--out", str(out)).exit_code == 0
+    with History(tmp_path / "history.sqlite") as history:
+        runs = [record(history, out) for _ in range(3)]
+        cells = history.cells()
+        first, last = (int(cells[cells["run_id"] == run]["id"].iloc[0]) for run in (runs[0], runs[-1]))
+        assert history.pictures(first) == [] and history.pictures(last)
+        with pytest.raises(DataError, match=f"cell {first} "):
+            history.frames(first)
+        assert len(history.frames(last)) > 0 and len(cells) == 3 * len(cells[cells["run_id"] == runs[0]])
