@@ -17,7 +17,7 @@ from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
-from trackbench_foresti.features import FeatureExtractor, FeatureParams
+from trackbench_foresti.features import FeatureExtractor, FeatureParams, compile_kernels
 
 
 class ForestiLinesTracker(Tracker[CameraTruth, CableState]):
@@ -38,7 +38,8 @@ class ForestiLinesTracker(Tracker[CameraTruth, CableState]):
         self.features = FeatureExtractor(self.params)
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: CameraTruth | None = None) -> None:
-        """Nothing to set up: every frame is measured on its own."""
+        """Nothing to set up but the compiled kernels: every frame is measured on its own."""
+        compile_kernels()
 
     def step(self, frame: CameraFrame) -> CableState | None:
         """The chosen pair of borders as a cable state, or None when no compatible pair is found.

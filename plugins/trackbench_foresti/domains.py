@@ -20,6 +20,7 @@ the paper's purpose ("reinforce the desired line instances") suggests.
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 
 
@@ -28,14 +29,6 @@ def runs(domain: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     padded = np.concatenate(([False], np.asarray(domain, dtype=bool), [False]))
     change = np.flatnonzero(padded[1:] != padded[:-1])
     return change[0::2], change[1::2]
-
-
-def _paint(length: int, starts: np.ndarray, stops: np.ndarray) -> np.ndarray:
-    """A boolean array of ``length`` that is True on the given runs."""
-    marks = np.zeros(length + 1, dtype=np.int64)
-    np.add.at(marks, starts, 1)
-    np.add.at(marks, stops, -1)
-    return np.cumsum(marks[:-1]) > 0
 
 
 def restore_domain(domain: np.ndarray, max_gap: int, min_run: int) -> np.ndarray:
@@ -67,12 +60,27 @@ def restore_domain(domain: np.ndarray, max_gap: int, min_run: int) -> np.ndarray
         raise ValueError(f"domain must be a 1-D bool array, got {domain.dtype} of shape {domain.shape}")
     if max_gap < 0 or min_run < 0:
         raise ValueError(f"max_gap and min_run must be >= 0, got max_gap={max_gap}, min_run={min_run}")
-    starts, stops = runs(domain)
-    if starts.size == 0:
-        return domain.copy()
-    gaps = starts[1:] - stops[:-1]
-    keep = np.concatenate(([True], gaps > max_gap))
-    merged_starts = starts[keep]
-    merged_stops = np.concatenate((stops[:-1][keep[1:]], stops[-1:]))
-    long_enough = merged_stops - merged_starts >= min_run
-    return _paint(domain.size, merged_starts[long_enough], merged_stops[long_enough])
+    return _restore(domain, int(max_gap), int(min_run))
+
+
+@numba.njit(cache=True, nogil=True)
+def _restore(domain: np.ndarray, max_gap: int, min_run: int) -> np.ndarray:
+    """:func:`restore_domain` in one pass: runs grow across holes of at most ``max_gap`` and are kept when long."""
+    restored = np.zeros(domain.size, np.bool_)
+    start = last = -1  # the first and last True entries of the run being grown; -1 before the first
+    for i in range(domain.size):
+        if not domain[i]:
+            continue
+        if start < 0 or i - last - 1 > max_gap:
+            if start >= 0 and last + 1 - start >= min_run:
+                restored[start : last + 1] = True
+            start = i
+        last = i
+    if start >= 0 and last + 1 - start >= min_run:
+        restored[start : last + 1] = True
+    return restored
+
+
+def compile_kernels() -> None:
+    """Compile (or load from numba's cache) the restoration kernel now."""
+    _restore(np.zeros(1, np.bool_), 1, 1)

@@ -6,7 +6,8 @@ modulus M(k) of the detected edges."  The grey image is smoothed with a
 Gaussian, its gradient is taken with the 3 x 3 Sobel operator, and the same
 two gradient images feed OpenCV's Canny (non-maximum suppression and
 hysteresis) and the modulus and phase, so that every edge's ``M(k)`` and
-``F(k)`` are exactly the gradient Canny thresholded.
+``F(k)`` are exactly the gradient Canny thresholded.  Only the edge pixels
+need them, so they are computed there alone.
 
 The phase is the direction of the gradient (from dark to bright) in the
 model coordinates of conventions.md section 1 (``x`` right, ``y`` up): with
@@ -34,19 +35,29 @@ class EdgeMap:
     ----------
     mask : numpy.ndarray
         ``bool`` array of shape ``(H, W)``: True on Canny edge pixels.
+    pixels : numpy.ndarray
+        ``int64`` array of shape ``(n,)``: the flat indices ``v W + u`` of the
+        edge pixels, increasing (row-major order).
     modulus : numpy.ndarray
-        ``float32`` array of shape ``(H, W)``: gradient magnitude ``M(k)`` of
-        the smoothed image (Sobel units, about ``2.1`` times a blurred step's
-        height in grey levels for ``sigma = 1.5``), defined at every pixel.
+        ``float32`` array of shape ``(n,)``: gradient magnitude ``M(k)`` of
+        the smoothed image at each edge pixel (Sobel units, about ``2.1``
+        times a blurred step's height in grey levels for ``sigma = 1.5``).
     phase : numpy.ndarray
-        ``float32`` array of shape ``(H, W)``: gradient direction ``F(k)`` in
-        rad, in ``(-pi, pi]``, counter-clockwise from model ``+x``
-        (``atan2(-gv, gu)``), defined at every pixel.
+        ``float32`` array of shape ``(n,)``: gradient direction ``F(k)`` in
+        rad, in ``[-pi, pi]``, counter-clockwise from model ``+x``
+        (``atan2(-gv, gu)``), at each edge pixel.
     """
 
     mask: np.ndarray
+    pixels: np.ndarray
     modulus: np.ndarray
     phase: np.ndarray
+
+    @classmethod
+    def from_images(cls, mask: np.ndarray, modulus: np.ndarray, phase: np.ndarray) -> EdgeMap:
+        """The edge map of a mask, with the modulus and phase images of shape ``(H, W)`` read at its pixels."""
+        pixels = np.flatnonzero(mask)
+        return cls(mask, pixels, modulus.ravel()[pixels], phase.ravel()[pixels])
 
     @property
     def size(self) -> tuple[int, int]:
@@ -60,6 +71,32 @@ def as_grey(image: np.ndarray) -> np.ndarray:
     See :func:`benchmark.modalities.camera.io.video.grey_image`; ValueError for anything it cannot read.
     """
     return grey_image(image)
+
+
+def gradient_modulus(gu: np.ndarray, gv: np.ndarray) -> np.ndarray:
+    """``M = sqrt(gu^2 + gv^2)`` of Sobel derivatives, correctly rounded to ``float32``.
+
+    Parameters
+    ----------
+    gu, gv : numpy.ndarray
+        ``int16`` derivatives along the columns and down the rows, at most
+        ``2^11`` in magnitude (the 3 x 3 Sobel operator on a ``uint8`` image
+        gives at most 1020).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``float32`` moduli.  The sum of squares stays below ``2^24``, so it is
+        exact in ``int32`` and in ``float32``, and its ``float32`` square root is
+        the exact modulus rounded once: the same on every machine.
+    """
+    gu, gv = gu.astype(np.int32), gv.astype(np.int32)
+    return np.sqrt((gu * gu + gv * gv).astype(np.float32))
+
+
+def gradient_phase(gu: np.ndarray, gv: np.ndarray) -> np.ndarray:
+    """``F = atan2(-gv, gu)`` of Sobel derivatives, ``float32``: the gradient direction in model coordinates."""
+    return np.arctan2(-gv.astype(np.float32), gu.astype(np.float32))
 
 
 def canny_edges(image: np.ndarray, sigma: float, low: float, high: float) -> EdgeMap:
@@ -78,7 +115,7 @@ def canny_edges(image: np.ndarray, sigma: float, low: float, high: float) -> Edg
     Returns
     -------
     EdgeMap
-        The edge mask and the modulus and phase images.
+        The edge mask and the modulus and phase of its pixels.
 
     References
     ----------
@@ -93,7 +130,6 @@ def canny_edges(image: np.ndarray, sigma: float, low: float, high: float) -> Edg
     gu = cv2.Sobel(smooth, cv2.CV_16S, 1, 0, ksize=3, borderType=cv2.BORDER_REPLICATE)
     gv = cv2.Sobel(smooth, cv2.CV_16S, 0, 1, ksize=3, borderType=cv2.BORDER_REPLICATE)
     mask = cv2.Canny(gu, gv, float(low), float(high), L2gradient=True) > 0
-    gu_f, gv_f = gu.astype(np.float32), gv.astype(np.float32)
-    modulus = cv2.magnitude(gu_f, gv_f)
-    phase = np.arctan2(np.negative(gv_f, out=gv_f), gu_f)
-    return EdgeMap(mask=mask, modulus=modulus, phase=phase)
+    pixels = np.flatnonzero(mask)
+    gu, gv = gu.ravel()[pixels], gv.ravel()[pixels]
+    return EdgeMap(mask, pixels, gradient_modulus(gu, gv), gradient_phase(gu, gv))

@@ -76,13 +76,15 @@ from annotated_types import Ge, Interval
 from benchmark.modalities.camera.geometry import ImageSize, Line
 from benchmark.modalities.camera.io.video import check_grey_image
 from benchmark.parameters import NonNegative, Positive, Share, require_order
+from trackbench_foresti.domains import compile_kernels as compile_domain_kernels
 from trackbench_foresti.domains import restore_domain
 from trackbench_foresti.edges import EdgeMap, as_grey, canny_edges
 from trackbench_foresti.grouping import GroupingParams, choose_pair
+from trackbench_foresti.hough import compile_kernels as compile_hough_kernels
 from trackbench_foresti.hough import hough_lines
 from trackbench_foresti.reliability import is_reliable, length_and_robustness, reliability, strength
 
-__all__ = ["CandidateLine", "FeatureExtractor", "FeatureParams", "as_grey"]
+__all__ = ["CandidateLine", "FeatureExtractor", "FeatureParams", "as_grey", "compile_kernels"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -389,3 +391,13 @@ class FeatureExtractor:
         check_grey_image(image)
         size = (image.shape[1], image.shape[0])
         return choose_pair(self.candidates(image), size, predicted, self._grouping, spread)
+
+
+def compile_kernels() -> None:
+    """Compile (or load from numba's cache) the kernels of the Hough transform and the domain restoration now.
+
+    Trackers call this before their first timed frame, so that frames per
+    second measure the extractor rather than the compiler.
+    """
+    compile_hough_kernels()
+    compile_domain_kernels()

@@ -66,6 +66,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from trackbench_foresti.edges import EdgeMap
@@ -110,7 +111,7 @@ class Accumulator:
     Attributes
     ----------
     votes : numpy.ndarray
-        ``int64`` array of shape ``(n_alpha, n_rho)``.
+        ``int32`` array of shape ``(n_alpha, n_rho)``.
     alphas : numpy.ndarray
         Bin centres in rad, ``-pi/2 + k * alpha_step``.
     rhos : numpy.ndarray
@@ -158,29 +159,17 @@ class EdgePoints:
     def of(cls, edges: EdgeMap) -> EdgePoints:
         """The edge pixels of an edge map."""
         width, height = edges.size
-        pixels = np.flatnonzero(edges.mask)
-        phase = edges.phase.ravel()[pixels].astype(np.float64)
+        phase = edges.phase.astype(np.float64)
         normal = fold(phase)
         order = stable_argsort(normal)
-        pixels, phase, normal = pixels[order], phase[order], normal[order]
+        pixels, phase, normal = edges.pixels[order], phase[order], normal[order]
         v, u = np.divmod(pixels, width)
         x = u.astype(np.float64) - (width - 1) / 2.0
         y = (height - 1) / 2.0 - v.astype(np.float64)
         # phase - normal is 0 or a half turn, up to rounding.
         step = np.where(np.abs(phase - normal) < math.pi / 2, 1, -1)
-        modulus = edges.modulus.ravel()[pixels].astype(np.float64)
+        modulus = edges.modulus[order].astype(np.float64)
         return cls(u, v, x, y, modulus, normal, step, edges.size)
-
-    def facing(self, alpha: float, phase_tolerance: float) -> np.ndarray:
-        """Indices of the points whose normal is within ``phase_tolerance`` of ``alpha``, modulo ``pi``."""
-        if phase_tolerance >= math.pi / 2:
-            return np.arange(self.normal.size)
-        # The window [alpha - tol, alpha + tol] and its copies a half turn away are disjoint.
-        low, high = alpha - phase_tolerance, alpha + phase_tolerance
-        bounds = np.array([low, high, low + math.pi, high + math.pi, low - math.pi, high - math.pi])
-        starts = np.searchsorted(self.normal, bounds[0::2], side="left")
-        stops = np.searchsorted(self.normal, bounds[1::2], side="right")
-        return np.concatenate([np.arange(a, b) for a, b in zip(starts, stops, strict=True)])
 
 
 def stable_argsort(values: np.ndarray) -> np.ndarray:
@@ -202,8 +191,17 @@ def stable_argsort(values: np.ndarray) -> np.ndarray:
 
 
 def fold(angle: np.ndarray | float) -> np.ndarray:
-    """Fold angles modulo ``pi`` into ``[-pi/2, pi/2)``."""
-    return np.mod(np.asarray(angle, dtype=np.float64) + math.pi / 2, math.pi) - math.pi / 2
+    """Fold angles modulo ``pi`` into ``[-pi/2, pi/2)``.
+
+    ``np.mod(angle + pi/2, pi) - pi/2``, by the ``fmod`` that ``np.mod`` takes and corrects, at half its cost.
+    """
+    rest = np.fmod(np.asarray(angle, dtype=np.float64) + math.pi / 2, math.pi)
+    return np.where(rest < 0, rest + math.pi, rest) - math.pi / 2
+
+
+def fold_angle(angle: float) -> float:
+    """:func:`fold` of one angle, in Python floats: their ``%`` rounds as ``np.mod`` does."""
+    return (angle + math.pi / 2) % math.pi - math.pi / 2
 
 
 def _angle_bins(alpha_step: float) -> int:
@@ -215,8 +213,30 @@ def _angle_bins(alpha_step: float) -> int:
     return n_alpha
 
 
-_BLOCK = 1024
-"""Points per block of :func:`accumulate`."""
+@numba.njit(cache=True, nogil=True)
+def _vote(
+    first: np.ndarray,
+    x: np.ndarray,
+    y: np.ndarray,
+    cosines: np.ndarray,
+    sines: np.ndarray,
+    cells: np.ndarray,
+    span: int,
+    rho_step: float,
+    votes: np.ndarray,
+) -> None:
+    """Add the votes of each point ``p`` for the table entries ``s`` from ``first[p]`` to ``first[p] + span - 1``.
+
+    Entry ``s`` is an angle bin: the cosine and sine of its angle, and the
+    flat index ``cells[s]`` of its ``rho = 0`` cell in ``votes``.  The vote
+    goes ``rint((cosines[s] x[p] + sines[s] y[p]) / rho_step)`` cells on.
+    """
+    for p in range(first.size):
+        for s in range(first[p], first[p] + span):
+            rho = cosines[s] * x[p] + sines[s] * y[p]
+            if rho_step != 1.0:
+                rho /= rho_step
+            votes[cells[s] + int(np.rint(rho))] += 1
 
 
 def accumulate(points: EdgePoints, alpha_step: float, rho_step: float, phase_tolerance: float) -> Accumulator:
@@ -254,24 +274,13 @@ def accumulate(points: EdgePoints, alpha_step: float, rho_step: float, phase_tol
     alphas = -math.pi / 2 + alpha_step * np.arange(n_alpha)
     rhos = rho_step * (np.arange(n_rho) - half)
     reach = int(math.floor(phase_tolerance / alpha_step + 1e-9))
-    # Bin centre + offset, shifted by reach, indexes the wrapped bin (reach <= n_alpha / 2: one wrap at most).
+    # Entry s of the tables is angle bin s - reach, wrapped (reach <= n_alpha / 2: one wrap at most).
     wrapped = np.mod(np.arange(-reach, n_alpha + 1 + reach), n_alpha)
-    cosines, sines = np.cos(alphas)[wrapped], np.sin(alphas)[wrapped]
     centre = np.rint((points.normal + math.pi / 2) / alpha_step).astype(np.int64)
-    offsets = np.arange(2 * reach + 1)[:, None]
-    cells = np.empty((offsets.size, centre.size), dtype=np.int64)
-    # Blocks of points keep the temporaries small enough to be reused from one block to the next.
-    for start in range(0, centre.size, _BLOCK):
-        block = slice(start, start + _BLOCK)
-        shifted = offsets + centre[block]
-        rho = cosines[shifted]
-        rho *= points.x[block]
-        rho += sines[shifted] * points.y[block]
-        if rho_step != 1.0:
-            rho /= rho_step
-        cells[:, block] = np.rint(rho, out=rho)
-        cells[:, block] += wrapped[shifted] * n_rho + half
-    votes = np.bincount(cells.ravel(), minlength=n_alpha * n_rho).reshape(n_alpha, n_rho)
+    votes = np.zeros((n_alpha, n_rho), dtype=np.int32)
+    cosines, sines = np.cos(alphas)[wrapped], np.sin(alphas)[wrapped]
+    cells = wrapped * n_rho + half
+    _vote(centre, points.x, points.y, cosines, sines, cells, 2 * reach + 1, float(rho_step), votes.ravel())
     return Accumulator(votes, alphas, rhos)
 
 
@@ -322,22 +331,67 @@ def find_peaks(votes: np.ndarray, min_votes: int, neighbourhood: int) -> tuple[n
     k, j = np.divmod(np.flatnonzero(votes >= min_votes), n_rho)
     # A ramp below one vote makes every bin unique, so a plateau yields one peak.
     ramp = float(votes.size + 1)
-    ranked = votes[k, j] + (k * n_rho + j).astype(np.float64) / ramp
-    # Each candidate's (2 n + 1) x (2 n + 1) window; a row past either end of the angle axis is the row a half turn
-    # away with rho flipped, a column past either end of the distance axis holds -1 (no bin).
-    step = np.arange(-n, n + 1)
-    rows = np.repeat(k[:, None] + step, 2 * n + 1, axis=1)
-    cols = np.tile(j[:, None] + step[None, :], (1, 2 * n + 1))
-    inside = (cols >= 0) & (cols < n_rho)
-    turned = (rows < 0) | (rows >= n_alpha)
-    rows = np.where(rows < 0, rows + n_alpha, np.where(rows >= n_alpha, rows - n_alpha, rows))
-    cols = np.where(turned, n_rho - 1 - cols, cols)
-    rows, cols = np.where(inside, rows, 0), np.where(inside, cols, 0)
-    around = np.where(inside, votes[rows, cols] + (rows * n_rho + cols).astype(np.float64) / ramp, -1.0)
-    peak = ranked >= around.max(axis=1)
-    k, j, ranked = k[peak], j[peak], ranked[peak]
-    order = np.argsort(-ranked, kind="stable")
+    peak = _dominant(votes, k, j, n, ramp)
+    k, j = k[peak], j[peak]
+    order = np.argsort(-(votes[k, j] + (k * n_rho + j).astype(np.float64) / ramp), kind="stable")
     return k[order], j[order]
+
+
+@numba.njit(cache=True, nogil=True)
+def _dominant(votes: np.ndarray, k: np.ndarray, j: np.ndarray, n: int, ramp: float) -> np.ndarray:
+    """Whether each bin ``(k[c], j[c])`` ranks at least as high as every bin of its ``(2 n + 1) x (2 n + 1)`` window.
+
+    A bin ranks ``votes + (k n_rho + j) / ramp``.  A row past either end of
+    the angle axis is the row a half turn away with ``rho`` flipped; a
+    column past either end of the distance axis holds no bin.
+    """
+    n_alpha, n_rho = votes.shape
+    dominant = np.ones(k.size, np.bool_)
+    for c in range(k.size):
+        rank = votes[k[c], j[c]] + (k[c] * n_rho + j[c]) / ramp
+        for row in range(k[c] - n, k[c] + n + 1):
+            turned = row < 0 or row >= n_alpha
+            wrapped = row % n_alpha
+            for col in range(max(j[c] - n, 0), min(j[c] + n + 1, n_rho)):
+                flipped = n_rho - 1 - col if turned else col
+                if votes[wrapped, flipped] + (wrapped * n_rho + flipped) / ramp > rank:
+                    dominant[c] = False
+    return dominant
+
+
+@numba.njit(cache=True, nogil=True)
+def _near(
+    normal: np.ndarray,
+    x: np.ndarray,
+    y: np.ndarray,
+    alpha: float,
+    cosine: float,
+    sine: float,
+    rho: float,
+    tolerance: float,
+    phase_tolerance: float,
+) -> np.ndarray:
+    """Indices of the points within ``tolerance`` of one line whose normal is within ``phase_tolerance`` of its own.
+
+    ``normal`` is sorted, so the points facing the line are the window
+    ``[alpha - phase_tolerance, alpha + phase_tolerance]`` of it and the
+    copies of that window a half turn up and down (every point once
+    ``phase_tolerance`` reaches ``pi / 2``); the indices come window by
+    window, increasing in each.
+    """
+    found = np.empty(normal.size, np.int64)
+    count = 0
+    whole = phase_tolerance >= math.pi / 2
+    for turn in (0.0, math.pi, -math.pi):
+        start = 0 if whole else np.searchsorted(normal, alpha - phase_tolerance + turn, side="left")
+        stop = normal.size if whole else np.searchsorted(normal, alpha + phase_tolerance + turn, side="right")
+        for p in range(start, stop):
+            if abs(x[p] * cosine + y[p] * sine - rho) <= tolerance:
+                found[count] = p
+                count += 1
+        if whole:
+            break
+    return found[:count]
 
 
 def supporters(
@@ -352,12 +406,20 @@ def supporters(
         ``tolerance`` px of it whose folded phase lies within
         ``phase_tolerance`` rad of its normal.
     """
-    found = []
-    for alpha, rho in zip(np.reshape(alphas, -1), np.reshape(rhos, -1), strict=True):
-        near = points.facing(float(alpha), phase_tolerance)
-        distance = np.abs(points.x[near] * math.cos(alpha) + points.y[near] * math.sin(alpha) - rho)
-        found.append(near[distance <= tolerance])
-    return found
+    return [
+        _near(
+            points.normal,
+            points.x,
+            points.y,
+            float(alpha),
+            math.cos(alpha),
+            math.sin(alpha),
+            float(rho),
+            float(tolerance),
+            float(phase_tolerance),
+        )
+        for alpha, rho in zip(np.reshape(alphas, -1), np.reshape(rhos, -1), strict=True)
+    ]
 
 
 def refine_lines(
@@ -393,11 +455,12 @@ def refine_lines(
         if near.size < 2:
             continue
         x, y = points.x[near], points.y[near]
-        dx, dy = x - x.mean(), y - y.mean()
+        mean_x, mean_y = float(x.sum() / x.size), float(y.sum() / y.size)
+        dx, dy = x - mean_x, y - mean_y
         sxx, syy, sxy = float(dx @ dx), float(dy @ dy), float(dx @ dy)
         # The normal that minimises the squared distances is the minor axis of the scatter.
-        alphas[i] = fold(0.5 * math.atan2(2.0 * sxy, sxx - syy) + math.pi / 2)
-        rhos[i] = x.mean() * math.cos(alphas[i]) + y.mean() * math.sin(alphas[i])
+        alpha = fold_angle(0.5 * math.atan2(2.0 * sxy, sxx - syy) + math.pi / 2)
+        alphas[i], rhos[i] = alpha, mean_x * math.cos(alpha) + mean_y * math.sin(alpha)
     return alphas, rhos
 
 
@@ -442,7 +505,7 @@ def line_support(
     domains = []
     for i, near in enumerate(supporters(points, alphas, rhos, tolerance, phase_tolerance)):
         if near.size:
-            modulus[i] = points.modulus[near].mean()
+            modulus[i] = points.modulus[near].sum() / near.size
             polarity[i] = int(np.sign(points.step[near].sum()))
         domain = np.zeros(height if by_rows[i] else width, dtype=bool)
         domain[points.v[near] if by_rows[i] else points.u[near]] = True
@@ -452,18 +515,24 @@ def line_support(
 
 def _distinct(alphas: np.ndarray, rhos: np.ndarray, alpha_reach: float, rho_reach: float) -> list[int]:
     """Indices of the lines (strongest first) not within reach of an earlier kept line."""
+    lines = list(zip(alphas.tolist(), rhos.tolist(), strict=True))
     kept: list[int] = []
-    for i in range(alphas.size):
-        if kept:
-            others = np.array(kept)
-            difference = alphas[i] - alphas[others]
-            turn = fold(difference)
-            # Folding the angle difference by a half turn flips the other line's rho.
-            other_rhos = np.where(np.abs(difference - turn) > math.pi / 2, -rhos[others], rhos[others])
-            if np.any((np.abs(turn) <= alpha_reach) & (np.abs(rhos[i] - other_rhos) <= rho_reach)):
-                continue
-        kept.append(i)
+    for i, (alpha, rho) in enumerate(lines):
+        if not any(_within_reach(alpha, rho, *lines[k], alpha_reach, rho_reach) for k in kept):
+            kept.append(i)
     return kept
+
+
+def _within_reach(
+    alpha: float, rho: float, other_alpha: float, other_rho: float, alpha_reach: float, rho_reach: float
+) -> bool:
+    """Whether two lines lie within ``alpha_reach`` and ``rho_reach`` of each other, modulo a half turn."""
+    difference = alpha - other_alpha
+    turn = fold_angle(difference)
+    # Folding the angle difference by a half turn flips the other line's rho.
+    if abs(difference - turn) > math.pi / 2:
+        other_rho = -other_rho
+    return abs(turn) <= alpha_reach and abs(rho - other_rho) <= rho_reach
 
 
 def hough_lines(
@@ -525,3 +594,11 @@ def hough_lines(
         HoughLine(float(a), float(r), int(n), float(m), dom, bool(rows), int(sign))
         for a, r, n, m, dom, rows, sign in lines
     ]
+
+
+def compile_kernels() -> None:
+    """Compile (or load from numba's cache) the transform's kernels now, on one edge."""
+    one, index = np.zeros(1), np.zeros(1, np.int64)
+    _vote(index, one, one, one, one, index, 1, 1.0, np.zeros(1, np.int32))
+    _dominant(np.zeros((1, 1), np.int32), index, index, 1, 2.0)
+    _near(one, one, one, 0.0, 1.0, 0.0, 0.0, 1.0, 0.1)

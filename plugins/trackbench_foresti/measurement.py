@@ -138,17 +138,45 @@ def border_jacobian(state: np.ndarray, camera: PipeCamera) -> np.ndarray:
     seeds/004, eqs. (14b) and (16a); the derivation is in the module docstring.
     """
     state = np.asarray(state, dtype=float)
+    return _jacobian(state, camera, *_image_lines(state, camera))
+
+
+def border_measurement(state: np.ndarray, camera: PipeCamera) -> tuple[np.ndarray, np.ndarray | None]:
+    """``g(x)`` and ``G = dg/dx`` at one state: :func:`border_abscissae` and :func:`border_jacobian` at once.
+
+    Returns
+    -------
+    abscissae : numpy.ndarray
+        ``(i_1, i_2, i_3, i_4)`` in px.
+    jacobian : numpy.ndarray or None
+        ``(4, n)``; None when an abscissa is not finite (a border parallel to the rows).
+
+    References
+    ----------
+    seeds/004, eqs. (11), (14b) and (16a).
+    """
+    state = np.asarray(state, dtype=float)
     lines, inverse_t, intrinsics = _image_lines(state, camera)
+    abscissae = _crossings(lines, camera.rows).T.reshape(4)
+    if not np.all(np.isfinite(abscissae)):
+        return abscissae, None
+    return abscissae, _jacobian(state, camera, lines, inverse_t, intrinsics)
+
+
+def _jacobian(
+    state: np.ndarray, camera: PipeCamera, lines: np.ndarray, inverse_t: np.ndarray, intrinsics: np.ndarray
+) -> np.ndarray:
+    """``G`` from the image lines of :func:`_image_lines` at ``state``."""
     rows = camera.rows
     by_centre = (inverse_t @ np.array(((0.0, -1.0), (1.0, 0.0), (0.0, 0.0)))).T  # d l / d(C_x, C_y) per unit n
     axes = camera_axes_derivatives(*pose_angles(state))[: len(state) - 2]
     jacobian = np.empty((4, len(state)))
     for border, line in enumerate(lines):
-        derivatives = [by_centre[0], by_centre[1]]
-        derivatives += [-inverse_t @ (intrinsics @ d_axes).T @ line for d_axes in axes]
+        # Row c of dl is d l / d x_c.
+        dl = np.array([by_centre[0], by_centre[1], *(-inverse_t @ (intrinsics @ d_axes).T @ line for d_axes in axes)])
         along = line[1] * rows + line[2]
-        for column, dl in enumerate(derivatives):
-            jacobian[[border, border + 2], column] = -(dl[1] * rows + dl[2]) / line[0] + along * dl[0] / line[0] ** 2
+        by_state = -(dl[:, 1:2] * rows + dl[:, 2:3]) / line[0] + along * dl[:, 0:1] / line[0] ** 2
+        jacobian[[border, border + 2]] = by_state.T
     return jacobian
 
 

@@ -104,7 +104,14 @@ from benchmark.model import SequenceInfo
 from benchmark.parameters import Positive
 from benchmark.tracker import Tracker
 from trackbench_foresti.features import FeatureExtractor, FeatureParams
-from trackbench_foresti.measurement import PipeCamera, border_abscissae, border_jacobian, border_lines
+from trackbench_foresti.features import compile_kernels as compile_feature_kernels
+from trackbench_foresti.measurement import (
+    PipeCamera,
+    border_abscissae,
+    border_jacobian,
+    border_lines,
+    border_measurement,
+)
 from trackbench_foresti.motion import advance, advance_jacobian, speed_vector
 
 Variances = tuple[Positive, Positive, Positive, Positive]
@@ -195,6 +202,7 @@ class ForestiEkfTracker(Tracker[CameraTruth, CableState]):
         seeds/004, section VI-A (``x_0``, ``P_0``) and VI-B (roll).
         """
         compile_kernels()
+        compile_feature_kernels()
         self.camera = pipe_camera(info)
         p = self.params
         per_frame = self.camera.frame_interval_s / p.process_var_interval_s if p.process_var_interval_s > 0 else 1.0
@@ -246,35 +254,35 @@ class ForestiEkfTracker(Tracker[CameraTruth, CableState]):
         self._speeds = frame_speeds(frame)
         # g and G at the predicted state serve both the grouping's gate and the update (eqs. 16a-16b).  A state
         # whose borders do not cross the image rows predicts no abscissae to compare with: no measurement.
-        predicted = border_abscissae(self.belief.mean, camera)
+        predicted, slope = border_measurement(self.belief.mean, camera)
         pair = None
-        if np.all(np.isfinite(predicted)):
-            slope = border_jacobian(self.belief.mean, camera)
+        if slope is not None:
             spread = slope @ self.belief.covariance @ slope.T + self._r
             pair = self.features.measure(image, predicted, spread)
         self.measurement = None
+        abscissae = predicted
         if pair is not None:
             left, right = pair
             (i1, i3), (i2, i4) = left.abscissae(camera.size), right.abscissae(camera.size)
             measurement = np.array((i1, i2, i3, i4))
             corrected = update(self.belief, measurement, lambda _: predicted, slope, self._r)
-            if self._reproduces(corrected, measurement):
-                self.belief, self.measurement = corrected, measurement
-        return self._estimate()
+            refitted = border_abscissae(corrected.mean, camera)
+            if self._reproduces(refitted, measurement):
+                self.belief, self.measurement, abscissae = corrected, measurement, refitted
+        return self._estimate(abscissae)
 
-    def _reproduces(self, corrected: Gaussian, measurement: np.ndarray) -> bool:
-        """Whether the corrected state's borders lie within ``refit_chi2`` of the pair it was corrected with."""
+    def _reproduces(self, refitted: np.ndarray, measurement: np.ndarray) -> bool:
+        """Whether the corrected state's borders, ``refitted``, lie within ``refit_chi2`` of the measured pair."""
         limit = self.params.refit_chi2
         if limit == 0:
             return True
-        assert self.camera is not None
-        residual = measurement - border_abscissae(corrected.mean, self.camera)
+        residual = measurement - refitted
         return bool(np.all(np.isfinite(residual)) and residual @ np.linalg.solve(self._r, residual) <= limit)
 
-    def _estimate(self) -> PosedCableState | None:
+    def _estimate(self, abscissae: np.ndarray) -> PosedCableState | None:
+        """The state's border lines and pose, given the abscissae ``g`` of its mean."""
         assert self.belief is not None and self.camera is not None
         mean, variance = self.belief.mean, np.diag(self.belief.covariance)
-        abscissae = border_abscissae(mean, self.camera)
         if not np.all(np.isfinite(abscissae)):
             return None
         limit = self.params.max_border_std_px

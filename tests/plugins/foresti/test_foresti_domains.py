@@ -68,6 +68,29 @@ def test_restoration_keeps_long_runs_and_leaves_no_short_ones(bits, max_gap, min
     assert np.array_equal(restore_domain(after, max_gap, min_run), after)
 
 
+def reference_restore(domain: np.ndarray, max_gap: int, min_run: int) -> np.ndarray:
+    """:func:`restore_domain` by arrays of run starts and stops, painted with a cumulative sum."""
+    starts, stops = runs(domain)
+    if starts.size == 0:
+        return domain.copy()
+    keep = np.concatenate(([True], starts[1:] - stops[:-1] > max_gap))
+    merged_starts = starts[keep]
+    merged_stops = np.concatenate((stops[:-1][keep[1:]], stops[-1:]))
+    long_enough = merged_stops - merged_starts >= min_run
+    marks = np.zeros(domain.size + 1, dtype=np.int64)
+    np.add.at(marks, merged_starts[long_enough], 1)
+    np.add.at(marks, merged_stops[long_enough], -1)
+    return np.cumsum(marks[:-1]) > 0
+
+
+@settings(max_examples=300, deadline=None)
+@given(bits=st.lists(st.booleans(), max_size=120), max_gap=st.integers(0, 12), min_run=st.integers(0, 12))
+def test_restoration_equals_the_reference(bits, max_gap, min_run):
+    before = np.array(bits, dtype=bool)
+    after = restore_domain(before, max_gap, min_run)
+    assert after.dtype == bool and np.array_equal(after, reference_restore(before, max_gap, min_run))
+
+
 def test_bad_domains_and_parameters_are_refused():
     with pytest.raises(ValueError, match="domain"):
         restore_domain(np.array([1, 0, 1]), 1, 1)

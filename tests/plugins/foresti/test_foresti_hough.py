@@ -27,7 +27,7 @@ def edge_map(u, v, phase, size=ODD, modulus=100.0) -> EdgeMap:
     mask[v, u] = True
     phases[v, u] = phase
     moduli[v, u] = modulus
-    return EdgeMap(mask, moduli, phases)
+    return EdgeMap.from_images(mask, moduli, phases)
 
 
 def lines_of(edges: EdgeMap, **overrides):

@@ -8,11 +8,23 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from trackbench_foresti.measurement import PipeCamera, border_abscissae, border_jacobian, border_lines
+from trackbench_foresti.measurement import (
+    PipeCamera,
+    _image_lines,
+    border_abscissae,
+    border_jacobian,
+    border_lines,
+    border_measurement,
+    pose_angles,
+)
 
 from benchmark.modalities.camera.geometry import cable_from_borders, chord_midpoint
 from benchmark.modalities.camera.model import CameraPose
-from benchmark.modalities.camera.scenes.projection import project_points, projection_matrix
+from benchmark.modalities.camera.scenes.projection import (
+    camera_axes_derivatives,
+    project_points,
+    projection_matrix,
+)
 
 CAMERA = PipeCamera(
     focal_px=380.0, size=(320, 240), diameter_m=0.2, nominal_tilt=math.radians(60.0), frame_interval_s=0.04
@@ -80,6 +92,38 @@ def test_the_jacobian_matches_central_differences(state, with_roll):
     analytic = border_jacobian(x, CAMERA)
     assert analytic.shape == (4, len(x))
     np.testing.assert_allclose(analytic, numeric, rtol=1e-5, atol=1e-4)
+
+
+def reference_jacobian(state: np.ndarray, camera: PipeCamera) -> np.ndarray:
+    """:func:`border_jacobian` entry by entry."""
+    lines, inverse_t, intrinsics = _image_lines(state, camera)
+    rows = camera.rows
+    by_centre = (inverse_t @ np.array(((0.0, -1.0), (1.0, 0.0), (0.0, 0.0)))).T
+    axes = camera_axes_derivatives(*pose_angles(state))[: len(state) - 2]
+    jacobian = np.empty((4, len(state)))
+    for border, line in enumerate(lines):
+        derivatives = [by_centre[0], by_centre[1]]
+        derivatives += [-inverse_t @ (intrinsics @ d_axes).T @ line for d_axes in axes]
+        along = line[1] * rows + line[2]
+        for column, dl in enumerate(derivatives):
+            jacobian[[border, border + 2], column] = -(dl[1] * rows + dl[2]) / line[0] + along * dl[0] / line[0] ** 2
+    return jacobian
+
+
+@settings(max_examples=100, deadline=None)
+@given(states, st.booleans())
+def test_the_jacobian_and_the_joint_measurement_equal_their_references(state, with_roll):
+    x = state if with_roll else state[:4]
+    assert np.array_equal(border_jacobian(x, CAMERA), reference_jacobian(x, CAMERA))
+    abscissae, jacobian = border_measurement(x, CAMERA)
+    assert np.array_equal(abscissae, border_abscissae(x, CAMERA))
+    assert jacobian is not None and np.array_equal(jacobian, reference_jacobian(x, CAMERA))
+
+
+def test_the_joint_measurement_has_no_jacobian_without_abscissae():
+    on_the_left_border = np.array([-CAMERA.diameter_m / 2, 0.0, 0.0, 1.0])  # the left border's image degenerates
+    abscissae, jacobian = border_measurement(on_the_left_border, CAMERA)
+    assert not np.all(np.isfinite(abscissae)) and jacobian is None
 
 
 def test_the_camera_height_along_the_pipe_does_not_matter_and_roll_zero_is_the_four_state():
