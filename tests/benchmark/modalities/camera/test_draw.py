@@ -76,7 +76,7 @@ def test_every_green_pixel_lies_on_a_true_border(d: float, alpha: float, w: floa
     cable = CableState(d, alpha, w, beta)
     picture = draw_camera_frame(frame_of(*size, cable), None)
     rows, columns = np.nonzero(coloured(picture, TRUTH_BGR))
-    assert len(rows) >= min(size)  # each border in sight crosses the image
+    assert len(rows) > 0  # with |d| <= 30 the cable is always in sight
     for v, u in zip(rows, columns):
         x, y = pixel_to_model(float(u), float(v), size)
         distance = min(abs((x - line.x0) * line.dy - (y - line.y0) * line.dx) for line in cable_borders(cable))
