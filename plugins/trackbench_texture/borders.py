@@ -34,10 +34,12 @@ more than ``max_skew_deg``.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
 import cv2
+import numba
 import numpy as np
 
 from benchmark.modalities.camera.geometry import Line, cable_from_borders
@@ -65,7 +67,7 @@ class Strip:
         """An ``(H, W)`` image indexed ``[along, across]`` like :attr:`mask`."""
         return image if self.by_rows else image.T
 
-    @property
+    @functools.cached_property
     def crossed(self) -> np.ndarray:
         """``bool`` per scan line: True where the strip crosses it."""
         return self.mask.any(axis=1)
@@ -92,36 +94,58 @@ class ScanLine:
         return np.abs(across - self.at(along)) / math.hypot(1.0, self.slope)
 
 
-def cable_strip(cable: np.ndarray, min_region_px: int) -> Strip | None:
+def cable_strip(
+    cable: np.ndarray, min_region_px: int, rows: np.ndarray | None = None, cols: np.ndarray | None = None
+) -> Strip | None:
     """The connected part of the cable-class pixels that spans the image best, or None.
 
     Parameters
     ----------
     cable : numpy.ndarray
-        ``bool`` array of shape ``(H, W)``: the cable-class pixels.
+        ``bool`` array of shape ``(H, W)``: the cable-class pixels; or, with
+        ``rows`` and ``cols``, of shape ``(h, w)``: the cable-class points of
+        a grid, each filling a block of pixels.
     min_region_px : int
         Smallest connected part considered, px.
+    rows, cols : numpy.ndarray, optional
+        ``(H,)`` and ``(W,)``: the grid row (column) whose class each pixel
+        row (column) takes.  Both non-decreasing, and every grid row
+        (column) fills at least one pixel row (column), so that the parts
+        of the grid fill exactly the parts of the image.
 
     Returns
     -------
     Strip or None
         None when no connected part has ``min_region_px`` pixels.
     """
+    on_grid = rows is not None and cols is not None
+    if not on_grid:
+        rows, cols = np.arange(cable.shape[0]), np.arange(cable.shape[1])
     count, labels, stats, _ = cv2.connectedComponentsWithStats(cable.astype(np.uint8), connectivity=8)
-    height, width = cable.shape
-    best, best_span = 0, 0.0
-    for label in range(1, count):
-        if stats[label, cv2.CC_STAT_AREA] < min_region_px:
-            continue
-        span = max(stats[label, cv2.CC_STAT_HEIGHT] / height, stats[label, cv2.CC_STAT_WIDTH] / width)
-        if span > best_span:
-            best, best_span = label, span
-    if best == 0:
+    parts = stats[1:]
+    row_px, col_px = np.bincount(rows, minlength=cable.shape[0]), np.bincount(cols, minlength=cable.shape[1])
+    area = np.bincount(labels.ravel(), weights=np.outer(row_px, col_px).ravel(), minlength=count)[1:]
+    span = np.maximum(
+        _extent_px(row_px, parts[:, cv2.CC_STAT_TOP], parts[:, cv2.CC_STAT_HEIGHT]) / len(rows),
+        _extent_px(col_px, parts[:, cv2.CC_STAT_LEFT], parts[:, cv2.CC_STAT_WIDTH]) / len(cols),
+    )
+    candidates = np.flatnonzero(area >= min_region_px)
+    if len(candidates) == 0:
         return None
-    region = labels == best
+    best = candidates[span[candidates] == span[candidates].max()]
+    if len(best) > 1 and on_grid:
+        # Of tied parts the first in OpenCV's labelling of the pixels wins; the grid's labels may come in another order.
+        return cable_strip(cable[rows][:, cols], min_region_px)
+    region = (labels == best[0] + 1)[rows][:, cols]
     moments = cv2.moments(region.astype(np.uint8), binaryImage=True)
     by_rows = bool(moments["mu02"] >= moments["mu20"])
     return Strip(by_rows, region if by_rows else region.T)
+
+
+def _extent_px(block_px: np.ndarray, first: np.ndarray, blocks: np.ndarray) -> np.ndarray:
+    """Pixels covered by ``blocks`` consecutive blocks from block ``first`` on; block ``k`` has ``block_px[k]``."""
+    starts = np.concatenate([[0], np.cumsum(block_px)])
+    return starts[first + blocks] - starts[first]
 
 
 def centreline(strip: Strip) -> ScanLine:
@@ -138,6 +162,24 @@ def centreline(strip: Strip) -> ScanLine:
     if abs(va) < 1e-6:
         return ScanLine(0.0, float(np.median(middle)))
     return ScanLine(float(vc / va), float(c0 - vc / va * a0))
+
+
+@numba.njit(cache=True, nogil=True)
+def _support(
+    along: np.ndarray, across: np.ndarray, slopes: np.ndarray, intercepts: np.ndarray, limits: np.ndarray
+) -> np.ndarray:
+    """Per line ``k``, the number of points whose across-residual from it is at most ``limits[k]``.
+
+    Line ``k`` is ``across = slopes[k] * along + intercepts[k]``.
+    """
+    support = np.empty(len(slopes), np.intp)
+    for k in range(len(slopes)):
+        count = 0
+        for j in range(len(along)):
+            if abs(across[j] - (slopes[k] * along[j] + intercepts[k])) <= limits[k]:
+                count += 1
+        support[k] = count
+    return support
 
 
 def ransac_line(
@@ -173,8 +215,7 @@ def ransac_line(
     pairs, d_along = pairs[usable], d_along[usable]
     slopes = (across[pairs[:, 1]] - across[pairs[:, 0]]) / d_along
     intercepts = across[pairs[:, 0]] - slopes * along[pairs[:, 0]]
-    residual = np.abs(across[None, :] - (slopes[:, None] * along[None, :] + intercepts[:, None]))
-    support = (residual <= inlier_px * np.hypot(1.0, slopes)[:, None]).sum(axis=1)
+    support = _support(along, across, slopes, intercepts, inlier_px * np.hypot(1.0, slopes))
     best = int(np.argmax(support))
     line = ScanLine(float(slopes[best]), float(intercepts[best]))
     for _ in range(2):
@@ -235,7 +276,7 @@ def fit_borders(
     if crossed.mean() < min_length_share:
         return None
     middle = centreline(strip)
-    along, across = np.nonzero(strip.scan(straight > 0) & strip.mask)
+    along, across = np.divmod(np.flatnonzero(strip.scan(straight > 0) & strip.mask), strip.mask.shape[1])
     along, across = along.astype(np.float64), across.astype(np.float64)
     left_side = across < middle.at(along)
     borders = []

@@ -151,7 +151,7 @@ class RegionClassifier:
         probabilities = self.probabilities(descriptors.reshape(-1, depth))
         best = np.argmax(probabilities, axis=1)
         regions = np.asarray(self.regions, dtype=np.uint8)[best]
-        regions[probabilities[np.arange(len(best)), best] < self.min_confidence] = Region.UNDEFINED
+        regions[probabilities.max(axis=1) < self.min_confidence] = Region.UNDEFINED
         return regions.reshape(height, width)
 
 

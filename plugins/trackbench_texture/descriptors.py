@@ -37,9 +37,11 @@ Every descriptor is a mean of values in ``[0, 1]`` and so lies in
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import cv2
+import numba
 import numpy as np
 
 from benchmark.modalities.camera.io.video import check_grey_image
@@ -55,6 +57,7 @@ def _odd(size: int) -> int:
 
 _NEIGHBOURS = np.array([[1, 1, 1], [1, 0, 1], [1, 1, 1]], np.float32)
 _RING = _NEIGHBOURS.astype(np.uint8)
+_TINY, _TWO = np.float32(1e-6), np.float32(2.0)
 
 
 def _density(values: np.ndarray, window: int) -> np.ndarray:
@@ -67,37 +70,115 @@ def _filter(values: np.ndarray, mask: np.ndarray) -> np.ndarray:
     return cv2.filter2D(values, cv2.CV_32F, mask, borderType=cv2.BORDER_REFLECT)
 
 
-def _coherence(edges: np.ndarray, cos2: np.ndarray, sin2: np.ndarray, size: int) -> tuple[np.ndarray, np.ndarray]:
-    """Number of edge pixels in the ``size`` square around each pixel, and how alike their directions are.
+def _box_sum(values: np.ndarray, size: int) -> np.ndarray:
+    """Sum of ``values`` over the ``size`` square around each pixel (border pixels mirrored), ``float32``."""
+    return cv2.boxFilter(values, cv2.CV_32F, (size, size), normalize=False, borderType=cv2.BORDER_REFLECT)
+
+
+@numba.njit(cache=True, nogil=True)
+def _doubled_angles(gu: np.ndarray, gv: np.ndarray, at: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The doubled-angle direction vectors ``(cos 2a, sin 2a)`` of the gradients at flat indices ``at``, 0 elsewhere.
+
+    Parameters
+    ----------
+    gu, gv : numpy.ndarray
+        ``float32`` gradients of shape ``(H, W)``.
+    at : numpy.ndarray
+        Flat indices of the edge pixels.
+
+    Returns
+    -------
+    cos2, sin2 : numpy.ndarray
+        ``float32`` maps of shape ``(H, W)``, computed in ``float32``.
+    """
+    cos2, sin2 = np.zeros(gu.shape, np.float32), np.zeros(gu.shape, np.float32)
+    u_at, v_at, cos2_at, sin2_at = gu.reshape(-1), gv.reshape(-1), cos2.reshape(-1), sin2.reshape(-1)
+    for k in at:
+        u, v = u_at[k], v_at[k]
+        power = u * u + v * v + _TINY
+        cos2_at[k] = (u * u - v * v) / power
+        sin2_at[k] = (_TWO * u * v) / power
+    return cos2, sin2
+
+
+def _square_counts(on: np.ndarray, sizes: tuple[int, ...], at: np.ndarray) -> list[np.ndarray]:
+    """The number of True pixels in each odd ``size`` square around the pixels at the flat indices ``at``.
+
+    Border pixels are mirrored, as in every other mask here.
+
+    Parameters
+    ----------
+    on : numpy.ndarray
+        ``bool`` array of shape ``(H, W)``.
+    sizes : tuple of int
+        Odd sides of the squares, at most 255 px.
+    at : numpy.ndarray
+        Flat indices of the pixels.
+
+    Returns
+    -------
+    list of numpy.ndarray
+        One ``uint16`` array of the shape of ``at`` per size.
+    """
+    values = on.view(np.uint8)
+    return [
+        cv2.boxFilter(values, cv2.CV_16U, (size, size), normalize=False, borderType=cv2.BORDER_REFLECT).reshape(-1)[at]
+        for size in sizes
+    ]
+
+
+def _coherence(count: np.ndarray, cos2: np.ndarray, sin2: np.ndarray, size: int, at: np.ndarray) -> np.ndarray:
+    """How alike the directions of the edge pixels in the ``size`` square around each pixel of ``at`` are.
 
     The likeness is the length of the mean doubled-angle direction vector,
     in ``[0, 1]``: 1 when all edges there run the same way.
+
+    Parameters
+    ----------
+    count : numpy.ndarray
+        ``float32`` number of edge pixels in each square.
+    cos2, sin2 : numpy.ndarray
+        ``(H, W)`` doubled-angle direction vectors (:func:`_doubled_angles`).
+    size : int
+        Odd side of the square, px.
+    at : numpy.ndarray
+        Flat indices of the pixels.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``float32`` array of the shape of ``at``.
     """
-    square = (_odd(size),) * 2
-    count = cv2.boxFilter(edges, cv2.CV_32F, square, normalize=False, borderType=cv2.BORDER_REFLECT)
-    c = cv2.boxFilter(cos2, cv2.CV_32F, square, normalize=False, borderType=cv2.BORDER_REFLECT)
-    s = cv2.boxFilter(sin2, cv2.CV_32F, square, normalize=False, borderType=cv2.BORDER_REFLECT)
-    return count, np.clip(np.sqrt(c * c + s * s) / np.maximum(count, 1.0), 0.0, 1.0)
+    c = _box_sum(cos2, size).reshape(-1)[at]
+    s = _box_sum(sin2, size).reshape(-1)[at]
+    return np.clip(np.sqrt(c * c + s * s) / np.maximum(count, 1.0), 0.0, 1.0)
+
+
+def _scatter(values: np.ndarray, at: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
+    """A map of ``shape`` holding ``values`` at the flat indices ``at`` and 0 (False) elsewhere."""
+    out = np.zeros(shape, values.dtype)
+    out.reshape(-1)[at] = values
+    return out
 
 
 @dataclass(frozen=True, eq=False)
 class PixelKinds:
-    """The pixels each descriptor counts, as ``float32`` maps of shape ``(H, W)``.
+    """The pixels each descriptor counts, as maps of shape ``(H, W)``: ``bool`` but for abruptness.
 
     Attributes
     ----------
     edges : numpy.ndarray
-        1 on the Canny edges ("lines") of the smoothed image, else 0.
+        True on the Canny edges ("lines") of the smoothed image.
     straight : numpy.ndarray
-        1 on edge pixels of straight line pieces.
+        True on edge pixels of straight line pieces.
     abrupt : numpy.ndarray
-        At edge pixels, the spread of edge directions around them, in ``[0, 1]``.
+        ``float32``: at edge pixels, the spread of edge directions around them, in ``[0, 1]``; 0 elsewhere.
     ends : numpy.ndarray
-        1 on line ends (edge pixels with one edge neighbour).
+        True on line ends (edge pixels with one edge neighbour).
     specks : numpy.ndarray
-        1 on isolated pixels.
+        True on isolated pixels.
     soft : numpy.ndarray
-        1 on pixels that differ only softly from their neighbours.
+        True on pixels that differ only softly from their neighbours.
     """
 
     edges: np.ndarray
@@ -136,33 +217,36 @@ def pixel_kinds(image: np.ndarray, params: DescriptorParams) -> PixelKinds:
     seeds/000, section 2.2 (the descriptors of Grau et al.).
     """
     check_grey_image(image)
-    grey = image.astype(np.float32)
+    raw = image.astype(np.float32)
+    grey = raw
     if params.smoothing_sigma > 0:
-        grey = cv2.GaussianBlur(grey, (0, 0), params.smoothing_sigma, borderType=cv2.BORDER_REFLECT)
+        grey = cv2.GaussianBlur(raw, (0, 0), params.smoothing_sigma, borderType=cv2.BORDER_REFLECT)
     smooth8 = np.clip(np.rint(grey), 0, 255).astype(np.uint8)
-    edges = (cv2.Canny(smooth8, params.edge_low, params.edge_high, L2gradient=True) > 0).astype(np.float32)
+    on_edge = cv2.Canny(smooth8, params.edge_low, params.edge_high, L2gradient=True) > 0
 
+    at = np.flatnonzero(on_edge)
     gu = cv2.Sobel(grey, cv2.CV_32F, 1, 0, ksize=3, borderType=cv2.BORDER_REFLECT)
     gv = cv2.Sobel(grey, cv2.CV_32F, 0, 1, ksize=3, borderType=cv2.BORDER_REFLECT)
-    power = gu * gu + gv * gv + np.float32(1e-6)
-    cos2 = edges * (gu * gu - gv * gv) / power
-    sin2 = edges * (2.0 * gu * gv) / power
+    cos2, sin2 = _doubled_angles(gu, gv, at)
+    line_size, turn_size = _odd(params.line_length_px), _odd(params.turn_window_px)
+    line_count, turn_count, around = _square_counts(on_edge, (line_size, turn_size, 3), at)
 
-    line_count, line_coherence = _coherence(edges, cos2, sin2, params.line_length_px)
-    straight = edges * ((line_count >= params.straight_fill * _odd(params.line_length_px)) & (
-        line_coherence >= params.straight_coherence
-    ))
-    _, turn_coherence = _coherence(edges, cos2, sin2, params.turn_window_px)
-    abrupt = edges * np.clip(1.0 - turn_coherence, 0.0, 1.0)
+    line_count = line_count.astype(np.float32)
+    line_coherence = _coherence(line_count, cos2, sin2, line_size, at)
+    is_straight = (line_count >= params.straight_fill * line_size) & (line_coherence >= params.straight_coherence)
+    straight = _scatter(is_straight, at, on_edge.shape)
+    turn_coherence = _coherence(turn_count.astype(np.float32), cos2, sin2, turn_size, at)
+    abrupt = _scatter(np.clip(1.0 - turn_coherence, 0.0, 1.0), at, on_edge.shape)
+    # An edge pixel's 3 x 3 square holds itself and, at a line end, one edge neighbour.
+    ends = _scatter(around == 2, at, on_edge.shape)
 
-    ends = edges * (np.abs(_filter(edges, _NEIGHBOURS) - 1.0) < 0.5)
-
-    raw = image.astype(np.float32)
-    brightest = cv2.dilate(raw, _RING, borderType=cv2.BORDER_REFLECT)
-    darkest = cv2.erode(raw, _RING, borderType=cv2.BORDER_REFLECT)
-    specks = ((raw - brightest > params.granular_step) | (darkest - raw > params.granular_step)).astype(np.float32)
-    soft = (np.abs(raw - _filter(raw, _NEIGHBOURS / 8.0)) < params.soft_step).astype(np.float32)
-    return PixelKinds(edges, straight, abrupt, ends, specks, soft)
+    brightest = cv2.dilate(image, _RING, borderType=cv2.BORDER_REFLECT)
+    darkest = cv2.erode(image, _RING, borderType=cv2.BORDER_REFLECT)
+    # A whole number of grey levels exceeds the (float32) step exactly when it exceeds the step's floor.
+    limit = min(math.floor(np.float32(params.granular_step)), 255)
+    specks = (cv2.subtract(image, brightest) > limit) | (cv2.subtract(darkest, image) > limit)
+    soft = np.abs(raw - _filter(raw, _NEIGHBOURS / 8.0)) < params.soft_step
+    return PixelKinds(on_edge, straight, abrupt, ends, specks, soft)
 
 
 def densities(kinds: PixelKinds, window: int) -> np.ndarray:
@@ -173,13 +257,51 @@ def densities(kinds: PixelKinds, window: int) -> np.ndarray:
     numpy.ndarray
         ``float32`` array of shape ``(H, W, 5)`` with values in ``[0, 1]``, in the order of :data:`NAMES`.
     """
-    return np.clip(np.stack([_density(layer, window) for layer in kinds.layers()], axis=-1), 0.0, 1.0)
+    layers = [_density(layer.astype(np.float32, copy=False), window) for layer in kinds.layers()]
+    return np.clip(np.stack(layers, axis=-1), 0.0, 1.0)
+
+
+def _window_counts(layers: list[np.ndarray], window: int, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+    """The number of non-zero pixels of each 0/1 layer in the ``window`` square around the pixels of a grid.
+
+    The squares' sums are read off one integral image of the layers
+    (border pixels mirrored, as :func:`_density` mirrors them), so they
+    are exact integers.
+
+    Parameters
+    ----------
+    layers : list of numpy.ndarray
+        ``uint8`` arrays of shape ``(H, W)`` holding 0 or 1.
+    window : int
+        Side of the square, px (even values rounded up to odd).
+    rows, cols : numpy.ndarray
+        Indices of the grid's rows and columns.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``int32`` array of shape ``(len(layers), len(rows), len(cols))``.
+    """
+    size = _odd(window)
+    half = size // 2
+    height, width = layers[0].shape
+    padded = np.empty((len(layers), height + 2 * half, width + 2 * half), np.uint8)
+    for layer, out in zip(layers, padded):
+        cv2.copyMakeBorder(layer, half, half, half, half, cv2.BORDER_REFLECT, dst=out)
+    # The layers are stacked one below the other: the sums of a layer's squares never reach into another.
+    total = cv2.integral(padded.reshape(-1, padded.shape[2]), sdepth=cv2.CV_32S)
+    tops = (np.arange(len(layers))[:, None] * padded.shape[1] + rows).reshape(-1)
+    bands = total[tops + size] - total[tops]
+    return (bands[:, cols + size] - bands[:, cols]).reshape(len(layers), len(rows), len(cols))
 
 
 def densities_at(kinds: PixelKinds, window: int, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
     """The five descriptors at the pixels of a grid, ``densities(kinds, window)[np.ix_(rows, cols)]``.
 
-    Only the grid's values are stacked and clipped, not the whole image's.
+    Only the grid's values are computed.  The densities of the kinds that
+    are counts (all but abruptness) come from :func:`_window_counts`: the
+    normalised box filter's sum of 0/1 values is that exact count, scaled
+    as the filter scales it.
 
     Parameters
     ----------
@@ -196,8 +318,12 @@ def densities_at(kinds: PixelKinds, window: int, rows: np.ndarray, cols: np.ndar
         ``float32`` array of shape ``(len(rows), len(cols), 5)`` with values in ``[0, 1]``, in the order of
         :data:`NAMES`.
     """
-    grid = np.ix_(rows, cols)
-    return np.clip(np.stack([_density(layer, window)[grid] for layer in kinds.layers()], axis=-1), 0.0, 1.0)
+    size = _odd(window)
+    counted = [kinds.straight, kinds.ends, kinds.specks, kinds.soft]
+    counts = _window_counts([layer.view(np.uint8) for layer in counted], size, rows, cols)
+    straightness, discontinuity, granularity, blurriness = (counts * (1.0 / (size * size))).astype(np.float32)
+    abruptness = _density(kinds.abrupt, size)[rows][:, cols]
+    return np.clip(np.stack([straightness, abruptness, discontinuity, granularity, blurriness], axis=-1), 0.0, 1.0)
 
 
 def texture_descriptors(image: np.ndarray, params: DescriptorParams) -> np.ndarray:

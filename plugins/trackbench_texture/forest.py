@@ -38,37 +38,102 @@ MAX_LEAVES = 64
 """The most leaves a tree may have: one bit of a ``uint64`` mask each."""
 
 
-@numba.njit(cache=True, nogil=True)
-def _add_leaf_values(
-    x: np.ndarray,
-    thresholds: np.ndarray,
-    starts: np.ndarray,
-    reachable: np.ndarray,
-    leaf_values: np.ndarray,
-    columns: np.ndarray,
-    raw: np.ndarray,
-) -> None:
-    """Add to ``raw[i, columns[t]]`` the value of the leaf point ``x[i]`` reaches in tree ``t``, tree by tree.
+SEARCH_CELLS = 1024
+"""Cells of the uniform partition of each feature's thresholds that tells where to look for a value's bin."""
 
-    The arrays are those of :class:`Forest`.
+
+@numba.njit(cache=True, nogil=True)
+def _bin_rows(
+    x: np.ndarray, thresholds: np.ndarray, starts: np.ndarray, cell_low: np.ndarray, cell_scale: np.ndarray,
+    cell_bins: np.ndarray,
+) -> np.ndarray:
+    """The row of :attr:`Forest.reachable` each point's value of each feature selects, ``(features, N)``.
+
+    A value's bin is the number of thresholds below it (``np.searchsorted``).  The search steps from the
+    bin of the lower edge of the value's cell (:attr:`Forest.cell_bins`), usually a step or two away; the
+    arrays are those of :class:`Forest`.
     """
-    trees = reachable.shape[1]
-    mask = np.empty(trees, np.uint64)
-    for i in range(x.shape[0]):
-        for f in range(x.shape[1]):
-            first, stop = starts[f], starts[f + 1]
-            if np.isnan(x[i, f]):
-                bin_ = stop - first + 1
-            else:
-                bin_ = np.searchsorted(thresholds[first:stop], x[i, f])
-            row = reachable[first + 2 * f + bin_]
-            if f == 0:
-                mask[:] = row
-            else:
-                for t in range(trees):
-                    mask[t] &= row[t]
-        for t in range(trees):
-            raw[i, columns[t]] += leaf_values[t, trailing_zeros(mask[t])]
+    rows = np.empty((x.shape[1], x.shape[0]), np.intp)
+    last_cell = cell_bins.shape[1] - 1
+    for f in range(x.shape[1]):
+        first, stop = starts[f], starts[f + 1]
+        bin_zero = first + 2 * f
+        for i in range(x.shape[0]):
+            value = x[i, f]
+            if np.isnan(value):
+                rows[f, i] = bin_zero + stop - first + 1
+                continue
+            cell = (value - cell_low[f]) * cell_scale[f]
+            if not cell > 0.0:
+                cell = 0.0
+            elif cell > last_cell:
+                cell = last_cell
+            k = first + cell_bins[f, int(cell)]
+            while k > first and thresholds[k - 1] >= value:
+                k -= 1
+            while k < stop and thresholds[k] < value:
+                k += 1
+            rows[f, i] = bin_zero + k - first
+    return rows
+
+
+@numba.njit(cache=True, nogil=True)
+def _and_rows(rows: np.ndarray, i: int, reachable: np.ndarray, mask: np.ndarray) -> None:
+    """Set ``mask`` to the AND of the rows of ``reachable`` that point ``i`` selects: per tree, its reachable leaves.
+
+    The rows are taken two at a time (the last one twice when their number is odd), which halves the
+    passes over ``mask``.
+    """
+    last = rows.shape[0] - 1
+    first, second = reachable[rows[0, i]], reachable[rows[min(1, last), i]]
+    for t in range(mask.shape[0]):
+        mask[t] = first[t] & second[t]
+    for f in range(2, last + 1, 2):
+        first, second = reachable[rows[f, i]], reachable[rows[min(f + 1, last), i]]
+        for t in range(mask.shape[0]):
+            mask[t] &= first[t] & second[t]
+
+
+@numba.njit(cache=True, nogil=True)
+def _add_leaf_values(rows: np.ndarray, reachable: np.ndarray, leaf_values: np.ndarray, raw: np.ndarray) -> None:
+    """Add to ``raw[i, c]`` the values of the leaves point ``i`` reaches in the trees of column ``c``, in order.
+
+    ``rows`` is :func:`_bin_rows`' result; the other arrays are those of :class:`Forest`.  Points are taken
+    two at a time (an odd last one paired with itself): each sum is a chain of dependent additions, and the
+    two points' chains run side by side.
+    """
+    n, columns = raw.shape
+    per_column = reachable.shape[1] // columns
+    mask_a = np.empty(reachable.shape[1], reachable.dtype)
+    mask_b = np.empty_like(mask_a)
+    for a in range(0, n, 2):
+        b = min(a + 1, n - 1)
+        _and_rows(rows, a, reachable, mask_a)
+        _and_rows(rows, b, reachable, mask_b)
+        for c in range(columns):
+            total_a, total_b = raw[a, c], raw[b, c]
+            for t in range(c * per_column, (c + 1) * per_column):
+                total_a += leaf_values[t, trailing_zeros(mask_a[t])]
+                total_b += leaf_values[t, trailing_zeros(mask_b[t])]
+            raw[a, c], raw[b, c] = total_a, total_b
+
+
+def _search_cells(thresholds: np.ndarray) -> tuple[float, float, np.ndarray]:
+    """The uniform partition of the range of the finite ones of sorted ``thresholds`` into :data:`SEARCH_CELLS` cells.
+
+    Returns
+    -------
+    low, scale : float
+        Value ``v`` lies in cell ``(v - low) * scale`` (clipped to the cells).
+    bins : numpy.ndarray
+        ``(SEARCH_CELLS,)``: the number of thresholds below each cell's lower edge.
+    """
+    finite = thresholds[np.isfinite(thresholds)]
+    if len(finite) < 2 or finite[-1] == finite[0]:
+        return 0.0, 0.0, np.zeros(SEARCH_CELLS, np.intp)
+    low = float(finite[0])
+    scale = SEARCH_CELLS / float(finite[-1] - low)
+    return low, scale, np.searchsorted(thresholds, low + np.arange(SEARCH_CELLS) / scale).astype(np.intp)
 
 
 def _leaves(nodes: np.ndarray, node: int) -> list[int]:
@@ -91,26 +156,35 @@ class Forest:
     starts : numpy.ndarray
         ``(features + 1,)`` offsets into :attr:`thresholds`.
     reachable : numpy.ndarray
-        ``uint64`` array of shape ``(rows, trees)``: per feature bin, the
+        ``uint32`` (when no tree has more than 32 leaves) or ``uint64``
+        array of shape ``(rows, trees)``: per feature bin, the
         mask of each tree's leaves a point of that bin can reach (bit
         ``k``: the ``k``-th leaf from the left).  Feature ``f`` has a row
         for each of its bins (``starts[f + 1] - starts[f] + 1`` of them),
         then one for NaN; its rows start at ``starts[f] + 2 * f``.
     leaf_values : numpy.ndarray
         ``(trees, MAX_LEAVES)``: the value of each tree's ``k``-th leaf from the left.
-    columns : numpy.ndarray
-        ``(trees,)``: the raw prediction column (class) each tree adds to.
-        Trees are in scikit-learn's order: iteration by iteration, column
-        by column.
+    cell_low, cell_scale : numpy.ndarray
+        ``(features,)``: value ``v`` of feature ``f`` lies in cell
+        ``(v - cell_low[f]) * cell_scale[f]`` of a uniform partition of the
+        range of the feature's thresholds (:func:`_search_cells`).
+    cell_bins : numpy.ndarray
+        ``(features, SEARCH_CELLS)``: the bin of each cell's lower edge.
     baseline : numpy.ndarray
         ``(1, columns)``: the raw prediction before any tree.
+
+    The trees are numbered column by column (class by class), each
+    column's trees in scikit-learn's order (iteration by iteration): every
+    column has as many trees as there were iterations.
     """
 
     thresholds: np.ndarray
     starts: np.ndarray
     reachable: np.ndarray
     leaf_values: np.ndarray
-    columns: np.ndarray
+    cell_low: np.ndarray
+    cell_scale: np.ndarray
+    cell_bins: np.ndarray
     baseline: np.ndarray
 
     @classmethod
@@ -122,8 +196,9 @@ class Forest:
         ValueError
             If a tree splits a categorical feature or has more than :data:`MAX_LEAVES` leaves.
         """
-        trees = [(k, predictor.nodes) for iteration in classifier._predictors for k, predictor in enumerate(iteration)]
-        splits = np.concatenate([nodes[nodes["is_leaf"] == 0] for _, nodes in trees])
+        columns = len(classifier._predictors[0])
+        trees = [iteration[k].nodes for k in range(columns) for iteration in classifier._predictors]
+        splits = np.concatenate([nodes[nodes["is_leaf"] == 0] for nodes in trees])
         if splits["is_categorical"].any():
             raise ValueError("texture: the region classifier splits a categorical feature")
         per_feature = [
@@ -132,8 +207,10 @@ class Forest:
         starts = np.cumsum([0] + [len(t) for t in per_feature]).astype(np.intp)
         reachable = np.full((starts[-1] + 2 * len(per_feature), len(trees)), np.iinfo(np.uint64).max, dtype=np.uint64)
         leaf_values = np.zeros((len(trees), MAX_LEAVES))
-        for t, (_, nodes) in enumerate(trees):
+        most_leaves = 0
+        for t, nodes in enumerate(trees):
             leaves = _leaves(nodes, 0)
+            most_leaves = max(most_leaves, len(leaves))
             if len(leaves) > MAX_LEAVES:
                 raise ValueError(f"texture: a tree of the region classifier has more than {MAX_LEAVES} leaves")
             leaf_values[t, : len(leaves)] = nodes["value"][leaves]
@@ -147,12 +224,15 @@ class Forest:
                 reachable[bin_zero + rank + 1 : nan_row, t] &= ~left_leaves
                 if not nodes["missing_go_to_left"][node]:
                     reachable[nan_row, t] &= ~left_leaves
+        cells = [_search_cells(t) for t in per_feature]
         return cls(
             thresholds=np.concatenate(per_feature).astype(np.float64),
             starts=starts,
-            reachable=reachable,
+            reachable=reachable.astype(np.uint32 if most_leaves <= 32 else np.uint64),
             leaf_values=leaf_values,
-            columns=np.array([k for k, _ in trees], dtype=np.intp),
+            cell_low=np.array([low for low, _, _ in cells]),
+            cell_scale=np.array([scale for _, scale, _ in cells]),
+            cell_bins=np.array([bins for _, _, bins in cells]),
             baseline=np.asarray(classifier._baseline_prediction, dtype=np.float64),
         )
 
@@ -173,5 +253,6 @@ class Forest:
         raw = np.zeros((len(x), self.baseline.shape[1]), dtype=np.float64, order="F")
         raw += self.baseline
         points = np.ascontiguousarray(x, dtype=np.float64)
-        _add_leaf_values(points, self.thresholds, self.starts, self.reachable, self.leaf_values, self.columns, raw)
+        rows = _bin_rows(points, self.thresholds, self.starts, self.cell_low, self.cell_scale, self.cell_bins)
+        _add_leaf_values(rows, self.reachable, self.leaf_values, raw)
         return raw

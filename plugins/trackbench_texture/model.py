@@ -71,6 +71,19 @@ class TextureModel:
         regions : numpy.ndarray
             ``uint8`` array of shape ``(H, W)`` of :class:`~trackbench_texture.classes.Region` values.
         """
+        kinds, grid = self.analyse_grid(image)
+        return kinds, grid.pixels()
+
+    def analyse_grid(self, image: np.ndarray) -> tuple[PixelKinds, RegionGrid]:
+        """The descriptors' pixels and the region classes of the grid of :meth:`analyse`, not yet spread to pixels.
+
+        Returns
+        -------
+        kinds : PixelKinds
+            What each descriptor counts.
+        grid : RegionGrid
+            The grid points' classes and the pixels each fills.
+        """
         settings = self.descriptors
         kinds = pixel_kinds(image, settings)
         step = settings.grid_px
@@ -78,10 +91,33 @@ class TextureModel:
         height, width = image.shape
         rows = np.arange(min(offset, height - 1), height, step)
         cols = np.arange(min(offset, width - 1), width, step)
-        coarse = self.regions.classify(densities_at(kinds, settings.window_px, rows, cols))
+        classes = self.regions.classify(densities_at(kinds, settings.window_px, rows, cols))
         nearest_row = np.clip(np.rint((np.arange(height) - rows[0]) / step).astype(int), 0, len(rows) - 1)
         nearest_col = np.clip(np.rint((np.arange(width) - cols[0]) / step).astype(int), 0, len(cols) - 1)
-        return kinds, coarse[np.ix_(nearest_row, nearest_col)]
+        return kinds, RegionGrid(classes, nearest_row, nearest_col)
+
+
+@dataclass(frozen=True, eq=False)
+class RegionGrid:
+    """The region classes of the points of an image's grid, and the pixels each point's class fills.
+
+    Attributes
+    ----------
+    classes : numpy.ndarray
+        ``uint8`` array of shape ``(h, w)`` of :class:`~trackbench_texture.classes.Region` values.
+    rows, cols : numpy.ndarray
+        ``(H,)`` and ``(W,)``: the grid row (column) nearest to each pixel
+        row (column).  Both are non-decreasing, and every grid row (column)
+        is the nearest to at least one pixel row (column): the one it lies on.
+    """
+
+    classes: np.ndarray
+    rows: np.ndarray
+    cols: np.ndarray
+
+    def pixels(self) -> np.ndarray:
+        """``uint8`` array of shape ``(H, W)``: the class of every pixel, its nearest grid point's."""
+        return self.classes[self.rows][:, self.cols]
 
 
 @dataclass(frozen=True, eq=False)

@@ -140,8 +140,7 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
         DataError
             If the observation is not an image, naming the frame.
         """
-        model = self._require_model()
-        return model.analyse(grey_frame(frame.observation, f"texture: frame {frame.index}"))
+        return self._require_model().analyse(_grey(frame))
 
     def step(self, frame: CameraFrame) -> CableState | None:
         """Classify one frame and fit the cable's borders along its cable region.
@@ -164,11 +163,11 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
         DataError
             If the observation is not an image, naming the frame.
         """
-        kinds, regions = self.classify(frame)
+        kinds, grid = self._require_model().analyse_grid(_grey(frame))
         if self._rng is None:
             raise RuntimeError("texture: call reset(info, rng) before step")
         p = self.params
-        strip = cable_strip(regions == Region.CABLE, p.min_region_px)
+        strip = cable_strip(grid.classes == Region.CABLE, p.min_region_px, grid.rows, grid.cols)
         if strip is None:
             return None
         return fit_borders(
@@ -183,3 +182,8 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
             max_width_px=p.max_width_px,
             max_skew=math.radians(p.max_skew_deg),
         )
+
+
+def _grey(frame: CameraFrame) -> np.ndarray:
+    """The frame's observation as a ``uint8`` grey image; a :class:`DataError` naming the frame if it is none."""
+    return grey_frame(frame.observation, f"texture: frame {frame.index}")

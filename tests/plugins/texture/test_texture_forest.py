@@ -8,10 +8,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from sklearn.ensemble import HistGradientBoostingClassifier
 from trackbench_texture.classes import RegionClassifier
-from trackbench_texture.forest import Forest
+from trackbench_texture.forest import Forest, _bin_rows
 
 
-def _fitted(classes: int, missing: bool, seed: int = 0) -> HistGradientBoostingClassifier:
+def _fitted(classes: int, missing: bool, seed: int = 0, leaves: int = 31) -> HistGradientBoostingClassifier:
     """A classifier of 5 features; with ``missing``, NaN in training so that nodes learn where it goes."""
     rng = np.random.default_rng(seed)
     x = rng.random((600, 5))
@@ -20,7 +20,9 @@ def _fitted(classes: int, missing: bool, seed: int = 0) -> HistGradientBoostingC
                          np.linspace(-0.2, 1.4, classes + 1)[1:-1])
     if missing:
         x[rng.random(x.shape) < 0.1] = np.nan
-    classifier = HistGradientBoostingClassifier(max_iter=30, early_stopping=False, random_state=seed)
+    classifier = HistGradientBoostingClassifier(
+        max_iter=30, max_leaf_nodes=leaves, min_samples_leaf=2, early_stopping=False, random_state=seed
+    )
     return classifier.fit(x, labels)
 
 
@@ -28,6 +30,7 @@ CLASSIFIERS = {
     "three classes": _fitted(3, missing=False),
     "three classes, missing values": _fitted(3, missing=True),
     "two classes, missing values": _fitted(2, missing=True),
+    "four classes, trees of up to 60 leaves": _fitted(4, missing=True, leaves=60),
 }
 
 
@@ -61,6 +64,25 @@ def test_the_tables_predict_exactly_what_scikit_learn_predicts(name, data):
     actual = regions.probabilities(x)
     assert actual.dtype == expected.dtype and actual.shape == expected.shape
     assert actual.tobytes() == expected.tobytes()
+
+
+def test_trees_of_more_than_32_leaves_keep_64_bit_masks():
+    forest = RegionClassifier(CLASSIFIERS["four classes, trees of up to 60 leaves"], 0.5).forest
+    assert forest.reachable.dtype == np.uint64
+    assert RegionClassifier(CLASSIFIERS["three classes"], 0.5).forest.reachable.dtype == np.uint32
+
+
+@pytest.mark.parametrize("name", CLASSIFIERS)
+@settings(max_examples=40, deadline=None)
+@given(data=st.data())
+def test_each_value_selects_the_row_of_its_bin_among_the_sorted_thresholds(name, data):
+    forest = RegionClassifier(CLASSIFIERS[name], 0.5).forest
+    x = data.draw(points(forest))
+    rows = _bin_rows(x, forest.thresholds, forest.starts, forest.cell_low, forest.cell_scale, forest.cell_bins)
+    for f in range(x.shape[1]):
+        first, stop = forest.starts[f], forest.starts[f + 1]
+        bins = np.where(np.isnan(x[:, f]), stop - first + 1, np.searchsorted(forest.thresholds[first:stop], x[:, f]))
+        assert np.array_equal(rows[f], first + 2 * f + bins)
 
 
 def test_float32_descriptors_are_compared_as_scikit_learn_compares_them():
