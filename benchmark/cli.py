@@ -14,6 +14,7 @@
     nightly       run, add the run to the history database, report its changes, rewrite the site
     compare       what changed between two runs of the history
     report        rebuild the site from the history without running anything
+    check         the conformance checks of benchmark.testing on installed trackers
 
 ``run`` forms a cell for every selected tracker, sequence and seed whose
 modalities match, and runs the cells on an executor (``--executor local``:
@@ -733,3 +734,35 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
         raise SelectionError(f"unknown suite {suite!r} (known: {', '.join(sorted(registry.suites)) or 'none'})")
     for sequence in registry.suites[suite].sequences:
         click.echo(export_sequence(sequence, out, registry.modalities))
+
+
+@main.command("check")
+@click.argument("names", nargs=-1, metavar="[NAME]...")
+@click.option(
+    "--frames", type=click.IntRange(min=1), default=15, show_default=True, help="Frames each run of a check reads."
+)
+@click.pass_context
+def check_command(ctx: click.Context, names: tuple[str, ...], frames: int) -> None:
+    """Run the conformance kit (benchmark.testing) on installed trackers: all of them, or those NAMEd.
+
+    Prints one row per tracker and check; exit status 1 if any check failed.
+    """
+    from benchmark.selection import select_trackers
+    from benchmark.testing import check_tracker
+
+    session: Session = ctx.obj
+    registry = session.registry
+    entries = select_trackers(registry, names)
+    failed = 0
+    rows: list[tuple[str, str, str, str]] = []
+    for entry in entries:
+        for result in check_tracker(entry, registry=registry, n_frames=frames):
+            failed += not result.ok
+            rows.append((result.tracker, result.check, "ok" if result.ok else "FAIL", result.message or result.detail))
+    header = ("tracker", "check", "result", "message")
+    widths = [max(len(row[column]) for row in (header, *rows)) for column in range(3)]
+    for row in (header, *rows):
+        click.echo("  ".join(cell.ljust(width) for cell, width in zip(row, widths)) + "  " + row[3])
+    click.echo(f"{len(rows) - failed} passed, {failed} failed ({len(entries)} trackers)")
+    if failed:
+        ctx.exit(EXIT_FAILED)

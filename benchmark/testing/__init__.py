@@ -1,0 +1,154 @@
+"""The conformance kit for tracker authors, in the spirit of scikit-learn's ``check_estimator``.
+
+:func:`check_tracker` runs every check of :mod:`benchmark.testing.checks` on
+one tracker, over the first few frames of a registered sequence of its
+modality, and returns one :class:`CheckResult` per check; it never raises
+for the tracker's faults.  In a tracker's own test suite::
+
+    from benchmark.testing import check_tracker
+
+    def test_conforms():
+        failed = [r for r in check_tracker(MyTracker) if not r.ok]
+        assert not failed, "\\n".join(r.message for r in failed)
+
+:func:`checks` gives the individual checks, to parametrise a test over them
+or to run one alone.  ``trackbench check NAME...`` runs the kit on
+installed trackers from the command line.
+"""
+
+from __future__ import annotations
+
+import random
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from benchmark.model import Sequence
+from benchmark.registry import Registry, TrackerEntry
+from benchmark.runner import describe_exception
+from benchmark.testing.checks import CHECKS, DEFAULT_FRAMES, Subject, prepare
+from benchmark.tracker import Tracker
+
+__all__ = ["Check", "CheckResult", "Subject", "check_tracker", "checks", "prepare"]
+
+
+@dataclass(frozen=True)
+class Check:
+    """One named check.
+
+    Attributes
+    ----------
+    name : str
+        Its name in reports (``"pickles"``).
+    function : callable
+        ``function(subject) -> str``: a line of detail, or
+        :class:`AssertionError` naming the tracker and what broke.
+    """
+
+    name: str
+    function: Callable[[Subject], str]
+
+    def __call__(self, subject: Subject) -> str:
+        return self.function(subject)
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """What one check found.
+
+    Attributes
+    ----------
+    tracker : str
+        The tracker's name.
+    check : str
+        The check's name.
+    ok : bool
+        Whether it passed.
+    message : str
+        Why it failed; empty when it passed.
+    detail : str
+        What it measured or saw (``step_time``: milliseconds per frame).
+    elapsed_s : float
+        Time the check took, in s.
+    """
+
+    tracker: str
+    check: str
+    ok: bool
+    message: str = ""
+    detail: str = ""
+    elapsed_s: float = 0.0
+
+
+def checks(entry: TrackerEntry | type[Tracker] | None = None) -> list[Check]:
+    """The checks that apply to ``entry`` (every tracker gets all of them), in the order they run."""
+    return [Check(name, function) for name, function in CHECKS]
+
+
+def _entry_of(entry_or_class: TrackerEntry | type[Tracker]) -> TrackerEntry:
+    """The entry itself, or a class's entry with its default parameters (None if they cannot be made)."""
+    if isinstance(entry_or_class, TrackerEntry):
+        return entry_or_class
+    try:
+        params = entry_or_class.make_params()
+    except Exception:
+        params = None  # reported by the metadata check
+    return TrackerEntry(str(getattr(entry_or_class, "name", entry_or_class.__name__)), entry_or_class, params)
+
+
+def check_tracker(
+    entry_or_class: TrackerEntry | type[Tracker],
+    *,
+    sequence: Sequence | None = None,
+    registry: Registry | None = None,
+    n_frames: int = DEFAULT_FRAMES,
+) -> list[CheckResult]:
+    """Run every check on one tracker.
+
+    Parameters
+    ----------
+    entry_or_class : TrackerEntry or Tracker subclass
+        A registered tracker, or a tracker class (checked with its default parameters).
+    sequence : Sequence, optional
+        Where the frames come from; by default a registered sequence of the
+        tracker's modality, simulated where there is one.
+    registry : Registry, optional
+        The modalities and suites; by default every installed plugin's
+        (:func:`benchmark.plugins.load_registry`).
+    n_frames : int
+        Frames read from the sequence (and from the training sequence of a tracker that learns).
+
+    Returns
+    -------
+    list of CheckResult
+        One per check, in the order of :func:`checks`.  NumPy's and Python's
+        global random state are left as they were, whatever the tracker does.
+    """
+    if registry is None:
+        from benchmark.plugins import load_registry
+
+        registry = load_registry()
+    entry = _entry_of(entry_or_class)
+    results: list[CheckResult] = []
+    numpy_state, python_state = np.random.get_state(), random.getstate()
+    try:
+        _run_checks(entry, prepare(entry, registry, sequence, n_frames), results)
+    finally:
+        np.random.set_state(numpy_state)
+        random.setstate(python_state)
+    return results
+
+
+def _run_checks(entry: TrackerEntry, subject: Subject, results: list[CheckResult]) -> None:
+    """Run every check of ``entry`` on ``subject``, appending one result per check to ``results``."""
+    for check in checks(entry):
+        started = time.perf_counter()
+        try:
+            detail, ok, message = check(subject), True, ""
+        except AssertionError as exc:
+            detail, ok, message = "", False, str(exc)
+        except Exception as exc:
+            detail, ok, message = "", False, f"tracker {entry.name!r}: the check raised {describe_exception(exc)}"
+        results.append(CheckResult(entry.name, check.name, ok, message, detail, time.perf_counter() - started))

@@ -1,0 +1,477 @@
+"""The checks of the conformance kit, one function per rule of the tracker contract.
+
+Every check takes a :class:`Subject`: the tracker's registry entry with a
+few frames of its modality (and, for a tracker that learns, a model fitted
+on a few training frames), prepared once by :func:`prepare` and shared by
+all checks.  A check returns a line of detail for the report, or raises
+:class:`AssertionError` with a message that names the tracker and what
+broke.  Exceptions the tracker raises become such assertion errors, naming
+the frame.
+
+The rules are those of :mod:`benchmark.tracker` and the design page's
+plugin contract: a tracker declares ``name``, ``version``, ``modality`` and a
+frozen ``Params`` dataclass with valid defaults; it returns estimates of its
+modality or None; it copes with unlabelled frames; it draws randomness only
+from the generator handed to ``reset``, so a seed replays a run bit for
+bit; ``reset`` forgets the previous sequence; and it pickles, since cells
+run in worker processes.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import pickle
+import random
+import time
+import zlib
+from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Sequence as SequenceOf
+from dataclasses import dataclass
+from itertools import islice
+from typing import Any
+
+import numpy as np
+
+from benchmark.identity import DatasetIdentity
+from benchmark.modality import Modality
+from benchmark.model import Frame, Sequence, SequenceInfo
+from benchmark.registry import Registry, TrackerEntry
+from benchmark.runner import cell_rng, describe_exception
+from benchmark.tracker import Tracker
+from benchmark.training import learns
+
+DEFAULT_FRAMES = 15
+"""Frames each run of a check reads: enough to exercise a filter, short enough for a test suite."""
+
+SEED = 0
+"""Seed of the checks' runs, turned into a generator by the runner's convention (:func:`cell_rng`)."""
+
+
+class FrameList(Sequence):
+    """A sequence of frames already in memory, with the identity of the sequence they were taken from.
+
+    Parameters
+    ----------
+    info : SequenceInfo
+        Its description; ``n_frames`` should be ``len(frames)``.
+    identity : DatasetIdentity
+        The identity that seeds runs on it.
+    frames : tuple of Frame
+        The frames, in order.
+    """
+
+    def __init__(self, info: SequenceInfo, identity: DatasetIdentity, frames: tuple[Frame, ...]) -> None:
+        self._info = info
+        self._identity = identity
+        self.frame_list = frames
+
+    @classmethod
+    def head(cls, sequence: Sequence, n_frames: int) -> FrameList:
+        """The first ``n_frames`` frames of ``sequence``, read once."""
+        frames = tuple(islice(sequence.frames(), n_frames))
+        info = dataclasses.replace(sequence.info, n_frames=len(frames))
+        return cls(info, sequence.identity, frames)
+
+    @property
+    def info(self) -> SequenceInfo:
+        return self._info
+
+    @property
+    def identity(self) -> DatasetIdentity:
+        return self._identity
+
+    def frames(self) -> Iterator[Frame]:
+        return iter(self.frame_list)
+
+
+@dataclass(frozen=True)
+class Subject:
+    """A tracker with everything its checks need, prepared once.
+
+    Attributes
+    ----------
+    entry : TrackerEntry
+        The tracker and its parameters.
+    modalities : Mapping
+        The registered modalities, by name.
+    frames : FrameList or None
+        A few frames of the tracker's modality; None if none could be found.
+    model : Any
+        For a tracker that learns, the model it fitted on a few training frames.
+    problem : str
+        Why the frames or the model could not be prepared; empty when they were.
+    """
+
+    entry: TrackerEntry
+    modalities: Mapping[str, Modality]
+    frames: FrameList | None = None
+    model: Any = None
+    problem: str = ""
+
+    @property
+    def name(self) -> str:
+        """The tracker's name, for messages."""
+        return self.entry.name
+
+    def fail(self, text: str) -> AssertionError:
+        """An assertion error naming the tracker."""
+        return AssertionError(f"tracker {self.name!r}: {text}")
+
+    def ready(self) -> tuple[Modality, FrameList]:
+        """The modality and the frames, or an assertion error saying why the runs cannot happen."""
+        if self.problem or self.frames is None:
+            raise self.fail(f"cannot run: {self.problem or 'no frames'}")
+        return self.modalities[self.entry.modality], self.frames
+
+    def create(self) -> Tracker:
+        """A fresh instance, with the fitted model adopted if the tracker learns."""
+        try:
+            tracker = self.entry.create()
+            if self.model is not None:
+                tracker.use_model(self.model)  # type: ignore[attr-defined]
+        except Exception as exc:
+            raise self.fail(f"creating an instance raised {describe_exception(exc)}") from exc
+        return tracker
+
+    def run(
+        self, tracker: Tracker, frames: SequenceOf[Frame] | None = None, *, seed: int = SEED, truth: bool = True
+    ) -> list[Any]:
+        """Reset ``tracker`` and step it over ``frames`` (default: the subject's); the estimates.
+
+        ``truth`` hands the first frame's truth to ``reset`` as the runner's
+        ``--init truth`` does.  The generator is the runner's for ``seed``.
+        """
+        _, own = self.ready()
+        frames = own.frame_list if frames is None else frames
+        where = "reset"
+        try:
+            tracker.reset(own.info, self.rng(seed), init=frames[0].truth if truth else None)
+            estimates = []
+            for frame in frames:
+                where = f"step, frame {frame.index}"
+                estimates.append(tracker.step(frame))
+        except AssertionError:
+            raise
+        except Exception as exc:
+            raise self.fail(f"{describe_exception(exc)} ({where})") from exc
+        return estimates
+
+    def rng(self, seed: int = SEED) -> np.random.Generator:
+        """The generator a cell of this tracker on the subject's frames gets for ``seed``."""
+        _, frames = self.ready()
+        return cell_rng(seed, self.name, frames.identity)
+
+
+def _sequences_of(registry: Registry, modality: str, suites: SequenceOf[str]) -> list[Sequence]:
+    found = [seq for name in suites for seq in registry.suites[name].sequences if seq.identity.modality == modality]
+    return sorted(found, key=lambda seq: not seq.cache_frames)  # simulated first: a pure function of its spec
+
+
+def pick_sequence(registry: Registry, modality: str) -> Sequence | None:
+    """A registered sequence of ``modality``: from a scored suite and simulated where there is one."""
+    suites = sorted(registry.suites, key=lambda name: not registry.suites[name].scored)
+    found = _sequences_of(registry, modality, suites)
+    return found[0] if found else None
+
+
+def pick_training(registry: Registry, modality: str, scored: Sequence) -> Sequence | None:
+    """A registered sequence of ``modality`` to train on, other than ``scored``.
+
+    The training suite of ``scored``'s suite first, then the training
+    splits, then anything else.
+    """
+    named = [suite.training for suite in registry.suites.values() if scored in suite.sequences and suite.training]
+    splits = [name for name, suite in registry.suites.items() if not suite.scored]
+    rest = list(registry.suites)
+    order = [name for name in dict.fromkeys([*named, *splits, *rest]) if name in registry.suites]
+    found = [seq for seq in _sequences_of(registry, modality, order) if seq.identity.key != scored.identity.key]
+    return found[0] if found else None
+
+
+def prepare(
+    entry: TrackerEntry,
+    registry: Registry,
+    sequence: Sequence | None = None,
+    n_frames: int = DEFAULT_FRAMES,
+) -> Subject:
+    """The subject of the checks of ``entry``: frames of its modality and, if it learns, a fitted model.
+
+    Parameters
+    ----------
+    entry : TrackerEntry
+        The tracker to check.
+    registry : Registry
+        Where its modality, and the sequences when ``sequence`` is None, come from.
+    sequence : Sequence, optional
+        The sequence to take frames from; by default a registered one (:func:`pick_sequence`).
+    n_frames : int
+        Frames read from it (and from the training sequence).
+
+    Returns
+    -------
+    Subject
+        With :attr:`Subject.problem` set, rather than raising, when something is missing.
+    """
+    modalities = dict(registry.modalities)
+    subject = Subject(entry, modalities)
+    modality = modalities.get(entry.modality)
+    if modality is None:
+        return dataclasses.replace(subject, problem=f"modality {entry.modality!r} is not registered")
+    if entry.params is None:
+        return dataclasses.replace(subject, problem="its default parameters cannot be made")
+    source = sequence if sequence is not None else pick_sequence(registry, entry.modality)
+    if source is None:
+        return dataclasses.replace(subject, problem=f"no registered {entry.modality} sequence to run on")
+    try:
+        frames = FrameList.head(source, n_frames)
+        for frame in frames.frame_list:
+            modality.check_frame(frame, f"sequence {frames.info.name!r}, frame {frame.index}")
+    except Exception as exc:
+        return dataclasses.replace(subject, problem=f"reading {source!r}: {describe_exception(exc)}")
+    if not frames.frame_list:
+        return dataclasses.replace(subject, problem=f"sequence {frames.info.name!r} has no frames")
+    subject = dataclasses.replace(subject, frames=frames)
+    if not learns(entry):
+        return subject
+    training = pick_training(registry, entry.modality, source)
+    if training is None:
+        return dataclasses.replace(subject, problem=f"it learns, but no other {entry.modality} sequence trains it")
+    try:
+        head = FrameList.head(training, n_frames)
+        rng = np.random.default_rng([zlib.crc32(entry.name.encode()), head.identity.seed_material])
+        model = entry.create().fit([head], rng)  # type: ignore[attr-defined]
+    except Exception as exc:
+        return dataclasses.replace(subject, problem=f"fit on {training!r} raised {describe_exception(exc)}")
+    return dataclasses.replace(subject, model=model)
+
+
+def same(a: Any, b: Any) -> bool:
+    """Whether two estimates are equal, field by field, NaN equal to NaN.
+
+    Handles None, dataclasses, arrays, floats, mappings and sequences;
+    anything else is compared with ``==``.
+    """
+    if type(a) is not type(b):
+        return False
+    if dataclasses.is_dataclass(a) and not isinstance(a, type):
+        return all(same(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a))
+    if isinstance(a, np.ndarray):
+        if a.shape != b.shape or a.dtype != b.dtype:
+            return False
+        numeric = a.dtype.kind in "fc"
+        return bool(np.array_equal(a, b, equal_nan=numeric))
+    if isinstance(a, float | np.floating):
+        return bool(a == b or (math.isnan(a) and math.isnan(b)))
+    if isinstance(a, Mapping):
+        return a.keys() == b.keys() and all(same(a[key], b[key]) for key in a)
+    if isinstance(a, list | tuple):
+        return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b))
+    return bool(a == b)
+
+
+def _difference(frames: FrameList, first: SequenceOf[Any], second: SequenceOf[Any]) -> str:
+    """Where two runs' estimates first differ (``"at frame k: a vs b"``), or ``""`` when they agree."""
+    if len(first) != len(second):
+        return f"in length: {len(first)} vs {len(second)} estimates"
+    for frame, a, b in zip(frames.frame_list, first, second):
+        if not same(a, b):
+            return f"at frame {frame.index}: {a} vs {b}"
+    return ""
+
+
+def check_metadata(subject: Subject) -> str:
+    """Name and version are non-empty strings, the modality is registered, ``Params`` makes valid defaults.
+
+    Raises
+    ------
+    AssertionError
+        Naming the first attribute that breaks the contract.
+    """
+    cls = subject.entry.tracker_class
+    for attribute in ("name", "version", "modality"):
+        value = getattr(cls, attribute, None)
+        if not isinstance(value, str) or not value:
+            raise subject.fail(f"class {cls.__name__} must set a non-empty str {attribute!r}, not {value!r}")
+    if cls.modality not in subject.modalities:
+        known = ", ".join(subject.modalities) or "none"
+        raise subject.fail(f"modality {cls.modality!r} is not registered (registered: {known})")
+    params = getattr(cls, "Params", None)
+    if not (isinstance(params, type) and dataclasses.is_dataclass(params) and params.__dataclass_params__.frozen):
+        raise subject.fail(f"Params must be a frozen dataclass, not {params!r}")
+    try:
+        defaults = cls.make_params()
+    except Exception as exc:
+        raise subject.fail(f"the default parameters do not validate: {describe_exception(exc)}") from exc
+    return f"{cls.name} {cls.version}, {cls.modality}, {len(dataclasses.fields(defaults))} parameters"
+
+
+def check_runs(subject: Subject) -> str:
+    """Reset, then step over the frames; every estimate is None or valid for the modality.
+
+    Raises
+    ------
+    AssertionError
+        If the tracker raises or returns an invalid estimate, naming the frame.
+    """
+    modality, frames = subject.ready()
+    estimates = subject.run(subject.create())
+    for frame, estimate in zip(frames.frame_list, estimates):
+        try:
+            modality.check_estimate(estimate)
+        except Exception as exc:
+            raise subject.fail(f"invalid estimate at frame {frame.index}: {describe_exception(exc)}") from exc
+    detected = sum(estimate is not None for estimate in estimates)
+    return f"{detected} estimates in {len(estimates)} frames of {frames.info.name}"
+
+
+def check_frames_without_truth(subject: Subject) -> str:
+    """The same frames with the truth removed (and no ``init``) run without an exception.
+
+    Raises
+    ------
+    AssertionError
+        If the tracker raises, for instance because it reads ``frame.truth``.
+    """
+    _, frames = subject.ready()
+    unlabelled = [dataclasses.replace(frame, truth=None) for frame in frames.frame_list]
+    estimates = subject.run(subject.create(), unlabelled, truth=False)
+    return f"{sum(estimate is not None for estimate in estimates)} estimates without truth"
+
+
+def check_same_seed_same_output(subject: Subject) -> str:
+    """Two fresh instances run with generators of the same seed give identical estimates.
+
+    Raises
+    ------
+    AssertionError
+        Naming the first frame where the runs differ.
+    """
+    _, frames = subject.ready()
+    first = subject.run(subject.create())
+    second = subject.run(subject.create())
+    difference = _difference(frames, first, second)
+    if difference:
+        raise subject.fail(f"two runs with seed {SEED} differ {difference}")
+    return f"{len(first)} identical estimates"
+
+
+def _numpy_state_equal(a: tuple[Any, ...], b: tuple[Any, ...]) -> bool:
+    return len(a) == len(b) and all(same(np.asarray(x), np.asarray(y)) for x, y in zip(a, b))
+
+
+def check_no_global_randomness(subject: Subject) -> str:
+    """Creating and running the tracker leaves NumPy's and Python's global random state unchanged.
+
+    Raises
+    ------
+    AssertionError
+        Naming the global generator the tracker used.
+    """
+    subject.ready()
+    numpy_before, python_before = np.random.get_state(), random.getstate()
+    try:
+        subject.run(subject.create())
+        numpy_after, python_after = np.random.get_state(), random.getstate()
+    finally:
+        np.random.set_state(numpy_before)
+        random.setstate(python_before)
+    used = [
+        *(["NumPy's global generator (np.random.*)"] if not _numpy_state_equal(numpy_before, numpy_after) else []),
+        *(["Python's random module"] if python_before != python_after else []),
+    ]
+    if used:
+        raise subject.fail(f"draws from {' and '.join(used)}; use only the rng handed to reset")
+    return "global random state unchanged"
+
+
+def _reversed(frames: SequenceOf[Frame]) -> list[Frame]:
+    """Another sequence of the same modality: the observations, truth and navigation in reverse order."""
+    backwards = list(reversed(frames))
+    return [dataclasses.replace(back, index=frame.index, time_s=frame.time_s) for frame, back in zip(frames, backwards)]
+
+
+def check_reset_leaves_no_state(subject: Subject) -> str:
+    """On one instance, run A, then B, then A again: both runs of A are identical.
+
+    A is the subject's frames, B the same frames in reverse order with
+    another seed.
+
+    Raises
+    ------
+    AssertionError
+        Naming the first frame where the second run of A differs.
+    """
+    _, frames = subject.ready()
+    tracker = subject.create()
+    first = subject.run(tracker)
+    subject.run(tracker, _reversed(frames.frame_list), seed=SEED + 1)
+    again = subject.run(tracker)
+    difference = _difference(frames, first, again)
+    if difference:
+        raise subject.fail(f"reset keeps state from the previous sequence: a rerun differs {difference}")
+    return f"{len(first)} identical estimates after another sequence"
+
+
+def check_pickles(subject: Subject) -> str:
+    """The entry, and an instance after ``reset`` and a ``step``, round-trip through pickle.
+
+    The copy's next estimate must equal the original's.
+
+    Raises
+    ------
+    AssertionError
+        Naming what could not be pickled, or the frame where the copy differs.
+    """
+    _, frames = subject.ready()
+    try:
+        pickle.loads(pickle.dumps(subject.entry))
+    except Exception as exc:
+        raise subject.fail(f"its registry entry does not pickle: {describe_exception(exc)}") from exc
+    tracker = subject.create()
+    subject.run(tracker, frames.frame_list[:1])
+    try:
+        copy = pickle.loads(pickle.dumps(tracker))
+    except Exception as exc:
+        raise subject.fail(f"an instance after reset and step does not pickle: {describe_exception(exc)}") from exc
+    if len(frames.frame_list) < 2:
+        return "pickled after one frame"
+    following = frames.frame_list[1]
+    try:
+        original, copied = tracker.step(following), copy.step(following)
+    except Exception as exc:
+        raise subject.fail(f"{describe_exception(exc)} (step after pickling, frame {following.index})") from exc
+    if not same(original, copied):
+        raise subject.fail(f"the unpickled instance's estimate at frame {following.index} differs: {copied}")
+    return "pickled after one frame; the copy steps alike"
+
+
+def check_step_time(subject: Subject) -> str:
+    """Milliseconds per ``step``, for the report; never fails."""
+    try:
+        _, frames = subject.ready()
+        tracker = subject.create()
+        tracker.reset(frames.info, subject.rng(), init=frames.frame_list[0].truth)
+        elapsed = 0.0
+        for frame in frames.frame_list:
+            tick = time.perf_counter()
+            tracker.step(frame)
+            elapsed += time.perf_counter() - tick
+    except Exception as exc:
+        return f"not timed: {describe_exception(exc)}"
+    return f"{1000.0 * elapsed / len(frames.frame_list):.2f} ms per frame over {len(frames.frame_list)} frames"
+
+
+CheckFunction = Callable[[Subject], str]
+
+CHECKS: tuple[tuple[str, CheckFunction], ...] = (
+    ("metadata", check_metadata),
+    ("runs", check_runs),
+    ("frames_without_truth", check_frames_without_truth),
+    ("same_seed_same_output", check_same_seed_same_output),
+    ("no_global_randomness", check_no_global_randomness),
+    ("reset_leaves_no_state", check_reset_leaves_no_state),
+    ("pickles", check_pickles),
+    ("step_time", check_step_time),
+)
+"""Every check, by name, in the order they run."""

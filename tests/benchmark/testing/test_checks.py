@@ -1,0 +1,169 @@
+"""The conformance kit on fake trackers: a well-behaved one passes, each broken one fails exactly its check."""
+
+from __future__ import annotations
+
+import math
+import types
+from typing import Any
+
+import numpy as np
+import pytest
+
+from benchmark.modalities.camera.model import CableState
+from benchmark.model import Frame, SequenceInfo
+from benchmark.registry import Registry
+from benchmark.testing import Check, CheckResult, check_tracker, checks
+from benchmark.testing.checks import same
+from benchmark.tracker import Tracker
+
+ALL_CHECKS = [check.name for check in checks()]
+
+
+class Steady(Tracker):
+    """Starts from ``init`` (or a fixed state), then follows the image brightness; uses only its rng."""
+
+    name = "steady"
+    version = "1.0"
+    modality = "camera"
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        self.rng = rng
+        self.state = init.cable if init is not None else CableState(0.0, 0.0, 12.0, 0.0)
+
+    def step(self, frame: Frame) -> Any:
+        shift = float(np.mean(frame.observation)) / 100.0 + self.rng.normal(0.0, 0.1)
+        self.state = CableState(self.state.d + shift, self.state.alpha, self.state.w, self.state.beta)
+        return self.state
+
+
+class GlobalRandom(Steady):
+    """Draws from NumPy's global generator (and ignores the draw)."""
+
+    name = "global-random"
+
+    def step(self, frame: Frame) -> Any:
+        np.random.random()
+        return super().step(frame)
+
+
+class Sticky(Steady):
+    """Counts frames across resets, and the count moves its estimates."""
+
+    name = "sticky"
+    seen = 0
+
+    def step(self, frame: Frame) -> Any:
+        self.seen += 1
+        estimate = super().step(frame)
+        return CableState(estimate.d + self.seen, estimate.alpha, estimate.w, estimate.beta)
+
+
+class NotANumber(Steady):
+    """Returns a NaN distance at frame 2."""
+
+    name = "not-a-number"
+
+    def step(self, frame: Frame) -> Any:
+        estimate = super().step(frame)
+        return CableState(math.nan, 0.0, 12.0, 0.0) if frame.index == 2 else estimate
+
+
+class Unpicklable(Steady):
+    """Keeps a lambda, which pickle refuses."""
+
+    name = "unpicklable"
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        super().reset(info, rng, init)
+        self.scale = lambda value: value
+
+
+@pytest.fixture
+def registry(fakes: types.ModuleType) -> Registry:
+    return fakes.make_registry()
+
+
+def run_kit(tracker: type[Tracker], registry: Registry, fakes: types.ModuleType) -> list[CheckResult]:
+    return check_tracker(tracker, registry=registry, sequence=fakes.FakeSequence("fake/S1", 10))
+
+
+def failures(results: list[CheckResult]) -> dict[str, str]:
+    return {result.check: result.message for result in results if not result.ok}
+
+
+def test_checks_are_named_in_order() -> None:
+    assert ALL_CHECKS == [
+        "metadata",
+        "runs",
+        "frames_without_truth",
+        "same_seed_same_output",
+        "no_global_randomness",
+        "reset_leaves_no_state",
+        "pickles",
+        "step_time",
+    ]
+    assert all(isinstance(check, Check) and callable(check) for check in checks())
+
+
+def test_a_well_behaved_tracker_passes_everything(registry: Registry, fakes: types.ModuleType) -> None:
+    results = run_kit(Steady, registry, fakes)
+    assert [result.check for result in results] == ALL_CHECKS
+    assert failures(results) == {}
+    assert "ms per frame" in results[-1].detail
+
+
+def test_perfect_passes_everything_but_frames_without_truth(registry: Registry, fakes: types.ModuleType) -> None:
+    """The oracle reads ``frame.truth`` in ``step``, which the kit is right to refuse."""
+    failed = failures(check_tracker(registry.trackers["perfect"], registry=registry))
+    assert list(failed) == ["frames_without_truth"]
+    assert "'perfect'" in failed["frames_without_truth"]
+    assert "AttributeError" in failed["frames_without_truth"]
+
+
+def test_the_registry_suite_is_used_when_no_sequence_is_given(registry: Registry) -> None:
+    results = check_tracker(Steady, registry=registry)
+    assert failures(results) == {}
+    assert "fake/S1" in results[1].detail
+
+
+@pytest.mark.parametrize(
+    ("tracker", "check", "words"),
+    [
+        (GlobalRandom, "no_global_randomness", "np.random"),
+        (Sticky, "reset_leaves_no_state", "reset keeps state"),
+        (NotANumber, "runs", "frame 2"),
+        (Unpicklable, "pickles", "does not pickle"),
+    ],
+)
+def test_a_broken_tracker_fails_exactly_its_check(
+    tracker: type[Tracker], check: str, words: str, registry: Registry, fakes: types.ModuleType
+) -> None:
+    failed = failures(run_kit(tracker, registry, fakes))
+    assert list(failed) == [check]
+    assert f"tracker {tracker.name!r}" in failed[check]
+    assert words in failed[check]
+
+
+def test_global_state_is_restored_after_the_check(registry: Registry, fakes: types.ModuleType) -> None:
+    before = np.random.get_state()
+    run_kit(GlobalRandom, registry, fakes)
+    after = np.random.get_state()
+    assert all(same(np.asarray(a), np.asarray(b)) for a, b in zip(before, after))
+
+
+def test_bad_metadata_is_reported_and_the_runs_say_why_they_cannot_happen(registry: Registry) -> None:
+    class Elsewhere(Steady):
+        name = "elsewhere"
+        modality = "lidar"
+
+    failed = failures(check_tracker(Elsewhere, registry=registry))
+    assert "modality 'lidar' is not registered" in failed["metadata"]
+    assert "cannot run" in failed["runs"]
+    assert "step_time" not in failed
+
+
+def test_estimates_compare_nan_aware() -> None:
+    assert same(CableState(math.nan, 0.0, 1.0, 0.0), CableState(math.nan, 0.0, 1.0, 0.0))
+    assert not same(CableState(1.0, 0.0, 1.0, 0.0), CableState(1.5, 0.0, 1.0, 0.0))
+    assert same(np.array([1.0, math.nan]), np.array([1.0, math.nan]))
+    assert not same(None, CableState(0.0, 0.0, 1.0, 0.0))
