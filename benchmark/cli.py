@@ -15,6 +15,7 @@
     compare       what changed between two runs of the history
     report        rebuild the site from the history without running anything
     check         the conformance checks of benchmark.testing on installed trackers
+    new-tracker   write the skeleton of a tracker plugin package (pyproject, tracker, one-line test)
 
 ``run`` forms a cell for every selected tracker, sequence and seed whose
 modalities match, and runs the cells on an executor (``--executor local``:
@@ -766,3 +767,27 @@ def check_command(ctx: click.Context, names: tuple[str, ...], frames: int) -> No
     click.echo(f"{len(rows) - failed} passed, {failed} failed ({len(entries)} trackers)")
     if failed:
         ctx.exit(EXIT_FAILED)
+
+
+@main.command("new-tracker")
+@click.argument("name")
+@click.option(
+    "--modality", default="camera", show_default=True, help="The modality the tracker reads (templates: camera)."
+)
+@click.option(
+    "--out",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=Path("."),
+    show_default=True,
+    help="Folder in which the plugin folder NAME is made.",
+)
+def new_tracker_command(name: str, modality: str, out: Path) -> None:
+    """Write a minimal tracker plugin package into OUT/NAME: pyproject.toml, trackbench_NAME and a test.
+
+    Then `pip install -e OUT/NAME`, `trackbench check NAME` and `pytest OUT/NAME/tests`.
+    """
+    from benchmark.scaffold import new_tracker
+
+    folder = new_tracker(name, out, modality)
+    for path in sorted(p for p in folder.rglob("*") if p.is_file()):
+        click.echo(path)

@@ -152,3 +152,6 @@ def _run_checks(entry: TrackerEntry, subject: Subject, results: list[CheckResult
         except Exception as exc:
             detail, ok, message = "", False, f"tracker {entry.name!r}: the check raised {describe_exception(exc)}"
         results.append(CheckResult(entry.name, check.name, ok, message, detail, time.perf_counter() - started))
+
+
+from benchmark.testing.pytest_plugin import assert_conforms as assert_conforms

@@ -38,6 +38,12 @@ from benchmark.modality import Modality
 from benchmark.model import Frame, Sequence, SequenceInfo
 from benchmark.registry import Registry, TrackerEntry
 from benchmark.runner import cell_rng, describe_exception
+from benchmark.testing.beliefs import (
+    GaussianBelief,
+    ParticleBelief,
+    gaussian_belief_problems,
+    particle_belief_problems,
+)
 from benchmark.tracker import Tracker
 from benchmark.training import learns
 
@@ -462,6 +468,66 @@ def check_step_time(subject: Subject) -> str:
     return f"{1000.0 * elapsed / len(frames.frame_list):.2f} ms per frame over {len(frames.frame_list)} frames"
 
 
+def _belief_problems(tracker: Tracker) -> tuple[list[str], list[str]]:
+    """The kinds of belief ``tracker`` exposes right now (a None belief is not one), and what is wrong with them."""
+    kinds: list[str] = []
+    problems: list[str] = []
+    if isinstance(tracker, ParticleBelief):
+        particles, weights = tracker.particles, tracker.weights
+        if particles is not None or weights is not None:
+            kinds.append("particle")
+            problems += particle_belief_problems(particles, weights)
+    if isinstance(tracker, GaussianBelief):
+        mean, covariance = tracker.mean, tracker.covariance
+        if mean is not None or covariance is not None:
+            kinds.append("Gaussian")
+            problems += gaussian_belief_problems(mean, covariance)
+    return kinds, problems
+
+
+def check_belief_invariants(subject: Subject) -> str:
+    """A belief the tracker exposes keeps its invariants after ``reset`` and after every ``step``.
+
+    A tracker exposes its belief through :class:`~benchmark.testing.beliefs.ParticleBelief`
+    (weights finite, non-negative, summing to one, effective sample size in
+    ``[1, N]``, particles finite) or :class:`~benchmark.testing.beliefs.GaussianBelief`
+    (mean and covariance finite, covariance symmetric and positive
+    semi-definite).  A belief of None (no start yet, target lost) is not
+    checked; a tracker that satisfies neither protocol passes with the
+    detail ``"exposes no belief"``.
+
+    Raises
+    ------
+    AssertionError
+        Naming the first point (after reset, or the frame) where the belief breaks an invariant.
+    """
+    _, frames = subject.ready()
+    tracker = subject.create()
+    kinds: set[str] = set()
+    held = 0
+    where = "reset"
+    try:
+        tracker.reset(frames.info, subject.rng(), init=frames.frame_list[0].truth)
+        for frame in (None, *frames.frame_list):
+            if frame is not None:
+                where = f"step, frame {frame.index}"
+                tracker.step(frame)
+            now, problems = _belief_problems(tracker)
+            if problems:
+                point = "after reset" if frame is None else f"at frame {frame.index}"
+                raise subject.fail(f"its {' and '.join(now)} belief is broken {point}: {'; '.join(problems)}")
+            kinds.update(now)
+            held += bool(now)
+    except AssertionError:
+        raise
+    except Exception as exc:
+        raise subject.fail(f"{describe_exception(exc)} ({where}, reading the belief)") from exc
+    if not (isinstance(tracker, ParticleBelief) or isinstance(tracker, GaussianBelief)) and not kinds:
+        return "exposes no belief"
+    points = len(frames.frame_list) + 1
+    return f"{' and '.join(sorted(kinds)) or 'no'} belief held at {held} of {points} points (reset and each frame)"
+
+
 CheckFunction = Callable[[Subject], str]
 
 CHECKS: tuple[tuple[str, CheckFunction], ...] = (
@@ -472,6 +538,7 @@ CHECKS: tuple[tuple[str, CheckFunction], ...] = (
     ("no_global_randomness", check_no_global_randomness),
     ("reset_leaves_no_state", check_reset_leaves_no_state),
     ("pickles", check_pickles),
+    ("belief_invariants", check_belief_invariants),
     ("step_time", check_step_time),
 )
 """Every check, by name, in the order they run."""

@@ -81,9 +81,12 @@ from trackbench_condensation.width import WidthPrior
 class CondensationTracker(Tracker[CameraTruth, CableState]):
     """Particle filter over ``(d, alpha, w, beta, v_d, v_alpha)`` with border-gradient weights.
 
+    The belief is exposed as a :class:`~benchmark.testing.beliefs.ParticleBelief`
+    (:attr:`particles`, :attr:`weights`).
+
     Attributes
     ----------
-    particles : ParticleSet or None
+    particle_set : ParticleSet or None
         The weighted particles after the last step (None before :meth:`reset`).
     observation : BorderObservation
         The observation model.
@@ -152,10 +155,20 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
                 math.radians(0.5),
             ]
         )
-        self.particles: ParticleSet | None = None
+        self.particle_set: ParticleSet | None = None
         self._rng: np.random.Generator | None = None
         self._steps = 0
         self._lost = False
+
+    @property
+    def particles(self) -> np.ndarray | None:
+        """The states of the particles, ``(N, dims)``; None before :meth:`reset`."""
+        return None if self.particle_set is None else self.particle_set.states
+
+    @property
+    def weights(self) -> np.ndarray | None:
+        """The weights of the particles, ``(N,)``, summing to one; None before :meth:`reset`."""
+        return None if self.particle_set is None else self.particle_set.weights
 
     @property
     def dims(self) -> int:
@@ -200,7 +213,7 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
         self._steps = 0
         self._lost = lost
         self.lost.reset()
-        self.particles = ParticleSet.equally_weighted(states)
+        self.particle_set = ParticleSet.equally_weighted(states)
 
     def step(self, frame: CameraFrame) -> CableState | None:
         """One condensation step on a frame and the estimate of the cable state.
@@ -229,7 +242,7 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
         ----------
         seeds/000, Fig. 4.10 steps 2(a)-(d).
         """
-        if self.particles is None or self._rng is None:
+        if self.particle_set is None or self._rng is None:
             raise RuntimeError("condensation: step() called before reset()")
         try:
             image = as_grey_image(frame.observation)
@@ -237,11 +250,11 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
             raise DataError(f"condensation: frame {frame.index}: {exc}") from exc
         self._refresh(image)
         self._steps += 1
-        self.particles = self.filter.step(self.particles, image, self._rng)
-        mean = self.particles.mmse()[:4]
+        self.particle_set = self.filter.step(self.particle_set, image, self._rng)
+        mean = self.particle_set.mmse()[:4]
         mean_score = float(self.observation.score(mean[None, :], image)[0])
         self._lost = self.lost.update(mean_score)
-        if self._lost or self.report.too_wide(self.particles):
+        if self._lost or self.report.too_wide(self.particle_set):
             return None
         state = self.report.state(
             mean, mean_score, lambda states: self.observation.score(states, image), *self._refine_bounds
@@ -264,14 +277,14 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
         p = self.params
         n = int(p.n_particles)
         if p.reinit_every > 0 and self._steps > 0 and self._steps % p.reinit_every == 0:
-            self.particles = ParticleSet.equally_weighted(uniform_particles(n, self.dims, self.limits, self._rng))
+            self.particle_set = ParticleSet.equally_weighted(uniform_particles(n, self.dims, self.limits, self._rng))
             return
         count = int(round(p.redetect_fraction * n))
         periodic = p.redetect_every > 0 and self._steps > 0 and self._steps % p.redetect_every == 0
         if count == 0 or not (self._lost or periodic):
             return
         # While lost, every angle of Table 5.2; while tracking, those near the estimate.
-        around = None if self._lost else float(self.particles.mmse()[1])
+        around = None if self._lost else float(self.particle_set.mmse()[1])
         candidates, _ = self.scan.candidates(
             image, self.observation.taps, p.sample_distance_px, p.redetect_candidates, around, p.redetect_window_deg
         )
@@ -290,10 +303,10 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
             return
         # Resample first, so that the proposals join an equally weighted set
         # and the condensation step does not resample them away on old weights.
-        states = self.particles.states[self.filter.resample(self.particles.weights, self._rng)]
+        states = self.particle_set.states[self.filter.resample(self.particle_set.weights, self._rng)]
         slots = self._rng.choice(n, size=count, replace=False)
         states[slots] = propose(candidates, count, self.dims, self._proposal_spread, self._rng)
-        self.particles = ParticleSet.equally_weighted(states)
+        self.particle_set = ParticleSet.equally_weighted(states)
 
 
 _COMPILED: set[CondensationParams] = set()

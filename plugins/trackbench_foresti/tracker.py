@@ -164,6 +164,10 @@ class ForestiParams(FeatureParams):
 class ForestiEkfTracker(Tracker[CameraTruth, CableState]):
     """Camera pose ``(C_x, C_y, theta, phi[, xi])`` by an EKF on the pipe's borders and the inertial speeds.
 
+    The belief (attribute ``belief``, a :class:`~benchmark.filters.kalman.Gaussian`)
+    is exposed as a :class:`~benchmark.testing.beliefs.GaussianBelief`
+    (:attr:`mean`, :attr:`covariance`).
+
     References
     ----------
     seeds/004, sections III-V and VI-A: eqs. (7)-(17), Figs. 3-4 and 6.
@@ -187,6 +191,18 @@ class ForestiEkfTracker(Tracker[CameraTruth, CableState]):
         """The last frame's measured abscissae ``(i_1, i_2, i_3, i_4)``, None without a pair."""
         self._speeds = np.zeros(3)
         self._started = False
+
+    @property
+    def mean(self) -> np.ndarray | None:
+        """The mean of the camera pose ``(C_x, C_y, theta, phi[, xi])``; None before :meth:`reset`."""
+        belief = self.belief
+        return None if belief is None else belief.mean
+
+    @property
+    def covariance(self) -> np.ndarray | None:
+        """The covariance of the camera pose ``(C_x, C_y, theta, phi[, xi])``; None before :meth:`reset`."""
+        belief = self.belief
+        return None if belief is None else belief.covariance
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: CameraTruth | None = None) -> None:
         """Start from the first frame's pose when the run gives it, else from ``x_0``.

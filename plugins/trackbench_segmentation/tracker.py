@@ -57,6 +57,9 @@ class SegmentationTracker(Tracker[CameraTruth, CableState]):
     prediction : Prediction or None
         What the last frame was searched with; None for the whole image.
 
+    The filter's belief is exposed as a :class:`~benchmark.testing.beliefs.GaussianBelief`
+    (:attr:`mean`, :attr:`covariance`).
+
     References
     ----------
     seeds/000, section 2.3 (Ortiz et al. [AO03, OSO02]; Panda and Rosenfeld [PR78]) and Fig. 2.4-2.5.
@@ -79,6 +82,18 @@ class SegmentationTracker(Tracker[CameraTruth, CableState]):
     def belief(self) -> Gaussian | None:
         """The filter's Gaussian belief over ``(d, alpha, w)``, or None while the cable is lost."""
         return self.filter.belief
+
+    @property
+    def mean(self) -> np.ndarray | None:
+        """The mean of ``(d, alpha, w)``; None while the cable is lost."""
+        belief = self.belief
+        return None if belief is None else belief.mean
+
+    @property
+    def covariance(self) -> np.ndarray | None:
+        """The covariance of ``(d, alpha, w)``; None while the cable is lost."""
+        belief = self.belief
+        return None if belief is None else belief.covariance
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: CameraTruth | None = None) -> None:
         """Forget the previous sequence; optionally start tracking from ``init``.

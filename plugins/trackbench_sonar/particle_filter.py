@@ -113,9 +113,12 @@ def walk_sigma(params: ParticleFilterParams, info: SequenceInfo, tracker: str) -
 class SonarParticleFilter(ScanTracker):
     """Particle filter over the pipe's across-track position, weighted by the likelihood scan.
 
+    The belief is exposed as a :class:`~benchmark.testing.beliefs.ParticleBelief`
+    (:attr:`particles`, :attr:`weights`).
+
     Attributes
     ----------
-    particles : ParticleSet or None
+    particle_set : ParticleSet or None
         The weighted particles ``(N, 1)`` after the last step; None until
         the filter has a start.
 
@@ -133,7 +136,17 @@ class SonarParticleFilter(ScanTracker):
         self._observation = ScanWeights(float(self.params.weight_floor), float(self.params.weight_exponent))
         self._walk_sigma = 0.0
         self._rng: np.random.Generator | None = None
-        self.particles: ParticleSet | None = None
+        self.particle_set: ParticleSet | None = None
+
+    @property
+    def particles(self) -> np.ndarray | None:
+        """The particles' across-track positions, ``(N, 1)`` in m; None until the filter has a start."""
+        return None if self.particle_set is None else self.particle_set.states
+
+    @property
+    def weights(self) -> np.ndarray | None:
+        """The weights of the particles, ``(N,)``, summing to one; None until the filter has a start."""
+        return None if self.particle_set is None else self.particle_set.weights
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: SonarTruth | None = None) -> None:
         """Set up the detector and, given a start, the particles.
@@ -160,12 +173,12 @@ class SonarParticleFilter(ScanTracker):
         super().reset(info, rng, init)
         self._walk_sigma = walk_sigma(self.params, info, self.name)
         self._rng = rng
-        self.particles = None
+        self.particle_set = None
         start = init.across_m if init is not None else math.nan
         if math.isfinite(start):
             n = int(self.params.n_particles)
             states = start + self.params.init_sigma_m * rng.standard_normal((n, 1))
-            self.particles = ParticleSet.equally_weighted(states)
+            self.particle_set = ParticleSet.equally_weighted(states)
 
     def step(self, frame: SonarFrame) -> PipeEstimate | None:
         """One update of the filter on a ping and the estimate of eq. (5).
@@ -192,13 +205,14 @@ class SonarParticleFilter(ScanTracker):
         p = self.params
         profile, scan = self.scan(frame)
         extent = None if profile.is_empty else (float(profile.across_m[0]), float(profile.across_m[-1]))
-        if self.particles is None:
+        if self.particle_set is None:
             if extent is None:
                 return None
-            self.particles = ParticleSet.equally_weighted(uniform_positions(int(p.n_particles), extent, self._rng))
+            self.particle_set = ParticleSet.equally_weighted(uniform_positions(int(p.n_particles), extent, self._rng))
         movement = RandomWalkInjection(self._walk_sigma, p.inject_fraction, extent)
         if scan.is_empty:
-            self.particles = ParticleSet(movement.walk(self.particles.states, self._rng), self.particles.weights)
+            walked = movement.walk(self.particle_set.states, self._rng)
+            self.particle_set = ParticleSet(walked, self.particle_set.weights)
         else:
             update = Condensation(
                 movement=movement,
@@ -207,6 +221,6 @@ class SonarParticleFilter(ScanTracker):
                 ess_fraction=math.inf,
                 carry_weights=True,
             )
-            self.particles = update.step(self.particles, scan, self._rng)
+            self.particle_set = update.step(self.particle_set, scan, self._rng)
         halfwidth = p.peak_halfwidth * self.detector.likelihood.section.major_m
-        return PipeEstimate(peak_mean(self.particles.states[:, 0], self.particles.weights, halfwidth))
+        return PipeEstimate(peak_mean(self.particle_set.states[:, 0], self.particle_set.weights, halfwidth))

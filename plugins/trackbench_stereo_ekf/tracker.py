@@ -134,6 +134,9 @@ class StereoEkfParams(FrontEndSettings):
 class StereoEkfTracker(Tracker[StereoTruth, TargetEstimate]):
     """Extended Kalman filter on ``[X, Y, X_dot, Y_dot]`` from stereo measurements and CH's navigation.
 
+    The belief is exposed as a :class:`~benchmark.testing.beliefs.GaussianBelief`
+    (:attr:`mean`, :attr:`covariance`).
+
     References
     ----------
     seeds/002, sections 2-3: Table 2 (algorithm), eqs. (5)-(12) (models),
@@ -157,6 +160,18 @@ class StereoEkfTracker(Tracker[StereoTruth, TargetEstimate]):
     def belief(self) -> Gaussian | None:
         """The filter's mean and covariance of ``[X, Y, X_dot, Y_dot]``, None before the first one."""
         return self._belief
+
+    @property
+    def mean(self) -> np.ndarray | None:
+        """The mean of ``[X, Y, X_dot, Y_dot]``; None before the first belief."""
+        belief = self._belief
+        return None if belief is None else belief.mean
+
+    @property
+    def covariance(self) -> np.ndarray | None:
+        """The covariance of ``[X, Y, X_dot, Y_dot]``; None before the first belief."""
+        belief = self._belief
+        return None if belief is None else belief.covariance
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: StereoTruth | None = None) -> None:
         """Start a sequence, from the first frame's truth (``init``) or from nothing.

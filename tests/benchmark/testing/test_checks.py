@@ -100,6 +100,7 @@ def test_checks_are_named_in_order() -> None:
         "no_global_randomness",
         "reset_leaves_no_state",
         "pickles",
+        "belief_invariants",
         "step_time",
     ]
     assert all(isinstance(check, Check) and callable(check) for check in checks())

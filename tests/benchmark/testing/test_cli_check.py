@@ -13,16 +13,16 @@ def test_check_prints_a_row_per_tracker_and_check_and_fails_on_a_failure(invoke:
     lines = result.output.splitlines()
     assert lines[0].split() == ["tracker", "check", "result", "message"]
     rows = [line.split()[:3] for line in lines[1:-1]]
-    assert len(rows) == 16
+    assert len(rows) == 18
     assert ["perfect", "frames_without_truth", "FAIL"] in rows
     assert ["blind", "frames_without_truth", "ok"] in rows
-    assert "15 passed, 1 failed (2 trackers)" in lines[-1]
+    assert "17 passed, 1 failed (2 trackers)" in lines[-1]
 
 
 def test_check_passes_with_exit_status_0(invoke: Callable[..., Result]) -> None:
     result = invoke("check", "blind", "--frames", "4")
     assert result.exit_code == 0, result.output
-    assert "8 passed, 0 failed (1 trackers)" in result.output
+    assert "9 passed, 0 failed (1 trackers)" in result.output
 
 
 def test_check_of_an_unknown_tracker_is_a_usage_error(invoke: Callable[..., Result]) -> None:

@@ -40,7 +40,7 @@ def test_step_speed(benchmark, scene, overrides):
     # Back and forth, so that the cable moves smoothly as in a real sequence.
     stream = itertools.cycle(frames[::-1] + frames)
     benchmark.pedantic(lambda: tracker.step(next(stream)), rounds=400, iterations=1, warmup_rounds=20)
-    assert tracker.particles is not None and np.all(np.isfinite(tracker.particles.states))
+    assert tracker.particles is not None and np.all(np.isfinite(tracker.particles))
     if benchmark.stats is not None:
         mean, median = benchmark.stats.stats.mean, benchmark.stats.stats.median
         benchmark.extra_info["fps"] = round(1.0 / mean, 1)

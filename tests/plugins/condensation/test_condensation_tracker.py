@@ -62,7 +62,7 @@ def test_estimate_is_the_weighted_mean_of_the_particles(sequence):
     states, images = sequence
     tracker = make(report_mode=False)
     estimate = run(tracker, images[:3], init=CameraTruth(states[0]))[-1]
-    np.testing.assert_allclose(estimate.as_array(), tracker.particles.weights @ tracker.particles.states[:, :4])
+    np.testing.assert_allclose(estimate.as_array(), tracker.weights @ tracker.particles[:, :4])
 
 
 def test_the_peak_beside_a_lagging_mean_is_reported(sequence):
@@ -116,7 +116,7 @@ def test_uniform_initialisation_within_table_5_2(sequence):
     _, images = sequence
     tracker = make(n_particles=2000)
     tracker.reset(INFO, np.random.default_rng(0), init=None)
-    states = tracker.particles.states
+    states = tracker.particles
     assert states.shape == (2000, 6)
     low = np.array([-150, -math.radians(45), 5, 0, -1, -math.radians(0.1)])
     high = np.array([150, math.radians(45), 100, math.radians(10), 1, math.radians(0.1)])
@@ -124,7 +124,7 @@ def test_uniform_initialisation_within_table_5_2(sequence):
     assert np.all(states.max(axis=0) - states.min(axis=0) > 0.9 * (high - low))
     # An unknown first state counts as no initialisation.
     tracker.reset(INFO, np.random.default_rng(0), init=CameraTruth(CableState(*(4 * [math.nan]))))
-    assert np.ptp(tracker.particles.states[:, 0]) > 200
+    assert np.ptp(tracker.particles[:, 0]) > 200
 
 
 def test_without_initialisation_the_cable_is_found(sequence):
@@ -138,7 +138,7 @@ def test_truth_initialisation_puts_every_particle_at_the_truth(sequence):
     tracker = make(width_skew_velocities=True)
     tracker.reset(INFO, np.random.default_rng(0), init=CameraTruth(states[0]))
     expected = np.r_[states[0].as_array(), np.zeros(4)]
-    np.testing.assert_array_equal(tracker.particles.states, np.tile(expected, (500, 1)))
+    np.testing.assert_array_equal(tracker.particles, np.tile(expected, (500, 1)))
 
 
 def test_reinitialisation_every_k_frames(sequence, monkeypatch):
@@ -162,9 +162,9 @@ def test_reinitialised_particles_spread_over_the_limits(sequence):
     states, images = sequence
     tracker = make(reinit_every=4, redetect_fraction=0.0)
     run(tracker, images[:4], init=CameraTruth(states[0]))
-    assert np.ptp(tracker.particles.states[:, 0]) < 50
+    assert np.ptp(tracker.particles[:, 0]) < 50
     tracker.step(Frame(4, images[4]))
-    assert np.ptp(tracker.particles.states[:, 0]) > 200
+    assert np.ptp(tracker.particles[:, 0]) > 200
 
 
 def test_reports_no_cable_on_a_blank_image_after_tracking(sequence):

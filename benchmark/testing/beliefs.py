@@ -1,0 +1,182 @@
+"""The beliefs a filter tracker may expose, and the invariants they keep.
+
+A tracker that filters may let the conformance kit look at its belief
+through one of two runtime-checkable protocols:
+
+* :class:`ParticleBelief`: a weighted particle set, ``particles`` of shape
+  ``(N, D)`` and ``weights`` of shape ``(N,)``;
+* :class:`GaussianBelief`: a Gaussian, ``mean`` of shape ``(D,)`` and
+  ``covariance`` of shape ``(D, D)``.
+
+Either may be None while the tracker holds no belief (before it has a
+start, or while it has lost the target).  :func:`particle_belief_problems`
+and :func:`gaussian_belief_problems` list what is wrong with one belief;
+the ``belief_invariants`` check of :mod:`benchmark.testing.checks` applies
+them after ``reset`` and after every ``step``.
+"""
+
+from __future__ import annotations
+
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+
+__all__ = [
+    "WEIGHT_SUM_TOLERANCE",
+    "GaussianBelief",
+    "ParticleBelief",
+    "gaussian_belief_problems",
+    "particle_belief_problems",
+]
+
+WEIGHT_SUM_TOLERANCE = 1e-9
+"""How far the weights of a particle belief may sum from one."""
+
+SYMMETRY_TOLERANCE = 1e-9
+"""Relative tolerance of a covariance's symmetry and of its smallest eigenvalue, times its scale."""
+
+
+@runtime_checkable
+class ParticleBelief(Protocol):
+    """A tracker whose belief is a weighted particle set.
+
+    Attributes
+    ----------
+    particles : numpy.ndarray or None
+        The states of the particles, shape ``(N, D)``; None while there is no belief.
+    weights : numpy.ndarray or None
+        Their weights, shape ``(N,)``: finite, non-negative, summing to one.
+    """
+
+    @property
+    def particles(self) -> np.ndarray | None: ...
+
+    @property
+    def weights(self) -> np.ndarray | None: ...
+
+
+@runtime_checkable
+class GaussianBelief(Protocol):
+    """A tracker whose belief is a Gaussian.
+
+    Attributes
+    ----------
+    mean : numpy.ndarray or None
+        The mean, shape ``(D,)``; None while there is no belief.
+    covariance : numpy.ndarray or None
+        The covariance, shape ``(D, D)``: finite, symmetric, positive semi-definite.
+    """
+
+    @property
+    def mean(self) -> np.ndarray | None: ...
+
+    @property
+    def covariance(self) -> np.ndarray | None: ...
+
+
+def _as_float(value: object, name: str, problems: list[str]) -> np.ndarray | None:
+    try:
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as exc:
+        problems.append(f"{name} is not an array of numbers: {exc}")
+        return None
+
+
+def particle_belief_problems(particles: object, weights: object) -> list[str]:
+    """What is wrong with a weighted particle set.
+
+    Parameters
+    ----------
+    particles : array_like
+        The states, shape ``(N, D)`` with ``N >= 1``.
+    weights : array_like
+        The weights, shape ``(N,)``.
+
+    Returns
+    -------
+    list of str
+        One line per broken invariant, empty when there is none: the shapes
+        match, the particles and weights are finite, the weights are
+        non-negative and sum to one within :data:`WEIGHT_SUM_TOLERANCE`, and
+        the effective sample size ``1 / sum(w^2)`` lies in ``[1, N]``.
+    """
+    problems: list[str] = []
+    states = _as_float(particles, "particles", problems)
+    w = _as_float(weights, "weights", problems)
+    if states is None or w is None:
+        return problems
+    if states.ndim != 2 or states.shape[0] == 0:
+        problems.append(f"particles must have shape (N, D) with N >= 1, not {states.shape}")
+        return problems
+    if w.shape != (states.shape[0],):
+        problems.append(f"weights of shape {w.shape} do not match particles of shape {states.shape}")
+        return problems
+    if not np.all(np.isfinite(states)):
+        problems.append(f"{int(np.sum(~np.isfinite(states)))} particle coordinates are not finite")
+    if not np.all(np.isfinite(w)):
+        problems.append(f"{int(np.sum(~np.isfinite(w)))} weights are not finite")
+        return problems
+    if np.any(w < 0):
+        bad = int(np.flatnonzero(w < 0)[0])
+        problems.append(f"{int(np.sum(w < 0))} weights are negative (weight {bad} is {w[bad]!r})")
+    total = float(np.sum(w))
+    if abs(total - 1.0) > WEIGHT_SUM_TOLERANCE:
+        problems.append(f"weights sum to {total!r}, not 1 within {WEIGHT_SUM_TOLERANCE:g}")
+    square = float(np.dot(w, w))
+    ess = 1.0 / square if square > 0 else np.inf
+    n = w.size
+    slack = 1e-9 * n
+    if not (1.0 - slack <= ess <= n + slack):
+        problems.append(f"effective sample size 1/sum(w^2) = {ess!r} is outside [1, {n}]")
+    return problems
+
+
+def gaussian_belief_problems(mean: object, cov: object, tol: float = SYMMETRY_TOLERANCE) -> list[str]:
+    """What is wrong with a Gaussian belief.
+
+    Parameters
+    ----------
+    mean : array_like
+        The mean, shape ``(D,)``.
+    cov : array_like
+        The covariance, shape ``(D, D)``.
+    tol : float
+        Relative tolerance: the covariance may be asymmetric by ``tol *
+        scale`` and its smallest eigenvalue as low as ``-tol * scale``,
+        where ``scale`` is the largest absolute entry of the covariance (at
+        least 1e-300).
+
+    Returns
+    -------
+    list of str
+        One line per broken invariant, empty when there is none: the shapes
+        match, mean and covariance are finite, the covariance is symmetric
+        and positive semi-definite.
+    """
+    problems: list[str] = []
+    mu = _as_float(mean, "mean", problems)
+    sigma = _as_float(cov, "covariance", problems)
+    if mu is None or sigma is None:
+        return problems
+    if mu.ndim != 1:
+        problems.append(f"mean must have shape (D,), not {mu.shape}")
+        return problems
+    if sigma.shape != (mu.size, mu.size):
+        problems.append(f"covariance of shape {sigma.shape} does not match a mean of shape {mu.shape}")
+        return problems
+    if not np.all(np.isfinite(mu)):
+        problems.append(f"{int(np.sum(~np.isfinite(mu)))} mean entries are not finite")
+    if not np.all(np.isfinite(sigma)):
+        problems.append(f"{int(np.sum(~np.isfinite(sigma)))} covariance entries are not finite")
+        return problems
+    if sigma.size == 0:
+        return problems
+    scale = max(float(np.max(np.abs(sigma))), 1e-300)
+    asymmetry = float(np.max(np.abs(sigma - sigma.T)))
+    if asymmetry > tol * scale:
+        problems.append(f"covariance is not symmetric: |C - C^T| reaches {asymmetry:.3g} (scale {scale:.3g})")
+        sigma = 0.5 * (sigma + sigma.T)
+    smallest = float(np.min(np.linalg.eigvalsh(sigma)))
+    if smallest < -tol * scale:
+        problems.append(f"covariance is not positive semi-definite: eigenvalue {smallest:.3g} (scale {scale:.3g})")
+    return problems

@@ -1,0 +1,309 @@
+"""The belief protocols, the invariants of a belief, and the ``belief_invariants`` check on fake trackers."""
+
+from __future__ import annotations
+
+import types
+from typing import Any
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra import numpy as hnp
+
+from benchmark.modalities.camera.model import CableState
+from benchmark.model import Frame, SequenceInfo
+from benchmark.registry import Registry
+from benchmark.testing import CheckResult, check_tracker
+from benchmark.testing.beliefs import (
+    GaussianBelief,
+    ParticleBelief,
+    gaussian_belief_problems,
+    particle_belief_problems,
+)
+from benchmark.tracker import Tracker
+
+FINITE = st.floats(-1e3, 1e3, allow_nan=False, allow_infinity=False, allow_subnormal=False)
+
+
+@st.composite
+def particle_beliefs(draw: st.DrawFn) -> tuple[np.ndarray, np.ndarray]:
+    """Finite particles ``(N, D)`` with non-negative weights normalised to sum to one."""
+    n = draw(st.integers(1, 40))
+    d = draw(st.integers(1, 4))
+    particles = draw(hnp.arrays(float, (n, d), elements=FINITE))
+    raw = draw(hnp.arrays(float, (n,), elements=st.floats(0.0, 1e6, allow_subnormal=False)))
+    weights = np.full(n, 1.0 / n) if raw.sum() == 0 else raw / raw.sum()
+    return particles, weights
+
+
+@st.composite
+def gaussian_beliefs(draw: st.DrawFn, min_dims: int = 1) -> tuple[np.ndarray, np.ndarray]:
+    """A finite mean ``(D,)`` and a symmetric positive semi-definite covariance ``A A^T``."""
+    d = draw(st.integers(min_dims, 5))
+    mean = draw(hnp.arrays(float, (d,), elements=FINITE))
+    factor = draw(hnp.arrays(float, (d, draw(st.integers(1, 5))), elements=st.floats(-10, 10, allow_subnormal=False)))
+    covariance = factor @ factor.T
+    return mean, 0.5 * (covariance + covariance.T)
+
+
+def mentions(problems: list[str], words: str) -> bool:
+    return any(words in problem for problem in problems)
+
+
+# ---------------------------------------------------------------- particle beliefs
+
+
+@given(particle_beliefs())
+def test_a_valid_particle_belief_has_no_problems(belief: tuple[np.ndarray, np.ndarray]) -> None:
+    assert particle_belief_problems(*belief) == []
+
+
+@given(particle_beliefs(), st.data())
+def test_a_negative_weight_is_reported(belief: tuple[np.ndarray, np.ndarray], data: st.DataObject) -> None:
+    particles, weights = belief
+    weights = weights.copy()
+    weights[data.draw(st.integers(0, weights.size - 1))] = -data.draw(st.floats(1e-6, 1.0))
+    assert mentions(particle_belief_problems(particles, weights), "negative")
+
+
+@given(particle_beliefs(), st.floats(1.001, 100.0) | st.floats(1e-3, 0.999))
+def test_unnormalised_weights_are_reported(belief: tuple[np.ndarray, np.ndarray], factor: float) -> None:
+    particles, weights = belief
+    assert mentions(particle_belief_problems(particles, weights * factor), "weights sum to")
+
+
+@given(particle_beliefs(), st.data(), st.sampled_from([np.nan, np.inf, -np.inf]))
+def test_a_particle_that_is_not_finite_is_reported(
+    belief: tuple[np.ndarray, np.ndarray], data: st.DataObject, bad: float
+) -> None:
+    particles, weights = belief
+    particles = particles.copy()
+    particles[data.draw(st.integers(0, particles.shape[0] - 1)), data.draw(st.integers(0, particles.shape[1] - 1))] = (
+        bad
+    )
+    assert mentions(particle_belief_problems(particles, weights), "particle coordinates are not finite")
+
+
+@given(particle_beliefs(), st.data())
+def test_a_nan_weight_is_reported(belief: tuple[np.ndarray, np.ndarray], data: st.DataObject) -> None:
+    particles, weights = belief
+    weights = weights.copy()
+    weights[data.draw(st.integers(0, weights.size - 1))] = np.nan
+    assert mentions(particle_belief_problems(particles, weights), "weights are not finite")
+
+
+def test_mismatched_shapes_are_reported() -> None:
+    assert mentions(particle_belief_problems(np.zeros((3, 2)), np.full(4, 0.25)), "do not match")
+    assert mentions(particle_belief_problems(np.zeros(3), np.full(3, 1 / 3)), "shape (N, D)")
+    assert mentions(particle_belief_problems(np.zeros((0, 2)), np.zeros(0)), "N >= 1")
+
+
+def test_the_effective_sample_size_bounds_hold_at_the_extremes() -> None:
+    assert particle_belief_problems(np.zeros((5, 1)), np.full(5, 0.2)) == []
+    assert particle_belief_problems(np.zeros((5, 1)), np.array([1.0, 0, 0, 0, 0])) == []
+    # Weights summing to one within the tolerance, but with more than N effective particles, cannot happen;
+    # weights far from one are reported for the sum and, when they push it past N, for the size too.
+    problems = particle_belief_problems(np.zeros((4, 1)), np.full(4, 0.1))
+    assert mentions(problems, "weights sum to") and mentions(problems, "effective sample size")
+
+
+# ---------------------------------------------------------------- Gaussian beliefs
+
+
+@given(gaussian_beliefs())
+def test_a_valid_gaussian_belief_has_no_problems(belief: tuple[np.ndarray, np.ndarray]) -> None:
+    assert gaussian_belief_problems(*belief) == []
+
+
+@given(gaussian_beliefs(min_dims=2), st.data())
+def test_an_asymmetric_covariance_is_reported(belief: tuple[np.ndarray, np.ndarray], data: st.DataObject) -> None:
+    mean, covariance = belief
+    covariance = covariance.copy()
+    i, j = data.draw(st.sampled_from([(i, j) for i in range(mean.size) for j in range(mean.size) if i != j]))
+    covariance[i, j] += 1e-3 * max(1.0, float(np.max(np.abs(covariance))))
+    assert mentions(gaussian_belief_problems(mean, covariance), "not symmetric")
+
+
+@given(gaussian_beliefs(), st.data())
+def test_a_negative_eigenvalue_is_reported(belief: tuple[np.ndarray, np.ndarray], data: st.DataObject) -> None:
+    mean, covariance = belief
+    axis = np.zeros(mean.size)
+    axis[data.draw(st.integers(0, mean.size - 1))] = 1.0
+    # Along this axis the variance becomes at most -1: an eigenvalue of at most -1.
+    broken = covariance - (np.trace(covariance) + 1.0) * np.outer(axis, axis)
+    assert mentions(gaussian_belief_problems(mean, broken), "not positive semi-definite")
+
+
+@given(gaussian_beliefs(), st.data(), st.sampled_from([np.nan, np.inf]))
+def test_a_gaussian_that_is_not_finite_is_reported(
+    belief: tuple[np.ndarray, np.ndarray], data: st.DataObject, bad: float
+) -> None:
+    mean, covariance = belief
+    if data.draw(st.booleans()):
+        mean = mean.copy()
+        mean[data.draw(st.integers(0, mean.size - 1))] = bad
+        assert mentions(gaussian_belief_problems(mean, covariance), "mean entries are not finite")
+    else:
+        covariance = covariance.copy()
+        covariance[data.draw(st.integers(0, mean.size - 1)), data.draw(st.integers(0, mean.size - 1))] = bad
+        assert mentions(gaussian_belief_problems(mean, covariance), "covariance entries are not finite")
+
+
+def test_mismatched_gaussian_shapes_are_reported() -> None:
+    assert mentions(gaussian_belief_problems(np.zeros(3), np.eye(2)), "does not match")
+    assert mentions(gaussian_belief_problems(np.zeros((3, 1)), np.eye(3)), "shape (D,)")
+
+
+@settings(max_examples=20)
+@given(gaussian_beliefs())
+def test_the_tolerance_scales_with_the_covariance(belief: tuple[np.ndarray, np.ndarray]) -> None:
+    mean, covariance = belief
+    assert gaussian_belief_problems(mean, 1e12 * covariance) == []
+    assert gaussian_belief_problems(mean, 1e-12 * covariance) == []
+
+
+# ---------------------------------------------------------------- the check on fake trackers
+
+
+class Steady(Tracker):
+    """Starts from ``init`` (or a fixed state), then follows the image brightness; exposes no belief."""
+
+    name = "steady"
+    version = "1.0"
+    modality = "camera"
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        self.rng = rng
+        self.state = init.cable if init is not None else CableState(0.0, 0.0, 12.0, 0.0)
+
+    def step(self, frame: Frame) -> Any:
+        shift = float(np.mean(frame.observation)) / 100.0 + self.rng.normal(0.0, 0.1)
+        self.state = CableState(self.state.d + shift, self.state.alpha, self.state.w, self.state.beta)
+        return self.state
+
+
+class ParticleSteady(Steady):
+    """Steady, with a particle belief around its state; the weights shift but stay normalised."""
+
+    name = "particle-steady"
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        super().reset(info, rng, init)
+        self.frame_index = -1
+
+    @property
+    def particles(self) -> np.ndarray:
+        return self.state.d + np.arange(8.0)[:, None]
+
+    @property
+    def weights(self) -> np.ndarray:
+        raw = np.arange(1.0, 9.0) + max(self.frame_index, 0)
+        return raw / raw.sum()
+
+    def step(self, frame: Frame) -> Any:
+        self.frame_index = frame.index
+        return super().step(frame)
+
+
+class BrokenWeights(ParticleSteady):
+    """Its weights stop summing to one at frame 3."""
+
+    name = "broken-weights"
+
+    @property
+    def weights(self) -> np.ndarray:
+        weights = super().weights
+        return 2.0 * weights if self.frame_index == 3 else weights
+
+
+class GaussianSteady(Steady):
+    """Steady, with a Gaussian belief of ``(d, w)``; None until its first step."""
+
+    name = "gaussian-steady"
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        super().reset(info, rng, init)
+        self.stepped = False
+
+    @property
+    def mean(self) -> np.ndarray | None:
+        return np.array([self.state.d, self.state.w]) if self.stepped else None
+
+    @property
+    def covariance(self) -> np.ndarray | None:
+        return np.array([[2.0, 0.5], [0.5, 1.0]]) if self.stepped else None
+
+    def step(self, frame: Frame) -> Any:
+        self.stepped = True
+        return super().step(frame)
+
+
+class IndefiniteCovariance(GaussianSteady):
+    """Its covariance has a negative eigenvalue from the first step."""
+
+    name = "indefinite-covariance"
+
+    @property
+    def covariance(self) -> np.ndarray | None:
+        return np.array([[1.0, 2.0], [2.0, 1.0]]) if self.stepped else None
+
+
+@pytest.fixture
+def registry(fakes: types.ModuleType) -> Registry:
+    return fakes.make_registry()
+
+
+def run_kit(tracker: type, registry: Registry, fakes: types.ModuleType) -> dict[str, CheckResult]:
+    results = check_tracker(tracker, registry=registry, sequence=fakes.FakeSequence("fake/S1", 10))
+    return {result.check: result for result in results}
+
+
+def failures(results: dict[str, CheckResult]) -> dict[str, str]:
+    return {name: result.message for name, result in results.items() if not result.ok}
+
+
+def started(tracker: type[Tracker]) -> Tracker:
+    """An instance after reset: before it, the fakes' belief properties raise AttributeError."""
+    instance = tracker()
+    instance.reset(None, np.random.default_rng(0))  # type: ignore[arg-type]  # Steady ignores the info
+    return instance
+
+
+def test_the_fakes_satisfy_the_protocols() -> None:
+    assert isinstance(started(ParticleSteady), ParticleBelief)
+    assert not isinstance(started(ParticleSteady), GaussianBelief)
+    assert isinstance(started(GaussianSteady), GaussianBelief)
+    assert not isinstance(started(GaussianSteady), ParticleBelief)
+    assert not isinstance(started(Steady), ParticleBelief | GaussianBelief)
+
+
+def test_a_tracker_without_a_belief_passes_with_a_note(registry: Registry, fakes: types.ModuleType) -> None:
+    results = run_kit(Steady, registry, fakes)
+    assert failures(results) == {}
+    assert results["belief_invariants"].detail == "exposes no belief"
+
+
+@pytest.mark.parametrize(
+    ("tracker", "held"),
+    [(ParticleSteady, "particle belief held at 11 of 11"), (GaussianSteady, "Gaussian belief held at 10 of 11")],
+)
+def test_a_sound_belief_passes_everything(
+    tracker: type, held: str, registry: Registry, fakes: types.ModuleType
+) -> None:
+    results = run_kit(tracker, registry, fakes)
+    assert failures(results) == {}
+    assert results["belief_invariants"].detail.startswith(held)
+
+
+@pytest.mark.parametrize(
+    ("tracker", "words"),
+    [(BrokenWeights, "at frame 3: weights sum to"), (IndefiniteCovariance, "at frame 0: covariance is not positive")],
+)
+def test_a_broken_belief_fails_exactly_belief_invariants(
+    tracker: type, words: str, registry: Registry, fakes: types.ModuleType
+) -> None:
+    failed = failures(run_kit(tracker, registry, fakes))
+    assert list(failed) == ["belief_invariants"]
+    assert f"tracker {tracker.name!r}" in failed["belief_invariants"]
+    assert words in failed["belief_invariants"]
