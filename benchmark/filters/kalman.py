@@ -427,3 +427,26 @@ def compile_kernels() -> None:
     belief = Gaussian(np.zeros(2), np.eye(2))
     belief = predict(belief, np.eye(2), None, np.eye(2))
     update(belief, np.zeros(1), np.ones((1, 2)), None, np.eye(1))
+
+
+class GaussianBeliefView:
+    """Gives a tracker whose ``belief`` is a :class:`Gaussian` (or None) the ``mean`` and ``covariance`` it exposes.
+
+    Mixed into the Kalman-filter trackers, so that
+    :class:`benchmark.testing.beliefs.GaussianBelief` and its invariant
+    checks see their state.
+    """
+
+    belief: Gaussian | None
+
+    @property
+    def mean(self) -> np.ndarray | None:
+        """The belief's mean; None while there is no belief (before ``reset``, or a lost target)."""
+        belief = self.belief
+        return None if belief is None else belief.mean
+
+    @property
+    def covariance(self) -> np.ndarray | None:
+        """The belief's covariance; None while there is no belief."""
+        belief = self.belief
+        return None if belief is None else belief.covariance

@@ -152,3 +152,24 @@ class ParticleSet:
     def take(self, indices: np.ndarray) -> ParticleSet:
         """The particles at ``indices``, equally weighted: the result of resampling."""
         return ParticleSet.equally_weighted(self.states[np.asarray(indices)])
+
+
+class ParticleBeliefView:
+    """Gives a tracker whose ``particle_set`` is a :class:`ParticleSet` (or None) its ``particles`` and ``weights``.
+
+    Mixed into the particle-filter trackers, so that
+    :class:`benchmark.testing.beliefs.ParticleBelief` and its invariant
+    checks see their state.
+    """
+
+    particle_set: ParticleSet | None
+
+    @property
+    def particles(self) -> np.ndarray | None:
+        """The particles' states, ``(N, D)``; None while the filter has no particles (before it starts)."""
+        return None if self.particle_set is None else self.particle_set.states
+
+    @property
+    def weights(self) -> np.ndarray | None:
+        """The particles' weights, ``(N,)``, summing to one; None while the filter has no particles."""
+        return None if self.particle_set is None else self.particle_set.weights

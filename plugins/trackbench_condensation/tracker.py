@@ -65,6 +65,7 @@ import numpy as np
 
 from benchmark.errors import DataError
 from benchmark.filters import RESAMPLERS, Condensation, ParticleSet
+from benchmark.filters.particles import ParticleBeliefView
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import Frame, SequenceInfo
 from benchmark.tracker import Tracker
@@ -78,7 +79,7 @@ from trackbench_condensation.report import Report
 from trackbench_condensation.width import WidthPrior
 
 
-class CondensationTracker(Tracker[CameraTruth, CableState]):
+class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
     """Particle filter over ``(d, alpha, w, beta, v_d, v_alpha)`` with border-gradient weights.
 
     The belief is exposed as a :class:`~benchmark.testing.beliefs.ParticleBelief`
@@ -159,16 +160,6 @@ class CondensationTracker(Tracker[CameraTruth, CableState]):
         self._rng: np.random.Generator | None = None
         self._steps = 0
         self._lost = False
-
-    @property
-    def particles(self) -> np.ndarray | None:
-        """The states of the particles, ``(N, dims)``; None before :meth:`reset`."""
-        return None if self.particle_set is None else self.particle_set.states
-
-    @property
-    def weights(self) -> np.ndarray | None:
-        """The weights of the particles, ``(N,)``, summing to one; None before :meth:`reset`."""
-        return None if self.particle_set is None else self.particle_set.weights
 
     @property
     def dims(self) -> int:

@@ -88,7 +88,7 @@ import pydantic
 from annotated_types import Ge
 
 from benchmark.errors import DataError
-from benchmark.filters.kalman import Gaussian, compile_kernels, predict, update
+from benchmark.filters.kalman import Gaussian, GaussianBeliefView, compile_kernels, predict, update
 from benchmark.modalities.camera.geometry import cable_from_borders
 from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import (
@@ -161,7 +161,7 @@ class ForestiParams(FeatureParams):
     0: always report (the paper)."""
 
 
-class ForestiEkfTracker(Tracker[CameraTruth, CableState]):
+class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
     """Camera pose ``(C_x, C_y, theta, phi[, xi])`` by an EKF on the pipe's borders and the inertial speeds.
 
     The belief (attribute ``belief``, a :class:`~benchmark.filters.kalman.Gaussian`)
@@ -191,18 +191,6 @@ class ForestiEkfTracker(Tracker[CameraTruth, CableState]):
         """The last frame's measured abscissae ``(i_1, i_2, i_3, i_4)``, None without a pair."""
         self._speeds = np.zeros(3)
         self._started = False
-
-    @property
-    def mean(self) -> np.ndarray | None:
-        """The mean of the camera pose ``(C_x, C_y, theta, phi[, xi])``; None before :meth:`reset`."""
-        belief = self.belief
-        return None if belief is None else belief.mean
-
-    @property
-    def covariance(self) -> np.ndarray | None:
-        """The covariance of the camera pose ``(C_x, C_y, theta, phi[, xi])``; None before :meth:`reset`."""
-        belief = self.belief
-        return None if belief is None else belief.covariance
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: CameraTruth | None = None) -> None:
         """Start from the first frame's pose when the run gives it, else from ``x_0``.

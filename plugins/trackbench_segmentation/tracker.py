@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from benchmark.filters.kalman import Gaussian
+from benchmark.filters.kalman import Gaussian, GaussianBeliefView
 from benchmark.filters.kalman import compile_kernels as compile_filter_kernels
 from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
@@ -46,7 +46,7 @@ from trackbench_segmentation.params import SegmentationParams
 from trackbench_segmentation.tracking import CableKalman, region_of_interest
 
 
-class SegmentationTracker(Tracker[CameraTruth, CableState]):
+class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
     """Histogram segmentation, contour lines and border pairs with a Kalman-predicted region of interest.
 
     Attributes
@@ -82,18 +82,6 @@ class SegmentationTracker(Tracker[CameraTruth, CableState]):
     def belief(self) -> Gaussian | None:
         """The filter's Gaussian belief over ``(d, alpha, w)``, or None while the cable is lost."""
         return self.filter.belief
-
-    @property
-    def mean(self) -> np.ndarray | None:
-        """The mean of ``(d, alpha, w)``; None while the cable is lost."""
-        belief = self.belief
-        return None if belief is None else belief.mean
-
-    @property
-    def covariance(self) -> np.ndarray | None:
-        """The covariance of ``(d, alpha, w)``; None while the cable is lost."""
-        belief = self.belief
-        return None if belief is None else belief.covariance
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: CameraTruth | None = None) -> None:
         """Forget the previous sequence; optionally start tracking from ``init``.

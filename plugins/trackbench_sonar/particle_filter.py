@@ -48,6 +48,7 @@ import numpy as np
 
 from benchmark.errors import DataError
 from benchmark.filters import RESAMPLERS, Condensation, ParticleSet
+from benchmark.filters.particles import ParticleBeliefView
 from benchmark.modalities.sonar.model import PipeEstimate, SonarFrame, SonarTruth
 from benchmark.model import SequenceInfo
 from trackbench_sonar.detection import ScanTracker
@@ -110,7 +111,7 @@ def walk_sigma(params: ParticleFilterParams, info: SequenceInfo, tracker: str) -
     return float(params.walk_speed_mps) * float(interval)
 
 
-class SonarParticleFilter(ScanTracker):
+class SonarParticleFilter(ParticleBeliefView, ScanTracker):
     """Particle filter over the pipe's across-track position, weighted by the likelihood scan.
 
     The belief is exposed as a :class:`~benchmark.testing.beliefs.ParticleBelief`
@@ -137,16 +138,6 @@ class SonarParticleFilter(ScanTracker):
         self._walk_sigma = 0.0
         self._rng: np.random.Generator | None = None
         self.particle_set: ParticleSet | None = None
-
-    @property
-    def particles(self) -> np.ndarray | None:
-        """The particles' across-track positions, ``(N, 1)`` in m; None until the filter has a start."""
-        return None if self.particle_set is None else self.particle_set.states
-
-    @property
-    def weights(self) -> np.ndarray | None:
-        """The weights of the particles, ``(N,)``, summing to one; None until the filter has a start."""
-        return None if self.particle_set is None else self.particle_set.weights
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: SonarTruth | None = None) -> None:
         """Set up the detector and, given a start, the particles.

@@ -63,7 +63,7 @@ import pydantic
 from annotated_types import Ge
 
 from benchmark.errors import DataError
-from benchmark.filters.kalman import Gaussian, compile_kernels, predict, update
+from benchmark.filters.kalman import Gaussian, GaussianBeliefView, compile_kernels, predict, update
 from benchmark.modalities.stereo.geometry import in_front, project, rotation, to_north_east
 from benchmark.modalities.stereo.model import (
     ChaseNavigation,
@@ -131,7 +131,7 @@ class StereoEkfParams(FrontEndSettings):
     """Standard deviation of the velocity when starting from a measurement, m/s (about TG's top speed)."""
 
 
-class StereoEkfTracker(Tracker[StereoTruth, TargetEstimate]):
+class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate]):
     """Extended Kalman filter on ``[X, Y, X_dot, Y_dot]`` from stereo measurements and CH's navigation.
 
     The belief is exposed as a :class:`~benchmark.testing.beliefs.GaussianBelief`
@@ -160,18 +160,6 @@ class StereoEkfTracker(Tracker[StereoTruth, TargetEstimate]):
     def belief(self) -> Gaussian | None:
         """The filter's mean and covariance of ``[X, Y, X_dot, Y_dot]``, None before the first one."""
         return self._belief
-
-    @property
-    def mean(self) -> np.ndarray | None:
-        """The mean of ``[X, Y, X_dot, Y_dot]``; None before the first belief."""
-        belief = self._belief
-        return None if belief is None else belief.mean
-
-    @property
-    def covariance(self) -> np.ndarray | None:
-        """The covariance of ``[X, Y, X_dot, Y_dot]``; None before the first belief."""
-        belief = self._belief
-        return None if belief is None else belief.covariance
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: StereoTruth | None = None) -> None:
         """Start a sequence, from the first frame's truth (``init``) or from nothing.

@@ -11,7 +11,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
-from benchmark.modalities.camera.model import CableState
 from benchmark.model import Frame, SequenceInfo
 from benchmark.registry import Registry
 from benchmark.testing import CheckResult, check_tracker
@@ -22,6 +21,8 @@ from benchmark.testing.beliefs import (
     particle_belief_problems,
 )
 from benchmark.tracker import Tracker
+
+from .conftest import Steady
 
 FINITE = st.floats(-1e3, 1e3, allow_nan=False, allow_infinity=False, allow_subnormal=False)
 
@@ -164,23 +165,6 @@ def test_the_tolerance_scales_with_the_covariance(belief: tuple[np.ndarray, np.n
 
 
 # ---------------------------------------------------------------- the check on fake trackers
-
-
-class Steady(Tracker):
-    """Starts from ``init`` (or a fixed state), then follows the image brightness; exposes no belief."""
-
-    name = "steady"
-    version = "1.0"
-    modality = "camera"
-
-    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
-        self.rng = rng
-        self.state = init.cable if init is not None else CableState(0.0, 0.0, 12.0, 0.0)
-
-    def step(self, frame: Frame) -> Any:
-        shift = float(np.mean(frame.observation)) / 100.0 + self.rng.normal(0.0, 0.1)
-        self.state = CableState(self.state.d + shift, self.state.alpha, self.state.w, self.state.beta)
-        return self.state
 
 
 class ParticleSteady(Steady):

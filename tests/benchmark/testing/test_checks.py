@@ -16,24 +16,9 @@ from benchmark.testing import Check, CheckResult, check_tracker, checks
 from benchmark.testing.checks import same
 from benchmark.tracker import Tracker
 
+from .conftest import Steady
+
 ALL_CHECKS = [check.name for check in checks()]
-
-
-class Steady(Tracker):
-    """Starts from ``init`` (or a fixed state), then follows the image brightness; uses only its rng."""
-
-    name = "steady"
-    version = "1.0"
-    modality = "camera"
-
-    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
-        self.rng = rng
-        self.state = init.cable if init is not None else CableState(0.0, 0.0, 12.0, 0.0)
-
-    def step(self, frame: Frame) -> Any:
-        shift = float(np.mean(frame.observation)) / 100.0 + self.rng.normal(0.0, 0.1)
-        self.state = CableState(self.state.d + shift, self.state.alpha, self.state.w, self.state.beta)
-        return self.state
 
 
 class GlobalRandom(Steady):
