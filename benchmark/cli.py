@@ -742,8 +742,16 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
 @click.option(
     "--frames", type=click.IntRange(min=1), default=15, show_default=True, help="Frames each run of a check reads."
 )
+@click.option(
+    "--time-limit",
+    "time_limit_s",
+    type=click.FloatRange(min=0.0, min_open=True),
+    default=60.0,
+    show_default=True,
+    help="Seconds one check may take before it fails as a hang.",
+)
 @click.pass_context
-def check_command(ctx: click.Context, names: tuple[str, ...], frames: int) -> None:
+def check_command(ctx: click.Context, names: tuple[str, ...], frames: int, time_limit_s: float) -> None:
     """Run the conformance kit (benchmark.testing) on installed trackers: all of them, or those NAMEd.
 
     Prints one row per tracker and check; exit status 1 if any check failed.
@@ -757,7 +765,7 @@ def check_command(ctx: click.Context, names: tuple[str, ...], frames: int) -> No
     failed = 0
     rows: list[tuple[str, str, str, str]] = []
     for entry in entries:
-        for result in check_tracker(entry, registry=registry, n_frames=frames):
+        for result in check_tracker(entry, registry=registry, n_frames=frames, time_limit_s=time_limit_s):
             failed += not result.ok
             rows.append((result.tracker, result.check, "ok" if result.ok else "FAIL", result.message or result.detail))
     header = ("tracker", "check", "result", "message")
@@ -772,7 +780,7 @@ def check_command(ctx: click.Context, names: tuple[str, ...], frames: int) -> No
 @main.command("new-tracker")
 @click.argument("name")
 @click.option(
-    "--modality", default="camera", show_default=True, help="The modality the tracker reads (templates: camera)."
+    "--modality", default="camera", show_default=True, help="The registered modality the tracker reads."
 )
 @click.option(
     "--out",
@@ -781,13 +789,17 @@ def check_command(ctx: click.Context, names: tuple[str, ...], frames: int) -> No
     show_default=True,
     help="Folder in which the plugin folder NAME is made.",
 )
-def new_tracker_command(name: str, modality: str, out: Path) -> None:
+@click.pass_context
+def new_tracker_command(ctx: click.Context, name: str, modality: str, out: Path) -> None:
     """Write a minimal tracker plugin package into OUT/NAME: pyproject.toml, trackbench_NAME and a test.
 
     Then `pip install -e OUT/NAME`, `trackbench check NAME` and `pytest OUT/NAME/tests`.
     """
-    from benchmark.scaffold import new_tracker
+    from benchmark.scaffold import ScaffoldError, new_tracker
 
-    folder = new_tracker(name, out, modality)
+    modalities = ctx.obj.registry.modalities
+    if modality not in modalities:
+        raise ScaffoldError(f"unknown modality {modality!r} (registered: {', '.join(sorted(modalities)) or 'none'})")
+    folder = new_tracker(name, modalities[modality], out)
     for path in sorted(p for p in folder.rglob("*") if p.is_file()):
         click.echo(path)

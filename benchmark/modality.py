@@ -16,7 +16,14 @@ in its ``trackbench_register_modalities`` hook, and declares:
 * the scene kinds a suite file may name to simulate its sequences;
 * optionally, its :data:`Drawer`: a small picture of a frame with the truth
   and the tracker's estimate drawn on it, which the runner keeps for the
-  first frame of each run of failures (:mod:`benchmark.drawing`).
+  first frame of each run of failures (:mod:`benchmark.drawing`);
+* optionally, for the conformance kit (:mod:`benchmark.testing`), its
+  :data:`HardObservations` (blank, saturated, pure-noise observations,
+  missing beams: what a tracker must survive) and its
+  :data:`ExampleSequences` (a hypothesis strategy of short labelled
+  sequences from random scenes);
+* optionally, its :class:`Starter`: what ``trackbench new-tracker`` writes
+  into the skeleton of a tracker of this modality (:mod:`benchmark.scaffold`).
 
 The built-in modalities, :mod:`benchmark.modalities.camera`,
 :mod:`~benchmark.modalities.sonar` and :mod:`~benchmark.modalities.stereo`,
@@ -52,6 +59,55 @@ The observation is drawn with the frame's truth in green and the estimate
 in red (:data:`benchmark.drawing.TRUTH_BGR`, :data:`~benchmark.drawing.ESTIMATE_BGR`);
 the frame is left unchanged.
 """
+
+HardObservations = Callable[[Frame, SequenceInfo, np.random.Generator], Mapping[str, Any]]
+"""Observations a tracker must survive, by name, made in the likeness of a frame's own.
+
+Called with a frame, its sequence's description and a generator, it
+returns observations of the frame's type and size that carry no usable
+signal or break a sensor's usual promises (``"blank"``, ``"saturated"``,
+``"noise"``, ``"nan_beams"``...).  A tracker may return None on them, never
+raise or return an invalid estimate (:func:`benchmark.testing.checks.check_hard_observations`).
+"""
+
+ExampleSequences = Callable[[int], Any]
+"""``example_sequences(max_frames)``: a hypothesis strategy of short labelled sequences of the modality.
+
+Each example is a :class:`~benchmark.model.Sequence` of 1 to ``max_frames``
+frames, simulated from a random scene; the conformance kit runs trackers on
+a few of them (:func:`benchmark.testing.checks.check_random_sequences`).
+"""
+
+
+@dataclass(frozen=True)
+class Starter:
+    """The modality's part of a new tracker's skeleton (``trackbench new-tracker --modality NAME``).
+
+    The skeleton tracker holds the estimate its first frame's truth gives
+    (``--init truth``): a baseline that passes the conformance kit and that
+    every real tracker should beat.  Each attribute is Python source.
+
+    Attributes
+    ----------
+    imports : str
+        The import statement of the truth and estimate types.
+    truth, estimate : str
+        Their class names as imported.
+    hold : str
+        An expression of ``init`` (the first truth, never None) that gives
+        the estimate to hold, or None when that truth cannot give one.
+    observation : str
+        A comment line on what ``frame.observation`` holds.
+    dataset : str
+        A registered sequence the skeleton's README runs it on (``camera/S2``).
+    """
+
+    imports: str
+    truth: str
+    estimate: str
+    hold: str
+    observation: str
+    dataset: str
 
 
 class EstimateError(TypeError):
@@ -133,6 +189,15 @@ class Modality:
     draw : Drawer or None
         Draws a frame with its truth and an estimate, for the pictures of
         failed frames in reports; None draws nothing.
+    hard_observations : HardObservations or None
+        Observations without signal that a tracker must survive; None: the
+        conformance kit has none to try.
+    example_sequences : ExampleSequences or None
+        Random short sequences for property-based checks; None: the
+        conformance kit runs on registered sequences only.
+    starter : Starter or None
+        The modality's part of a new tracker's skeleton; None: ``trackbench
+        new-tracker`` cannot write one for it.
     """
 
     name: str
@@ -145,6 +210,9 @@ class Modality:
     scene_kinds: Mapping[str, SceneFactory] = field(default_factory=dict)
     description: str = ""
     draw: Drawer | None = None
+    hard_observations: HardObservations | None = None
+    example_sequences: ExampleSequences | None = None
+    starter: Starter | None = None
 
     def check_frame(self, frame: Frame, where: str) -> None:
         """Raise :class:`~benchmark.errors.DataError`, prefixed by ``where``, unless ``frame`` is of this modality."""

@@ -60,12 +60,17 @@ class Tracker(ABC, Generic[TruthT, EstimateT]):
         (``"camera"``, ``"sonar"``, ``"stereo"``, or a plugin's).
     Params : type
         A frozen dataclass whose fields, with defaults, are the parameters.
+    deterministic : bool
+        True for a tracker that draws no random numbers, whose output does
+        not depend on the seed; the conformance kit holds a tracker to it
+        either way (:func:`benchmark.testing.checks.check_seed_matters`).
     """
 
     name: ClassVar[str]
     version: ClassVar[str]
     modality: ClassVar[str]
     Params: ClassVar[type] = NoParams
+    deterministic: ClassVar[bool] = False
 
     def __init__(self, params: Any = None) -> None:
         self.params = params if params is not None else self.Params()

@@ -17,14 +17,12 @@ from pathlib import Path
 import jinja2
 
 from benchmark.errors import TrackbenchError
+from benchmark.modality import Modality, Starter
 
-__all__ = ["MODALITIES", "ScaffoldError", "Scaffold", "new_tracker"]
+__all__ = ["ScaffoldError", "Scaffold", "new_tracker"]
 
 NAME_PATTERN = re.compile(r"[a-z][a-z0-9_]*(-[a-z0-9_]+)*")
 """A tracker name: lower-case letters, digits, ``_`` and single ``-``, starting with a letter."""
-
-MODALITIES = ("camera",)
-"""Modalities the skeleton's tracker is written for."""
 
 TEMPLATES = Path(__file__).parent / "templates"
 
@@ -52,10 +50,13 @@ class Scaffold:
         The tracker's name (``demo``), also the entry-point name.
     modality : str
         The modality its tracker reads.
+    starter : Starter
+        That modality's part of the skeleton.
     """
 
     name: str
-    modality: str = "camera"
+    modality: str
+    starter: Starter
 
     @property
     def module_suffix(self) -> str:
@@ -86,21 +87,30 @@ def validate_name(name: str) -> None:
         )
 
 
-def new_tracker(name: str, out: Path | str = ".", modality: str = "camera") -> Path:
+def new_tracker(name: str, modality: Modality, out: Path | str = ".") -> Path:
     """Write the plugin skeleton of tracker ``name`` into ``out/name`` and return that folder.
+
+    Parameters
+    ----------
+    name : str
+        The tracker's name.
+    modality : Modality
+        The modality it reads; its :attr:`~benchmark.modality.Modality.starter` fills the tracker's template.
+    out : path
+        The folder the plugin's folder is made in.
 
     Raises
     ------
     ScaffoldError
-        If ``name`` is invalid, ``modality`` has no template, or ``out/name`` exists.
+        If ``name`` is invalid, ``modality`` has no starter, or ``out/name`` exists.
     """
     validate_name(name)
-    if modality not in MODALITIES:
-        raise ScaffoldError(f"no tracker template for modality {modality!r} (available: {', '.join(MODALITIES)})")
+    if modality.starter is None:
+        raise ScaffoldError(f"modality {modality.name!r} has no tracker template (its Modality sets no starter)")
     folder = Path(out) / name
     if folder.exists():
         raise ScaffoldError(f"{folder} already exists; choose another name or --out folder")
-    scaffold = Scaffold(name, modality)
+    scaffold = Scaffold(name, modality.name, modality.starter)
     environment = jinja2.Environment(
         loader=jinja2.FileSystemLoader(TEMPLATES), keep_trailing_newline=True, undefined=jinja2.StrictUndefined
     )

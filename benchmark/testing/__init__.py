@@ -29,9 +29,13 @@ from benchmark.model import Sequence
 from benchmark.registry import Registry, TrackerEntry
 from benchmark.runner import describe_exception
 from benchmark.testing.checks import CHECKS, DEFAULT_FRAMES, Subject, prepare
+from benchmark.testing.time_limit import CheckTimeout, time_limit
 from benchmark.tracker import Tracker
 
 __all__ = ["Check", "CheckResult", "Subject", "check_tracker", "checks", "prepare"]
+
+DEFAULT_TIME_LIMIT_S = 60.0
+"""Time one check may take by default, s: a first-party tracker needs well under one."""
 
 
 @dataclass(frozen=True)
@@ -101,9 +105,10 @@ def _entry_of(entry_or_class: TrackerEntry | type[Tracker]) -> TrackerEntry:
 def check_tracker(
     entry_or_class: TrackerEntry | type[Tracker],
     *,
-    sequence: Sequence | None = None,
+    modality_data: Sequence | None = None,
     registry: Registry | None = None,
     n_frames: int = DEFAULT_FRAMES,
+    time_limit_s: float | None = DEFAULT_TIME_LIMIT_S,
 ) -> list[CheckResult]:
     """Run every check on one tracker.
 
@@ -111,14 +116,20 @@ def check_tracker(
     ----------
     entry_or_class : TrackerEntry or Tracker subclass
         A registered tracker, or a tracker class (checked with its default parameters).
-    sequence : Sequence, optional
-        Where the frames come from; by default a registered sequence of the
-        tracker's modality, simulated where there is one.
+    modality_data : Sequence, optional
+        Where the frames come from (a sequence of the tracker's modality,
+        e.g. one of your own opened with :func:`benchmark.io.open_dataset`);
+        by default a registered sequence of the modality, simulated where
+        there is one.
     registry : Registry, optional
         The modalities and suites; by default every installed plugin's
         (:func:`benchmark.plugins.load_registry`).
     n_frames : int
         Frames read from the sequence (and from the training sequence of a tracker that learns).
+    time_limit_s : float or None
+        Time each check may take, s; a check still running then fails as a
+        hang (:mod:`benchmark.testing.time_limit`: main thread, POSIX only).
+        None sets no limit.
 
     Returns
     -------
@@ -134,19 +145,24 @@ def check_tracker(
     results: list[CheckResult] = []
     numpy_state, python_state = np.random.get_state(), random.getstate()
     try:
-        _run_checks(entry, prepare(entry, registry, sequence, n_frames), results)
+        _run_checks(entry, prepare(entry, registry, modality_data, n_frames), results, time_limit_s)
     finally:
         np.random.set_state(numpy_state)
         random.setstate(python_state)
     return results
 
 
-def _run_checks(entry: TrackerEntry, subject: Subject, results: list[CheckResult]) -> None:
+def _run_checks(
+    entry: TrackerEntry, subject: Subject, results: list[CheckResult], time_limit_s: float | None
+) -> None:
     """Run every check of ``entry`` on ``subject``, appending one result per check to ``results``."""
     for check in checks(entry):
         started = time.perf_counter()
         try:
-            detail, ok, message = check(subject), True, ""
+            with time_limit(time_limit_s):
+                detail, ok, message = check(subject), True, ""
+        except CheckTimeout as exc:
+            detail, ok, message = "", False, f"tracker {entry.name!r}: the check {exc}: does it hang?"
         except AssertionError as exc:
             detail, ok, message = "", False, str(exc)
         except Exception as exc:

@@ -11,10 +11,12 @@ the frame.
 The rules are those of :mod:`benchmark.tracker` and the design page's
 plugin contract: a tracker declares ``name``, ``version``, ``modality`` and a
 frozen ``Params`` dataclass with valid defaults; it returns estimates of its
-modality or None; it copes with unlabelled frames; it draws randomness only
-from the generator handed to ``reset``, so a seed replays a run bit for
-bit; ``reset`` forgets the previous sequence; and it pickles, since cells
-run in worker processes.
+modality or None; it copes with unlabelled frames, with observations that
+carry no signal and with random scenes of its modality; it draws randomness
+only from the generator handed to ``reset``, so a seed replays a run bit
+for bit and another seed changes it (unless the tracker declares itself
+deterministic); ``reset`` forgets the previous sequence; and it pickles,
+since cells run in worker processes.
 """
 
 from __future__ import annotations
@@ -44,6 +46,7 @@ from benchmark.testing.beliefs import (
     gaussian_belief_problems,
     particle_belief_problems,
 )
+from benchmark.testing.time_limit import CheckTimeout
 from benchmark.tracker import Tracker
 from benchmark.training import learns
 
@@ -141,31 +144,45 @@ class Subject:
         return tracker
 
     def run(
-        self, tracker: Tracker, frames: SequenceOf[Frame] | None = None, *, seed: int = SEED, truth: bool = True
+        self,
+        tracker: Tracker,
+        frames: FrameList | SequenceOf[Frame] | None = None,
+        *,
+        seed: int = SEED,
+        truth: bool = True,
+        label: str = "",
     ) -> list[Any]:
         """Reset ``tracker`` and step it over ``frames`` (default: the subject's); the estimates.
 
-        ``truth`` hands the first frame's truth to ``reset`` as the runner's
-        ``--init truth`` does.  The generator is the runner's for ``seed``.
+        ``frames`` is a :class:`FrameList` of another sequence, or frames
+        standing in for the subject's own.  ``truth`` hands the first
+        frame's truth to ``reset`` as the runner's ``--init truth`` does.
+        The generator is the runner's for ``seed`` on the sequence.
+        ``label`` says in messages what the frames are (``"'blank' observations"``).
         """
         _, own = self.ready()
-        frames = own.frame_list if frames is None else frames
+        source = frames if isinstance(frames, FrameList) else own
+        steps = source.frame_list if frames is None or isinstance(frames, FrameList) else frames
+        suffix = f", {label}" if label else ""
         where = "reset"
         try:
-            tracker.reset(own.info, self.rng(seed), init=frames[0].truth if truth else None)
+            tracker.reset(source.info, self.rng(seed, source), init=steps[0].truth if truth else None)
             estimates = []
-            for frame in frames:
+            for frame in steps:
                 where = f"step, frame {frame.index}"
                 estimates.append(tracker.step(frame))
         except AssertionError:
             raise
+        except CheckTimeout as exc:
+            raise CheckTimeout(f"{exc} ({where}{suffix})") from None
         except Exception as exc:
-            raise self.fail(f"{describe_exception(exc)} ({where})") from exc
+            raise self.fail(f"{describe_exception(exc)} ({where}{suffix})") from exc
         return estimates
 
-    def rng(self, seed: int = SEED) -> np.random.Generator:
-        """The generator a cell of this tracker on the subject's frames gets for ``seed``."""
-        _, frames = self.ready()
+    def rng(self, seed: int = SEED, frames: FrameList | None = None) -> np.random.Generator:
+        """The generator a cell of this tracker on ``frames`` (default: the subject's) gets for ``seed``."""
+        if frames is None:
+            _, frames = self.ready()
         return cell_rng(seed, self.name, frames.identity)
 
 
@@ -312,6 +329,18 @@ def check_metadata(subject: Subject) -> str:
     return f"{cls.name} {cls.version}, {cls.modality}, {len(dataclasses.fields(defaults))} parameters"
 
 
+def _check_estimates(subject: Subject, frames: SequenceOf[Frame], estimates: SequenceOf[Any], label: str = "") -> int:
+    """Raise unless every estimate is None or valid for the modality; the number of estimates that are not None."""
+    modality, _ = subject.ready()
+    suffix = f", {label}" if label else ""
+    for frame, estimate in zip(frames, estimates):
+        try:
+            modality.check_estimate(estimate)
+        except Exception as exc:
+            raise subject.fail(f"invalid estimate at frame {frame.index}{suffix}: {describe_exception(exc)}") from exc
+    return sum(estimate is not None for estimate in estimates)
+
+
 def check_runs(subject: Subject) -> str:
     """Reset, then step over the frames; every estimate is None or valid for the modality.
 
@@ -320,14 +349,9 @@ def check_runs(subject: Subject) -> str:
     AssertionError
         If the tracker raises or returns an invalid estimate, naming the frame.
     """
-    modality, frames = subject.ready()
+    _, frames = subject.ready()
     estimates = subject.run(subject.create())
-    for frame, estimate in zip(frames.frame_list, estimates):
-        try:
-            modality.check_estimate(estimate)
-        except Exception as exc:
-            raise subject.fail(f"invalid estimate at frame {frame.index}: {describe_exception(exc)}") from exc
-    detected = sum(estimate is not None for estimate in estimates)
+    detected = _check_estimates(subject, frames.frame_list, estimates)
     return f"{detected} estimates in {len(estimates)} frames of {frames.info.name}"
 
 
@@ -360,6 +384,37 @@ def check_same_seed_same_output(subject: Subject) -> str:
     if difference:
         raise subject.fail(f"two runs with seed {SEED} differ {difference}")
     return f"{len(first)} identical estimates"
+
+
+def check_seed_matters(subject: Subject) -> str:
+    """Another seed changes a stochastic tracker's estimates, and leaves a deterministic one's alone.
+
+    A tracker declares that it draws no random numbers with the class
+    attribute ``deterministic = True`` (:class:`benchmark.tracker.Tracker`).
+    A tracker that does not, yet gives the same estimates with two seeds,
+    ignores the generator handed to ``reset``: its randomness comes from
+    elsewhere, or it has none and should say so.
+
+    Raises
+    ------
+    AssertionError
+        If the runs with seeds 0 and 1 agree for a stochastic tracker, or differ for a deterministic one.
+    """
+    _, frames = subject.ready()
+    first = subject.run(subject.create())
+    other = subject.run(subject.create(), seed=SEED + 1)
+    difference = _difference(frames, first, other)
+    seeds = f"seeds {SEED} and {SEED + 1}"
+    if getattr(subject.entry.tracker_class, "deterministic", False):
+        if difference:
+            raise subject.fail(f"declares itself deterministic, but runs with {seeds} differ {difference}")
+        return f"deterministic: {seeds} give identical estimates"
+    if not difference:
+        raise subject.fail(
+            f"runs with {seeds} give identical estimates: draw every random number from the rng handed to "
+            "reset, or declare the class deterministic (deterministic = True) if it draws none"
+        )
+    return f"stochastic: {seeds} differ {difference.split(':')[0]}"
 
 
 def _numpy_state_equal(a: tuple[Any, ...], b: tuple[Any, ...]) -> bool:
@@ -417,6 +472,98 @@ def check_reset_leaves_no_state(subject: Subject) -> str:
     if difference:
         raise subject.fail(f"reset keeps state from the previous sequence: a rerun differs {difference}")
     return f"{len(first)} identical estimates after another sequence"
+
+
+def check_hard_observations(subject: Subject) -> str:
+    """Observations without signal (the modality's :data:`~benchmark.modality.HardObservations`) raise nothing.
+
+    For each kind the modality makes (camera: blank, saturated, noise;
+    sonar: no returns, NaN beams, spikes, flat seabed, noise; stereo: a lost
+    target, a decoy, and blank, saturated and noisy image pairs), the middle
+    third of the frames gets that observation in place of its own, so the
+    tracker meets it with a track and must go on after it.  Estimates must
+    stay None or valid: a NaN state fails.
+
+    Raises
+    ------
+    AssertionError
+        Naming the kind of observation and the frame.
+    """
+    modality, frames = subject.ready()
+    if modality.hard_observations is None:
+        return f"modality {modality.name!r} declares no hard observations"
+    own = frames.frame_list
+    start, stop = len(own) // 3, len(own) - len(own) // 3
+    rng = np.random.default_rng(SEED)
+    made = [
+        modality.hard_observations(frame, frames.info, rng) if start <= index < stop else {}
+        for index, frame in enumerate(own)
+    ]
+    counts = []
+    for kind in dict.fromkeys(kind for observations in made for kind in observations):
+        hard = [
+            dataclasses.replace(frame, observation=observations[kind]) if kind in observations else frame
+            for frame, observations in zip(own, made)
+        ]
+        label = f"{kind!r} observations in frames {own[start].index}-{own[stop - 1].index}"
+        estimates = subject.run(subject.create(), hard, label=label)
+        counts.append(f"{kind} {_check_estimates(subject, hard, estimates, label)}")
+    return f"estimates with each kind in the middle {stop - start} of {len(own)} frames: {', '.join(counts)}"
+
+
+RANDOM_EXAMPLES = 10
+"""Random sequences :func:`check_random_sequences` runs a tracker on."""
+
+RANDOM_FRAMES = 5
+"""Frames of each random sequence."""
+
+
+def _describe(info: SequenceInfo) -> str:
+    """A sequence's name with what tells random ones apart: its seed and frame size, where it has them."""
+    facts = [f"seed {info.extra['seed']}"] if "seed" in info.extra else []
+    if info.frame_size is not None:
+        facts.append("x".join(map(str, info.frame_size)) + " px")
+    return f"{info.name!r}" + (f" ({', '.join(facts)})" if facts else "")
+
+
+def check_random_sequences(subject: Subject) -> str:
+    """Runs on a few random sequences of the modality (its :data:`~benchmark.modality.ExampleSequences`) are valid.
+
+    Hypothesis draws :data:`RANDOM_EXAMPLES` sequences of up to
+    :data:`RANDOM_FRAMES` frames from random scenes, the same ones on every
+    call (derandomised, no example database); the tracker runs on each
+    from its first frame's truth, and every estimate must be None or valid.
+
+    Raises
+    ------
+    AssertionError
+        Naming the random sequence, its description and the frame.
+    """
+    from hypothesis import HealthCheck, Phase, given, settings
+
+    modality, _ = subject.ready()
+    if modality.example_sequences is None:
+        return f"modality {modality.name!r} declares no example sequences"
+    seen: list[tuple[int, int]] = []
+
+    @settings(
+        max_examples=RANDOM_EXAMPLES,
+        derandomize=True,
+        database=None,
+        deadline=None,
+        phases=(Phase.generate,),
+        suppress_health_check=list(HealthCheck),
+        print_blob=False,
+    )
+    @given(modality.example_sequences(RANDOM_FRAMES))
+    def runs_on(sequence: Sequence) -> None:
+        frames = FrameList.head(sequence, RANDOM_FRAMES)
+        label = f"random sequence {_describe(frames.info)}"
+        estimates = subject.run(subject.create(), frames, label=label)
+        seen.append((len(estimates), _check_estimates(subject, frames.frame_list, estimates, label)))
+
+    runs_on()
+    return f"{sum(n for n, _ in seen)} frames of {len(seen)} random sequences: {sum(d for _, d in seen)} estimates"
 
 
 def check_pickles(subject: Subject) -> str:
@@ -535,8 +682,11 @@ CHECKS: tuple[tuple[str, CheckFunction], ...] = (
     ("runs", check_runs),
     ("frames_without_truth", check_frames_without_truth),
     ("same_seed_same_output", check_same_seed_same_output),
+    ("seed_matters", check_seed_matters),
     ("no_global_randomness", check_no_global_randomness),
     ("reset_leaves_no_state", check_reset_leaves_no_state),
+    ("hard_observations", check_hard_observations),
+    ("random_sequences", check_random_sequences),
     ("pickles", check_pickles),
     ("belief_invariants", check_belief_invariants),
     ("step_time", check_step_time),

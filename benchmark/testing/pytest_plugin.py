@@ -34,7 +34,8 @@ def assert_conforms(tracker: type[Tracker] | TrackerEntry | str, **options: Any)
     tracker : Tracker subclass, TrackerEntry or str
         What to check; a name is looked up among the installed plugins' trackers.
     **options
-        Passed to :func:`~benchmark.testing.check_tracker` (``n_frames``, ``sequence``, ``registry``).
+        Passed to :func:`~benchmark.testing.check_tracker`: ``modality_data``,
+        ``registry``, ``n_frames``, ``time_limit_s``.
     """
     from benchmark.testing import check_tracker
 

@@ -31,6 +31,7 @@ class ForestiLinesTracker(Tracker[CameraTruth, CableState]):
     name = "foresti_lines"
     version = "1.0"
     modality = "camera"
+    deterministic = True
     Params = FeatureParams
 
     def __init__(self, params: FeatureParams | None = None) -> None:

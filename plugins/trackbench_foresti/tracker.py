@@ -176,6 +176,7 @@ class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
     name = "foresti_ekf"
     version = "1.0"
     modality = "camera"
+    deterministic = True
     Params = ForestiParams
 
     def __init__(self, params: ForestiParams | None = None) -> None:

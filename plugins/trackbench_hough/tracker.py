@@ -129,6 +129,7 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
     name = "hough"
     version = "1.0"
     modality = "camera"
+    deterministic = True
     Params = HoughParams
 
     def __init__(self, params: HoughParams | None = None) -> None:

@@ -68,6 +68,7 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
     name = "segmentation"
     version = "1.0"
     modality = "camera"
+    deterministic = True
     Params = SegmentationParams
 
     def __init__(self, params: SegmentationParams | None = None) -> None:

@@ -28,6 +28,7 @@ class SonarDetector(ScanTracker):
 
     name = "sonar_detector"
     version = "1.0"
+    deterministic = True
     Params = DetectorParams
 
     def step(self, frame: SonarFrame) -> PipeEstimate | None:

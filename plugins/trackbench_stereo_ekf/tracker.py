@@ -146,6 +146,7 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
     name = "stereo_ekf"
     version = "1.1"
     modality = "stereo"
+    deterministic = True
     Params = StereoEkfParams
 
     def __init__(self, params: StereoEkfParams | None = None) -> None:

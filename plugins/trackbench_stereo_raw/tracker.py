@@ -66,6 +66,7 @@ class StereoRawTracker(Tracker[StereoTruth, TargetEstimate]):
     name = "stereo_raw"
     version = "1.1"
     modality = "stereo"
+    deterministic = True
     Params = StereoRawParams
 
     def __init__(self, params: StereoRawParams | None = None) -> None:

@@ -55,6 +55,7 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
     name = "texture"
     version = "1.0"
     modality = "camera"
+    deterministic = True
     Params = TextureParams
 
     def __init__(self, params: TextureParams | None = None) -> None:

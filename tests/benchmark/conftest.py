@@ -79,6 +79,7 @@ class Perfect(Tracker):
     name = "perfect"
     version = "1.0"
     modality = "camera"
+    deterministic = True
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
         self.init = init
@@ -172,6 +173,7 @@ class Noisy(Perfect):
 
     name = "noisy"
     Params = NoisyParams
+    deterministic = False
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
         self.rng = rng

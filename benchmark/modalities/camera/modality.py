@@ -6,10 +6,13 @@ group, exactly as a third-party sensor would be.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from benchmark.hookspecs import hookimpl
 from benchmark.modalities.camera.draw import draw_camera_frame
+from benchmark.modalities.camera.hard_observations import hard_observations
 from benchmark.modalities.camera.io.export import export_camera_sequence
 from benchmark.modalities.camera.io.image_folder import ImageFolder
 from benchmark.modalities.camera.io.sequence_file import ImageSequenceFile
@@ -17,8 +20,16 @@ from benchmark.modalities.camera.io.video import VIDEO_EXTENSIONS, VideoFile
 from benchmark.modalities.camera.model import CableState, CameraTruth
 from benchmark.modalities.camera.scenes.scene import CameraScene
 from benchmark.modalities.camera.scoring import CameraScorer
-from benchmark.modality import ANY_FILE, Modality, Reader
+from benchmark.modality import ANY_FILE, Modality, Reader, Starter
 from benchmark.registry import Registry
+
+
+def example_sequences(max_frames: int) -> Any:
+    """Random camera sequences as a hypothesis strategy, :func:`benchmark.modalities.camera.strategies.sequences`."""
+    from benchmark.modalities.camera.strategies import sequences  # hypothesis loads only when a check asks
+
+    return sequences(max_frames)
+
 
 CAMERA = Modality(
     name="camera",
@@ -35,6 +46,16 @@ CAMERA = Modality(
     scene_kinds={"camera": CameraScene.from_dict},
     description="grey images of a cable or pipe; estimates are cable states (d, alpha, w, beta), maybe with a pose",
     draw=draw_camera_frame,
+    hard_observations=hard_observations,
+    example_sequences=example_sequences,
+    starter=Starter(
+        imports="from benchmark.modalities.camera.model import CableState, CameraTruth",
+        truth="CameraTruth",
+        estimate="CableState",
+        hold="init.cable if init.cable.is_known else None",
+        observation="frame.observation is the uint8 grey image (height, width)",
+        dataset="camera/S2",
+    ),
 )
 """Camera frames hold a ``uint8`` grey image (seeds/000 section 4.2, seeds/004 section II)."""
 

@@ -6,14 +6,25 @@ group, exactly as a third-party sensor would be.
 
 from __future__ import annotations
 
+from typing import Any
+
 from benchmark.hookspecs import hookimpl
 from benchmark.modalities.sonar.draw import draw_sonar_frame
+from benchmark.modalities.sonar.hard_observations import hard_observations
 from benchmark.modalities.sonar.io import SWATH_SUFFIX, SwathFile, export_swath_file
 from benchmark.modalities.sonar.model import PipeEstimate, SonarTruth, Swath
 from benchmark.modalities.sonar.scenes.scene import SonarScene
 from benchmark.modalities.sonar.scoring import SonarScorer
-from benchmark.modality import Modality, Reader
+from benchmark.modality import Modality, Reader, Starter
 from benchmark.registry import Registry
+
+
+def example_sequences(max_frames: int) -> Any:
+    """Random sonar sequences as a hypothesis strategy, :func:`benchmark.modalities.sonar.strategies.sequences`."""
+    from benchmark.modalities.sonar.strategies import sequences  # hypothesis loads only when a check asks
+
+    return sequences(max_frames)
+
 
 SONAR = Modality(
     name="sonar",
@@ -26,6 +37,16 @@ SONAR = Modality(
     scene_kinds={"sonar": SonarScene.from_dict},
     description="multibeam echo-sounder swaths over a pipe; estimates are across-track positions",
     draw=draw_sonar_frame,
+    hard_observations=hard_observations,
+    example_sequences=example_sequences,
+    starter=Starter(
+        imports="from benchmark.modalities.sonar.model import PipeEstimate, SonarTruth",
+        truth="SonarTruth",
+        estimate="PipeEstimate",
+        hold="PipeEstimate(init.across_m)",
+        observation="frame.observation is a Swath: across_m and depth_m per beam, NaN where a beam has no return",
+        dataset="sonar/concrete",
+    ),
 )
 """Sonar frames hold one ping of a multibeam echo sounder (seeds/003)."""
 

@@ -6,14 +6,25 @@ group, exactly as a third-party sensor would be.
 
 from __future__ import annotations
 
+from typing import Any
+
 from benchmark.hookspecs import hookimpl
 from benchmark.modalities.stereo.draw import draw_stereo_frame
+from benchmark.modalities.stereo.hard_observations import hard_observations
 from benchmark.modalities.stereo.model import StereoMeasurement, StereoTruth, TargetEstimate
 from benchmark.modalities.stereo.scenes.images import StereoImageScene
 from benchmark.modalities.stereo.scenes.scene import StereoScene
 from benchmark.modalities.stereo.scoring import StereoScorer
-from benchmark.modality import Modality
+from benchmark.modality import Modality, Starter
 from benchmark.registry import Registry
+
+
+def example_sequences(max_frames: int) -> Any:
+    """Random stereo sequences as a hypothesis strategy, :func:`benchmark.modalities.stereo.strategies.sequences`."""
+    from benchmark.modalities.stereo.strategies import sequences  # hypothesis loads only when a check asks
+
+    return sequences(max_frames)
+
 
 STEREO = Modality(
     name="stereo",
@@ -24,6 +35,16 @@ STEREO = Modality(
     scene_kinds={"stereo": StereoScene.from_dict, "stereo-images": StereoImageScene.from_dict},
     description="a target boat seen from a chase boat; estimates are its position and velocity",
     draw=draw_stereo_frame,
+    hard_observations=hard_observations,
+    example_sequences=example_sequences,
+    starter=Starter(
+        imports="from benchmark.modalities.stereo.model import StereoTruth, TargetEstimate",
+        truth="StereoTruth",
+        estimate="TargetEstimate",
+        hold="init.target",
+        observation="frame.observation is a StereoMeasurement, None (target lost) or an image pair (left, right)",
+        dataset="stereo/case1-slow",
+    ),
 )
 """Stereo frames hold a measurement of the target, None, or an image pair (seeds/002)."""
 

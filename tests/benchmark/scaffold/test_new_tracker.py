@@ -11,10 +11,16 @@ import venv
 from collections.abc import Iterator
 from pathlib import Path
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
 from benchmark.cli import main
+from benchmark.errors import ParameterError
+from benchmark.modalities.camera.modality import CAMERA
+from benchmark.modalities.camera.scenes.scene import CameraScene
+from benchmark.scaffold import ScaffoldError
+from benchmark.scaffold import new_tracker as write_skeleton
 from benchmark.testing import assert_conforms, check_tracker
 from benchmark.tracker import Tracker
 
@@ -61,13 +67,34 @@ def test_new_tracker_writes_the_plugin_files(demo: Path) -> None:
     assert "assert_conforms(DemoTracker)" in (demo / "tests/test_demo.py").read_text()
 
 
-def test_the_new_tracker_passes_the_conformance_kit(demo: Path) -> None:
-    tracker = demo_tracker()
-    assert (tracker.name, tracker.modality) == ("demo", "camera")
-    assert dataclasses.is_dataclass(tracker.Params) and tracker.Params.__dataclass_params__.frozen
-    results = check_tracker(tracker, n_frames=4)
+@pytest.mark.parametrize("modality", ["camera", "sonar", "stereo"])
+def test_a_new_tracker_of_each_modality_passes_the_conformance_kit(tmp_path: Path, modality: str) -> None:
+    code, output = new_tracker("demo", "--modality", modality, "--out", str(tmp_path))
+    assert code == 0, output
+    sys.path.insert(0, str(tmp_path / "demo"))
+    try:
+        tracker = demo_tracker()
+        assert (tracker.name, tracker.modality) == ("demo", modality)
+        assert dataclasses.is_dataclass(tracker.Params) and tracker.Params.__dataclass_params__.frozen
+        results = check_tracker(tracker, n_frames=4)
+    finally:
+        sys.path.remove(str(tmp_path / "demo"))
+        for module in [name for name in sys.modules if name.split(".")[0] == "trackbench_demo"]:
+            del sys.modules[module]
     assert [r for r in results if not r.ok] == []
-    assert "0 estimates without truth" in {r.check: r.detail for r in results}["frames_without_truth"]
+    details = {r.check: r.detail for r in results}
+    assert "0 estimates without truth" in details["frames_without_truth"]
+    assert details["runs"].startswith("4 estimates in 4 frames")
+
+
+def test_the_hold_parameter_is_validated_and_stops_the_estimates(demo: Path) -> None:
+    tracker = demo_tracker()
+    with pytest.raises(ParameterError, match="hold_frames"):
+        tracker.make_params({"hold_frames": -1})
+    (first,) = CameraScene.from_dict({"name": "hold", "n_frames": 1, "seed": 1}, "test").frames()
+    instance = tracker(tracker.make_params({"hold_frames": 2}))
+    instance.reset(None, np.random.default_rng(0), init=first.truth)
+    assert [instance.step(first) for _ in range(4)] == [first.truth.cable] * 2 + [None] * 2
 
 
 def test_the_new_tracker_registers_through_its_hook(demo: Path) -> None:
@@ -98,10 +125,18 @@ def test_an_existing_folder_exits_2(tmp_path: Path) -> None:
     assert list((tmp_path / "demo").iterdir()) == []
 
 
-def test_a_modality_without_a_template_exits_2(tmp_path: Path) -> None:
-    code, output = new_tracker("demo", "--modality", "sonar", "--out", str(tmp_path))
+def test_an_unknown_modality_exits_2(tmp_path: Path) -> None:
+    code, output = new_tracker("demo", "--modality", "lidar", "--out", str(tmp_path))
     assert code == 2
-    assert "no tracker template for modality 'sonar'" in output
+    assert "unknown modality 'lidar' (registered: camera, sonar, stereo)" in output
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_modality_without_a_starter_is_refused(tmp_path: Path) -> None:
+    bare = dataclasses.replace(CAMERA, name="bare", starter=None)
+    with pytest.raises(ScaffoldError, match="modality 'bare' has no tracker template"):
+        write_skeleton("demo", bare, tmp_path)
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_a_hyphenated_name_makes_a_valid_module(tmp_path: Path) -> None:

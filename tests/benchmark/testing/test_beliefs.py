@@ -239,7 +239,7 @@ def registry(fakes: types.ModuleType) -> Registry:
 
 
 def run_kit(tracker: type, registry: Registry, fakes: types.ModuleType) -> dict[str, CheckResult]:
-    results = check_tracker(tracker, registry=registry, sequence=fakes.FakeSequence("fake/S1", 10))
+    results = check_tracker(tracker, registry=registry, modality_data=fakes.FakeSequence("fake/S1", 10))
     return {result.check: result for result in results}
 
 

@@ -16,6 +16,7 @@ from benchmark.testing import Check, CheckResult, check_tracker, checks
 from benchmark.testing.checks import same
 from benchmark.tracker import Tracker
 
+from ..conftest import HEIGHT, WIDTH
 from .conftest import Steady
 
 ALL_CHECKS = [check.name for check in checks()]
@@ -53,6 +54,54 @@ class NotANumber(Steady):
         return CableState(math.nan, 0.0, 12.0, 0.0) if frame.index == 2 else estimate
 
 
+class Unseeded(Steady):
+    """Draws from a generator of its own, seeded the same on every reset."""
+
+    name = "unseeded"
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        super().reset(info, np.random.default_rng(7), init)
+
+
+class FalselyDeterministic(Steady):
+    """Says it draws no random numbers, and draws them."""
+
+    name = "falsely-deterministic"
+    deterministic = True
+
+
+class Frightened(Steady):
+    """Returns a NaN state on a black image."""
+
+    name = "frightened"
+
+    def step(self, frame: Frame) -> Any:
+        estimate = super().step(frame)
+        return CableState(math.nan, 0.0, 12.0, 0.0) if not frame.observation.any() else estimate
+
+
+class Dazzled(Steady):
+    """Loops forever on a white image."""
+
+    name = "dazzled"
+
+    def step(self, frame: Frame) -> Any:
+        while frame.observation.min() == 255:
+            pass
+        return super().step(frame)
+
+
+class OneSize(Steady):
+    """Only reads images of the size of the kit's fake sequence."""
+
+    name = "one-size"
+
+    def step(self, frame: Frame) -> Any:
+        if frame.observation.shape != (HEIGHT, WIDTH):
+            raise ValueError(f"expects {WIDTH}x{HEIGHT} images")
+        return super().step(frame)
+
+
 class Unpicklable(Steady):
     """Keeps a lambda, which pickle refuses."""
 
@@ -68,8 +117,11 @@ def registry(fakes: types.ModuleType) -> Registry:
     return fakes.make_registry()
 
 
-def run_kit(tracker: type[Tracker], registry: Registry, fakes: types.ModuleType) -> list[CheckResult]:
-    return check_tracker(tracker, registry=registry, sequence=fakes.FakeSequence("fake/S1", 10))
+def run_kit(
+    tracker: type[Tracker], registry: Registry, fakes: types.ModuleType, time_limit_s: float = 60.0
+) -> list[CheckResult]:
+    sequence = fakes.FakeSequence("fake/S1", 10)
+    return check_tracker(tracker, registry=registry, modality_data=sequence, time_limit_s=time_limit_s)
 
 
 def failures(results: list[CheckResult]) -> dict[str, str]:
@@ -82,8 +134,11 @@ def test_checks_are_named_in_order() -> None:
         "runs",
         "frames_without_truth",
         "same_seed_same_output",
+        "seed_matters",
         "no_global_randomness",
         "reset_leaves_no_state",
+        "hard_observations",
+        "random_sequences",
         "pickles",
         "belief_invariants",
         "step_time",
@@ -117,8 +172,11 @@ def test_the_registry_suite_is_used_when_no_sequence_is_given(registry: Registry
     [
         (GlobalRandom, "no_global_randomness", "np.random"),
         (Sticky, "reset_leaves_no_state", "reset keeps state"),
-        (NotANumber, "runs", "frame 2"),
         (Unpicklable, "pickles", "does not pickle"),
+        (Unseeded, "seed_matters", "seeds 0 and 1 give identical estimates"),
+        (FalselyDeterministic, "seed_matters", "declares itself deterministic, but runs with seeds 0 and 1 differ"),
+        (Frightened, "hard_observations", "invalid estimate at frame 3, 'blank' observations in frames 3-6"),
+        (OneSize, "random_sequences", "expects 64x48 images (step, frame 0, random sequence"),
     ],
 )
 def test_a_broken_tracker_fails_exactly_its_check(
@@ -128,6 +186,23 @@ def test_a_broken_tracker_fails_exactly_its_check(
     assert list(failed) == [check]
     assert f"tracker {tracker.name!r}" in failed[check]
     assert words in failed[check]
+
+
+def test_a_nan_estimate_fails_every_check_that_validates_estimates(registry: Registry, fakes: types.ModuleType) -> None:
+    failed = failures(run_kit(NotANumber, registry, fakes))
+    assert list(failed) == ["runs", "hard_observations", "random_sequences"]
+    assert "invalid estimate at frame 2: EstimateError" in failed["runs"]
+    assert "invalid estimate at frame 2, 'blank' observations" in failed["hard_observations"]
+    assert "invalid estimate at frame 2, random sequence" in failed["random_sequences"]
+
+
+def test_a_tracker_that_hangs_fails_its_check_and_the_kit_goes_on(registry: Registry, fakes: types.ModuleType) -> None:
+    results = run_kit(Dazzled, registry, fakes, time_limit_s=1.0)
+    failed = failures(results)
+    assert list(failed) == ["hard_observations"]
+    assert "did not finish within 1 s" in failed["hard_observations"]
+    assert "'saturated' observations" in failed["hard_observations"]
+    assert [result.check for result in results] == ALL_CHECKS
 
 
 def test_global_state_is_restored_after_the_check(registry: Registry, fakes: types.ModuleType) -> None:

@@ -211,7 +211,8 @@ def _add_mats(canvas: _Canvas, spec: Overgrowth, rng: np.random.Generator) -> No
     share = spec.mat_cover * profile_factor(canvas.z, spec.density) * zone_weight(canvas.z, spec.z_m, spec.mat_scale_m)
     share = np.clip(share, 0.0, 0.999)
     normal = statistics.NormalDist()
-    levels = {value: (normal.inv_cdf(1.0 - value) if value > 0 else math.inf) for value in np.unique(share)}
+    # A share too small to move 1.0 - share is no cover at all (inv_cdf(1.0) is infinite and raises).
+    levels = {value: (normal.inv_cdf(1.0 - value) if 1.0 - value < 1.0 else math.inf) for value in np.unique(share)}
     threshold = np.array([levels[value] for value in share], dtype=np.float32)[:, None]
     fade = 0.25 * spec.x_m
     lateral = np.clip((spec.x_m - np.abs(canvas.x)) / fade + 0.5, 0.0, 1.0)[None, :]

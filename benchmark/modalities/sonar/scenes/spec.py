@@ -38,6 +38,9 @@ from benchmark.modalities.sonar.model import SonarCalibration
 from benchmark.scenes.signal import Signal
 from benchmark.scenes.spec import TableSpec
 
+MIN_RANGE_RESOLUTION_M = 1e-6
+"""The finest range step a sonar may round to, m; finer steps overflow ``range / step``."""
+
 
 def _finite(*values: float) -> bool:
     return all(math.isfinite(v) for v in values)
@@ -68,7 +71,8 @@ class SonarSpec:
         ``sin^2`` of the incidence angle
         (:func:`benchmark.modalities.sonar.scenes.swath.degrade_ranges`).
     range_resolution_m : float
-        Step the ranges are quantised to; 0 for none.
+        Step the ranges are quantised to; 0 for none, else at least
+        :data:`MIN_RANGE_RESOLUTION_M`.
     max_range_m : float
         Range gate: nothing farther returns.
     missing_nadir, missing_outer : float
@@ -104,6 +108,11 @@ class SonarSpec:
             raise ValueError("beam_width_deg, range_sigma_m, range_resolution_m and max_range_m must be finite")
         if min(self.beam_width_deg, self.range_sigma_m, self.range_resolution_m) < 0 or not self.max_range_m > 0:
             raise ValueError("need beam_width_deg, range_sigma_m, range_resolution_m >= 0 and max_range_m > 0")
+        if 0 < self.range_resolution_m < MIN_RANGE_RESOLUTION_M:
+            raise ValueError(
+                f"range_resolution_m must be 0 (no rounding) or at least {MIN_RANGE_RESOLUTION_M:g} m, "
+                f"got {self.range_resolution_m:g}"
+            )
         if not (math.isfinite(self.outer_sigma_factor) and self.outer_sigma_factor >= 1):
             raise ValueError(f"outer_sigma_factor must be >= 1, got {self.outer_sigma_factor}")
         for name in ("missing_nadir", "missing_outer", "outlier_rate"):

@@ -57,6 +57,15 @@ def test_same_generator_gives_the_same_layer_and_another_does_not() -> None:
     assert not np.array_equal(first.alpha, other.alpha)
 
 
+@pytest.mark.parametrize("cover", [1e-17, 3.8e-60, 5e-324])
+def test_a_cover_too_small_to_count_draws_no_mat(cover: float) -> None:
+    bare = dataclasses.replace(DENSE, mat_cover=0.0, fronds_per_m=0.0, side_stones_per_m=0.0, top_stones_per_m=0.0)
+    layer = _layer(dataclasses.replace(bare, mat_cover=cover, fronds_per_m=1.0))
+    reference = _layer(dataclasses.replace(bare, fronds_per_m=1.0))
+    assert layer is not None and reference is not None
+    np.testing.assert_array_equal(layer.alpha, reference.alpha)
+
+
 def test_layer_values_are_in_range() -> None:
     layer = _layer(DENSE)
     assert layer.alpha.dtype == np.float32 and layer.alpha.shape[0] == GRID.nz

@@ -8,13 +8,14 @@ from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings
 from trackbench_suites.loader import merge_tables
 
 from benchmark.errors import DataError
 from benchmark.modalities.sonar.model import SonarCalibration, SonarTruth, Swath
 from benchmark.modalities.sonar.scenes.scene import SonarScene
+from benchmark.modalities.sonar.scenes.spec import SonarSceneSpec
+from benchmark.modalities.sonar.strategies import scene_specs
 from benchmark.model import Sequence
 
 BUSY: dict[str, Any] = {
@@ -222,50 +223,16 @@ def test_the_second_pipe_appears_where_specified_and_the_truth_stays_on_the_firs
     assert alone.truth(5) == truth
 
 
-def test_random_specs_give_finite_truth_and_full_swaths() -> None:
-    @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-    @given(
-        # A multibeam swath: with three beams, two of them outer, a ping may lose every return.
-        n_beams=st.integers(16, 300),
-        swath=st.floats(30.0, 150.0),
-        altitude=st.floats(3.0, 25.0),
-        across=st.floats(-5.0, 5.0),
-        diameter=st.floats(0.1, 2.0),
-        burial=st.floats(-0.5, 1.5),
-        slope=st.floats(-10.0, 10.0),
-        roughness=st.floats(0.0, 0.3),
-        beam_width=st.floats(0.0, 3.0),
-        seed=st.integers(0, 2**31),
-    )
-    def check(n_beams, swath, altitude, across, diameter, burial, slope, roughness, beam_width, seed) -> None:
-        scene = SonarScene.from_dict(
-            {
-                "name": "sonar/random",
-                "n_frames": 3,
-                "seed": seed,
-                "sonar": {
-                    "n_beams": n_beams,
-                    "swath_deg": swath,
-                    "beam_width_deg": beam_width,
-                    "range_sigma_m": 0.02,
-                    "missing_outer": 0.2,
-                    "outlier_rate": 0.01,
-                    "max_range_m": 60.0,
-                },
-                "vehicle": {"altitude_m": {"mean": altitude}},
-                "seabed": {"slope_deg": {"mean": slope}, "roughness": [{"std_m": roughness, "length_m": 2.0}]},
-                "pipe": {"diameter_m": diameter, "across_m": {"mean": across}, "burial": {"mean": burial}},
-            }
-        )
-        for frame in scene.frames():
-            truth = frame.truth
-            values = (truth.across_m, truth.depth_m, truth.burial, truth.resolution_m)
-            assert all(math.isfinite(v) for v in values)
-            assert 0.0 <= truth.burial <= 1.0 and truth.resolution_m > 0
-            assert frame.observation.across_m.shape == frame.observation.depth_m.shape == (n_beams,)
-            assert frame.observation.valid.any()
-
-    check()
+@settings(max_examples=15, deadline=None)
+@given(scene_specs(max_frames=3))
+def test_random_specs_give_finite_truth_and_full_swaths(spec: SonarSceneSpec) -> None:
+    for frame in SonarScene(spec).frames():
+        truth = frame.truth
+        values = (truth.across_m, truth.depth_m, truth.burial, truth.resolution_m)
+        assert all(math.isfinite(v) for v in values)
+        assert 0.0 <= truth.burial <= 1.0 and truth.resolution_m > 0
+        assert frame.observation.across_m.shape == frame.observation.depth_m.shape == (spec.sonar.n_beams,)
+        assert frame.observation.valid.any()
 
 
 @pytest.mark.parametrize(

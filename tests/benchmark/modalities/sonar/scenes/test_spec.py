@@ -73,6 +73,7 @@ def _with(path: tuple[str | int, ...], value) -> dict:
         (("sonar", "swath_deg"), 180.0, r"here\.sonar: swath_deg must be in"),
         (("sonar", "missing_outer"), 1.0, r"here\.sonar: missing_outer must be in \[0, 1\)"),
         (("sonar", "outer_sigma_factor"), 0.5, r"here\.sonar: outer_sigma_factor must be >= 1"),
+        (("sonar", "range_resolution_m"), 1e-310, r"here\.sonar: range_resolution_m must be 0 \(no rounding\)"),
         (("sonar", "n_beams"), 111.0, r"here\.sonar\.n_beams: expected an integer"),
         (("vehicle", "speed_mps"), 0.0, r"here\.vehicle: speed_mps must be > 0"),
         (("vehicle", "altitude_m", "noise_std"), -1.0, r"here\.vehicle\.altitude_m: noise_std"),
