@@ -94,7 +94,8 @@ def _envelope(path: PathSpec, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Quintic smooth step from 0 to 1 over ``[onset, onset + ramp]`` and its derivative in ``u``."""
     if path.ramp_m == 0.0:
         return (u >= path.onset_m).astype(float), np.zeros_like(u)
-    x = np.clip((u - path.onset_m) / path.ramp_m, 0.0, 1.0)
+    with np.errstate(over="ignore"):  # a ramp too short to resolve is a step: the quotient saturates to +-inf
+        x = np.clip((u - path.onset_m) / path.ramp_m, 0.0, 1.0)
     value = x**3 * (10.0 - 15.0 * x + 6.0 * x**2)
     slope = 30.0 * x**2 * (1.0 - x) ** 2 / path.ramp_m
     return value, slope

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -87,6 +88,16 @@ def test_without_a_ramp_the_heading_jumps_at_the_onset() -> None:
     abrupt = PathSpec(amplitude_m=6.0, wavelength_m=60.0, onset_m=20.0)
     heading = boat_track(BoatSpec(abrupt, speed_knots=((0.0, 5.0),)), np.arange(0.0, 8.0, 0.2)).heading
     assert np.max(np.abs(np.diff(heading))) > math.radians(25.0)
+
+
+@pytest.mark.parametrize("ramp_m", [1e-310, 1e-300])
+def test_a_ramp_too_short_to_resolve_is_the_abrupt_onset_without_a_warning(ramp_m: float) -> None:
+    u = np.array([0.0, 19.0, 20.0, 21.0, 100.0])
+    abrupt = PathSpec(amplitude_m=6.0, wavelength_m=60.0, onset_m=20.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        short = path_offset(PathSpec(amplitude_m=6.0, wavelength_m=60.0, onset_m=20.0, ramp_m=ramp_m), u)
+    np.testing.assert_allclose(short[0], path_offset(abrupt, u)[0], rtol=0.0, atol=1e-12)
 
 
 def _track(position, heading, velocity=(1.0, 0.0)) -> BoatTrack:
