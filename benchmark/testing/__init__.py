@@ -12,15 +12,23 @@ for the tracker's faults.  In a tracker's own test suite::
         assert not failed, "\\n".join(r.message for r in failed)
 
 :func:`checks` gives the individual checks, to parametrise a test over them
-or to run one alone.  ``trackbench check NAME...`` runs the kit on
-installed trackers from the command line.
+or to run one alone; :func:`conformance_cases` makes them pytest
+parameters, so that each check shows as its own test::
+
+    @pytest.mark.parametrize("case", conformance_cases(MyTracker))
+    def test_conforms(case):
+        case()
+
+``trackbench check NAME...`` runs the kit on installed trackers from the
+command line.
 """
 
 from __future__ import annotations
 
 import random
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
@@ -32,7 +40,17 @@ from benchmark.testing.checks import CHECKS, DEFAULT_FRAMES, Subject, prepare
 from benchmark.testing.time_limit import CheckTimeout, time_limit
 from benchmark.tracker import Tracker
 
-__all__ = ["Check", "CheckResult", "Subject", "check_tracker", "checks", "prepare"]
+__all__ = [
+    "Check",
+    "CheckResult",
+    "Subject",
+    "assert_conforms",
+    "check_tracker",
+    "checks",
+    "conformance_cases",
+    "prepare",
+    "run_check",
+]
 
 DEFAULT_TIME_LIMIT_S = 60.0
 """Time one check may take by default, s: a first-party tracker needs well under one."""
@@ -91,7 +109,7 @@ def checks(entry: TrackerEntry | type[Tracker] | None = None) -> list[Check]:
     return [Check(name, function) for name, function in CHECKS]
 
 
-def _entry_of(entry_or_class: TrackerEntry | type[Tracker]) -> TrackerEntry:
+def entry_of(entry_or_class: TrackerEntry | type[Tracker]) -> TrackerEntry:
     """The entry itself, or a class's entry with its default parameters (None if they cannot be made)."""
     if isinstance(entry_or_class, TrackerEntry):
         return entry_or_class
@@ -141,33 +159,56 @@ def check_tracker(
         from benchmark.plugins import load_registry
 
         registry = load_registry()
-    entry = _entry_of(entry_or_class)
-    results: list[CheckResult] = []
+    entry = entry_of(entry_or_class)
+    subject = prepare_within(entry, registry, modality_data, n_frames, time_limit_s)
+    return [run_check(check, subject, time_limit_s) for check in checks(entry)]
+
+
+def prepare_within(
+    entry: TrackerEntry,
+    registry: Registry,
+    modality_data: Sequence | None = None,
+    n_frames: int = DEFAULT_FRAMES,
+    time_limit_s: float | None = DEFAULT_TIME_LIMIT_S,
+) -> Subject:
+    """:func:`~benchmark.testing.checks.prepare` within the time limit: a fit that hangs is the subject's problem."""
+    try:
+        with time_limit(time_limit_s), global_random_state_kept():
+            return prepare(entry, registry, modality_data, n_frames)
+    except CheckTimeout as exc:
+        return Subject(entry, dict(registry.modalities), problem=f"preparing its frames and model {exc}")
+
+
+def run_check(check: Check, subject: Subject, time_limit_s: float | None = DEFAULT_TIME_LIMIT_S) -> CheckResult:
+    """Run one check on a prepared subject, within the time limit; what it found.
+
+    NumPy's and Python's global random state are left as they were,
+    whatever the tracker does; a tracker's fault is a failed result, never
+    an exception.
+    """
+    name = subject.name
+    started = time.perf_counter()
+    try:
+        with time_limit(time_limit_s), global_random_state_kept():
+            detail, ok, message = check(subject), True, ""
+    except CheckTimeout as exc:
+        detail, ok, message = "", False, f"tracker {name!r}: the check {exc}: does it hang?"
+    except AssertionError as exc:
+        detail, ok, message = "", False, str(exc)
+    except Exception as exc:
+        detail, ok, message = "", False, f"tracker {name!r}: the check raised {describe_exception(exc)}"
+    return CheckResult(name, check.name, ok, message, detail, time.perf_counter() - started)
+
+
+@contextmanager
+def global_random_state_kept() -> Iterator[None]:
+    """Restore NumPy's legacy global generator and Python's ``random`` when the body ends."""
     numpy_state, python_state = np.random.get_state(), random.getstate()
     try:
-        _run_checks(entry, prepare(entry, registry, modality_data, n_frames), results, time_limit_s)
+        yield
     finally:
         np.random.set_state(numpy_state)
         random.setstate(python_state)
-    return results
 
 
-def _run_checks(
-    entry: TrackerEntry, subject: Subject, results: list[CheckResult], time_limit_s: float | None
-) -> None:
-    """Run every check of ``entry`` on ``subject``, appending one result per check to ``results``."""
-    for check in checks(entry):
-        started = time.perf_counter()
-        try:
-            with time_limit(time_limit_s):
-                detail, ok, message = check(subject), True, ""
-        except CheckTimeout as exc:
-            detail, ok, message = "", False, f"tracker {entry.name!r}: the check {exc}: does it hang?"
-        except AssertionError as exc:
-            detail, ok, message = "", False, str(exc)
-        except Exception as exc:
-            detail, ok, message = "", False, f"tracker {entry.name!r}: the check raised {describe_exception(exc)}"
-        results.append(CheckResult(entry.name, check.name, ok, message, detail, time.perf_counter() - started))
-
-
-from benchmark.testing.pytest_plugin import assert_conforms as assert_conforms
+from benchmark.testing.pytest_plugin import assert_conforms, conformance_cases  # noqa: E402

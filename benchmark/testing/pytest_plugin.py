@@ -9,11 +9,18 @@ so any test suite in an environment with subsea-trackbench can write::
         assert_conforms(MyTracker)          # a class, a TrackerEntry or an installed tracker's name
 
 or use the fixture: ``def test_conforms(tracker_check): tracker_check(MyTracker)``.
+To see each check as its own test, parametrise over :func:`conformance_cases`::
+
+    @pytest.mark.parametrize("case", conformance_cases(MyTracker))
+    def test_conforms(case):
+        case()
 """
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 try:
@@ -23,6 +30,7 @@ except ImportError:  # benchmark.testing re-exports assert_conforms, and pytest 
 
 if TYPE_CHECKING:
     from benchmark.registry import TrackerEntry
+    from benchmark.testing import Check, Subject
     from benchmark.tracker import Tracker
 
 
@@ -40,15 +48,87 @@ def assert_conforms(tracker: type[Tracker] | TrackerEntry | str, **options: Any)
     from benchmark.testing import check_tracker
 
     if isinstance(tracker, str):
-        from benchmark.plugins import load_registry
-        from benchmark.selection import select_trackers
-
-        registry = options.setdefault("registry", load_registry())
-        (tracker,) = select_trackers(registry, [tracker])
+        tracker = _installed(tracker, options)
     failed = [result for result in check_tracker(tracker, **options) if not result.ok]
     if failed:
         lines = [f"{result.tracker}: {result.check}: {result.message}" for result in failed]
         raise AssertionError(f"{len(failed)} conformance check(s) failed:\n" + "\n".join(lines))
+
+
+def _installed(name: str, options: dict[str, Any]) -> TrackerEntry:
+    """The installed tracker ``name``, with ``options["registry"]`` set to the registry it was found in."""
+    from benchmark.plugins import load_registry
+    from benchmark.selection import select_trackers
+
+    registry = options.get("registry") or options.setdefault("registry", load_registry())
+    (entry,) = select_trackers(registry, [name])
+    return entry
+
+
+@dataclass(frozen=True)
+class ConformanceCase:
+    """One check of the conformance kit on one tracker, as a pytest parameter: calling it runs the check.
+
+    Attributes
+    ----------
+    check : Check
+        The check.
+    subject : callable
+        Returns the prepared subject, the same one for every case of the tracker.
+    time_limit_s : float or None
+        Time the check may take.
+    """
+
+    check: Check
+    subject: Callable[[], Subject]
+    time_limit_s: float | None
+
+    def __call__(self) -> None:
+        """Run the check; raise AssertionError with its message if it fails."""
+        from benchmark.testing import run_check
+
+        result = run_check(self.check, self.subject(), self.time_limit_s)
+        if not result.ok:
+            raise AssertionError(result.message)
+
+
+def conformance_cases(tracker: type[Tracker] | TrackerEntry | str, **options: Any) -> list[Any]:
+    """One pytest parameter per check of the conformance kit, with the check's name as its id.
+
+    The tracker's frames (and model, if it learns) are prepared once, when
+    the first case runs, not when tests are collected.
+
+    Parameters
+    ----------
+    tracker : Tracker subclass, TrackerEntry or str
+        What to check, as for :func:`assert_conforms`.
+    **options
+        As for :func:`~benchmark.testing.check_tracker`: ``modality_data``,
+        ``registry``, ``n_frames``, ``time_limit_s``.
+
+    Returns
+    -------
+    list of pytest.param
+        Each holds a :class:`ConformanceCase`; call it in the test.
+    """
+    from benchmark.testing import DEFAULT_TIME_LIMIT_S, checks, entry_of, prepare_within
+
+    if pytest is None:
+        raise RuntimeError("conformance_cases makes pytest parameters, and pytest is not installed")
+    time_limit_s = options.get("time_limit_s", DEFAULT_TIME_LIMIT_S)
+
+    @functools.cache
+    def subject() -> Subject:
+        entry = _installed(tracker, options) if isinstance(tracker, str) else entry_of(tracker)
+        registry = options.get("registry")
+        if registry is None:
+            from benchmark.plugins import load_registry
+
+            registry = options.setdefault("registry", load_registry())
+        extra = {key: options[key] for key in ("modality_data", "n_frames") if key in options}
+        return prepare_within(entry, registry, time_limit_s=time_limit_s, **extra)
+
+    return [pytest.param(ConformanceCase(check, subject, time_limit_s), id=check.name) for check in checks()]
 
 
 if pytest is not None:

@@ -12,7 +12,7 @@ import pytest
 from benchmark.modalities.camera.model import CableState
 from benchmark.model import Frame, SequenceInfo
 from benchmark.registry import Registry
-from benchmark.testing import Check, CheckResult, check_tracker, checks
+from benchmark.testing import Check, CheckResult, check_tracker, checks, conformance_cases
 from benchmark.testing.checks import same
 from benchmark.tracker import Tracker
 
@@ -100,6 +100,19 @@ class OneSize(Steady):
         if frame.observation.shape != (HEIGHT, WIDTH):
             raise ValueError(f"expects {WIDTH}x{HEIGHT} images")
         return super().step(frame)
+
+
+class SlowLearner(Steady):
+    """Learns, but its fit never ends."""
+
+    name = "slow-learner"
+
+    def fit(self, training: Any, rng: np.random.Generator) -> Any:
+        while True:
+            pass
+
+    def use_model(self, model: Any) -> None:
+        self.model = model
 
 
 class Unpicklable(Steady):
@@ -228,3 +241,31 @@ def test_estimates_compare_nan_aware() -> None:
     assert not same(CableState(1.0, 0.0, 1.0, 0.0), CableState(1.5, 0.0, 1.0, 0.0))
     assert same(np.array([1.0, math.nan]), np.array([1.0, math.nan]))
     assert not same(None, CableState(0.0, 0.0, 1.0, 0.0))
+
+
+def test_a_fit_that_hangs_is_stopped_and_every_run_says_why(registry: Registry, fakes: types.ModuleType) -> None:
+    results = run_kit(SlowLearner, registry, fakes, time_limit_s=0.5)
+    failed = failures(results)
+    assert "metadata" not in failed
+    assert "cannot run: preparing its frames and model did not finish within 0.5 s" in failed["runs"]
+    assert sum(result.elapsed_s for result in results) < 5.0
+
+
+def test_conformance_cases_are_one_test_per_check(registry: Registry, fakes: types.ModuleType) -> None:
+    sequence = fakes.FakeSequence("fake/S1", 6)
+    cases = conformance_cases(Sticky, registry=registry, modality_data=sequence)
+    assert [case.id for case in cases] == ALL_CHECKS
+    by_name = {case.id: case.values[0] for case in cases}
+    by_name["runs"]()
+    with pytest.raises(AssertionError, match="tracker 'sticky': reset keeps state"):
+        by_name["reset_leaves_no_state"]()
+    assert by_name["runs"].subject() is by_name["pickles"].subject()
+
+
+def test_conformance_cases_of_a_name_load_the_plugins_only_when_a_case_runs(loads: list[tuple[str, ...]]) -> None:
+    cases = conformance_cases("blind", n_frames=3)
+    assert loads == []
+    cases[1].values[0]()
+    assert len(loads) == 1
+    cases[2].values[0]()
+    assert len(loads) == 1

@@ -8,7 +8,8 @@ import pytest
 
 from benchmark.plugins import load_registry
 from benchmark.registry import Registry
-from benchmark.testing import check_tracker, checks, prepare
+from benchmark.testing import checks, conformance_cases, prepare
+from benchmark.testing.pytest_plugin import ConformanceCase
 
 FRAMES = 12
 """Frames per run: each tracker takes well under a second."""
@@ -31,13 +32,18 @@ def test_first_party_trackers_are_registered() -> None:
     assert len(first_party()) >= 8
 
 
-@pytest.mark.parametrize("name", first_party())
-def test_first_party_tracker_passes_the_kit(name: str) -> None:
-    registry = installed()
-    results = check_tracker(registry.trackers[name], registry=registry, n_frames=FRAMES)
-    failed = [result.message for result in results if not result.ok]
-    assert not failed, "\n".join(failed)
-    assert {result.check for result in results} >= {"runs", "pickles", "reset_leaves_no_state"}
+def first_party_cases() -> list[object]:
+    """Every check on every first-party tracker, one pytest parameter each (``hough:runs``)."""
+    return [
+        pytest.param(*case.values, id=f"{name}:{case.id}")
+        for name in first_party()
+        for case in conformance_cases(name, registry=installed(), n_frames=FRAMES)
+    ]
+
+
+@pytest.mark.parametrize("case", first_party_cases())
+def test_first_party_tracker_passes_the_kit(case: ConformanceCase) -> None:
+    case()
 
 
 FILTERS = [
