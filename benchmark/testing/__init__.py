@@ -19,6 +19,11 @@ parameters, so that each check shows as its own test::
     def test_conforms(case):
         case()
 
+Each check runs under a time limit (:mod:`benchmark.testing.time_limit`),
+so a tracker that hangs fails that check and the others still run.
+:mod:`benchmark.testing.strategies` has the modalities' hypothesis
+strategies for a tracker's own property-based tests, and
+:mod:`benchmark.testing.beliefs` the belief protocols a filter may expose.
 ``trackbench check NAME...`` runs the kit on installed trackers from the
 command line.
 """

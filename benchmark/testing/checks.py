@@ -495,10 +495,16 @@ def check_hard_observations(subject: Subject) -> str:
     own = frames.frame_list
     start, stop = len(own) // 3, len(own) - len(own) // 3
     rng = np.random.default_rng(SEED)
-    made = [
-        modality.hard_observations(frame, frames.info, rng) if start <= index < stop else {}
-        for index, frame in enumerate(own)
-    ]
+    try:
+        made = [
+            modality.hard_observations(frame, frames.info, rng) if start <= index < stop else {}
+            for index, frame in enumerate(own)
+        ]
+    except Exception as exc:
+        raise subject.fail(
+            f"modality {modality.name!r} could not make hard observations (not the tracker's fault): "
+            f"{describe_exception(exc)}"
+        ) from exc
     counts = []
     for kind in dict.fromkeys(kind for observations in made for kind in observations):
         hard = [

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import types
 from typing import Any
@@ -9,6 +10,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from benchmark.modalities.camera.modality import CAMERA
 from benchmark.modalities.camera.model import CableState
 from benchmark.model import Frame, SequenceInfo
 from benchmark.registry import Registry
@@ -269,3 +271,17 @@ def test_conformance_cases_of_a_name_load_the_plugins_only_when_a_case_runs(load
     assert len(loads) == 1
     cases[2].values[0]()
     assert len(loads) == 1
+
+
+def test_a_modality_that_cannot_make_hard_observations_is_named(fakes: types.ModuleType) -> None:
+    def broken(frame: Frame, info: SequenceInfo, rng: np.random.Generator) -> dict[str, Any]:
+        raise KeyError("exposure")
+
+    registry = Registry()
+    with registry.acting_for(fakes.BUILT_IN):
+        registry.add_modality(dataclasses.replace(CAMERA, hard_observations=broken))
+    failed = failures(check_tracker(Steady, registry=registry, modality_data=fakes.FakeSequence("fake/S1", 6)))
+    assert list(failed) == ["hard_observations"]
+    assert "modality 'camera' could not make hard observations (not the tracker's fault): KeyError" in failed[
+        "hard_observations"
+    ]
