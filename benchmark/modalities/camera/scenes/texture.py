@@ -133,8 +133,17 @@ def profile_factor(z: np.ndarray | float, profile: DensityProfile) -> np.ndarray
     z = np.asarray(z, dtype=float)
     if not profile:
         return np.ones_like(z)
-    zs, factors = zip(*profile)
-    return np.interp(z, zs, factors)
+    zs, factors = (np.array(column, dtype=float) for column in zip(*profile))
+    values = np.interp(z, zs, factors)
+    if np.all(np.isfinite(values)):
+        return values
+    # np.interp's slope overflows between points closer than about 1e-308 m; a share of the gap does not.
+    flat_z, flat = np.atleast_1d(z), np.atleast_1d(np.array(values, dtype=float))
+    overflowed = ~np.isfinite(flat)
+    left = np.clip(np.searchsorted(zs, flat_z[overflowed], side="right") - 1, 0, len(zs) - 2)
+    share = (flat_z[overflowed] - zs[left]) / (zs[left + 1] - zs[left])
+    flat[overflowed] = factors[left] + share * (factors[left + 1] - factors[left])
+    return flat.reshape(z.shape)
 
 
 def profile_peak(profile: DensityProfile, lo: float, hi: float) -> float:

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from benchmark.modalities.camera.scenes.spec import CableLook, Clutter, Ripples, SeabedSpec
@@ -108,6 +108,7 @@ profiles = st.lists(
 
 @settings(max_examples=60, deadline=None)
 @given(profiles, st.floats(-20, 20), st.floats(0, 10))
+@example(profile=((-2.225073858507e-311, 3.0), (1.1125369292536007e-308, 0.0)), lo=0.0, length=0.0)
 def test_profile_factor_interpolates_its_points_and_the_peak_bounds_it(profile, lo, length) -> None:
     factors = [f for _, f in profile]
     z = np.linspace(lo, lo + length, 97)
