@@ -69,11 +69,13 @@ def limit_native_threads() -> None:
     """
     for name in THREAD_VARIABLES:
         os.environ[name] = "1"
+    # numba is imported, not looked up in sys.modules: a plugin that imported it later would start it with
+    # a thread per core, and a Dask worker may be half way through importing it on another thread.
     import cv2
+    import numba
     import threadpoolctl
 
-    numba = sys.modules.get("numba")
-    if numba is not None and numba.get_num_threads() != 1:  # first: it may load an OpenMP runtime
+    if numba.get_num_threads() != 1:  # first: it may load an OpenMP runtime
         numba.set_num_threads(1)
     threadpoolctl.threadpool_limits(1)
     if cv2.getNumThreads() != 1:
