@@ -750,29 +750,53 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
     show_default=True,
     help="Seconds one check may take before it fails as a hang.",
 )
+@click.option(
+    "--in-process",
+    is_flag=True,
+    help="Run the checks in this process (for a debugger); a tracker that ends the process ends the command.",
+)
 @click.pass_context
-def check_command(ctx: click.Context, names: tuple[str, ...], frames: int, time_limit_s: float) -> None:
+def check_command(
+    ctx: click.Context, names: tuple[str, ...], frames: int, time_limit_s: float, in_process: bool
+) -> None:
     """Run the conformance kit (benchmark.testing) on installed trackers: all of them, or those NAMEd.
 
-    Prints one row per tracker and check; exit status 1 if any check failed.
+    Each check runs in a worker process, so a tracker that crashes or hangs
+    fails that check only. Prints one row per tracker and check as it ends;
+    exit status 1 if any check failed.
     """
     from benchmark.selection import select_trackers
-    from benchmark.testing import check_tracker
+    from benchmark.testing import check_tracker, checks
+    from benchmark.testing.isolated import check_in_workers
 
     session: Session = ctx.obj
     registry = session.registry
     entries = select_trackers(registry, names)
-    failed = 0
-    rows: list[tuple[str, str, str, str]] = []
-    for entry in entries:
-        for result in check_tracker(entry, registry=registry, n_frames=frames, time_limit_s=time_limit_s):
-            failed += not result.ok
-            rows.append((result.tracker, result.check, "ok" if result.ok else "FAIL", result.message or result.detail))
-    header = ("tracker", "check", "result", "message")
-    widths = [max(len(row[column]) for row in (header, *rows)) for column in range(3)]
-    for row in (header, *rows):
-        click.echo("  ".join(cell.ljust(width) for cell, width in zip(row, widths)) + "  " + row[3])
-    click.echo(f"{len(rows) - failed} passed, {failed} failed ({len(entries)} trackers)")
+    if in_process:
+        results = (
+            result
+            for entry in entries
+            for result in check_tracker(entry, registry=registry, n_frames=frames, time_limit_s=time_limit_s)
+        )
+    else:
+        results = check_in_workers([entry.name for entry in entries], registry, frames, time_limit_s)
+    header = ("tracker", "check", "result")
+    widths = [
+        max(len(header[0]), *(len(entry.name) for entry in entries)),
+        max(len(header[1]), *(len(check.name) for check in checks())),
+        len("FAIL  "),
+    ]
+
+    def row(*cells: str) -> str:
+        return "  ".join(cell.ljust(width) for cell, width in zip(cells, widths)) + "  " + cells[-1]
+
+    click.echo(row(*header, "message"))
+    passed = failed = 0
+    for result in results:
+        passed, failed = passed + result.ok, failed + (not result.ok)
+        verdict = "ok" if result.ok else "FAIL"
+        click.echo(row(result.tracker, result.check, verdict, result.message or result.detail))
+    click.echo(f"{passed} passed, {failed} failed ({len(entries)} trackers)")
     if failed:
         ctx.exit(EXIT_FAILED)
 

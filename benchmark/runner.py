@@ -186,7 +186,7 @@ class UserInterrupt(KeyboardInterrupt):
 
 
 @contextmanager
-def _sigint_is_user_interrupt() -> Iterator[None]:
+def sigint_is_user_interrupt() -> Iterator[None]:
     """While the block runs, the user's Ctrl-C raises :class:`UserInterrupt` (main thread only)."""
     if threading.current_thread() is not threading.main_thread():
         yield
@@ -381,5 +381,5 @@ def run_cells(
     from benchmark.executors.local import LocalExecutor
 
     todo = list(cells)
-    with _sigint_is_user_interrupt():
+    with sigint_is_user_interrupt():
         yield from (executor or LocalExecutor(jobs, in_process=in_process)).run(todo, timeout_s)

@@ -40,7 +40,7 @@ import numpy as np
 
 from benchmark.model import Sequence
 from benchmark.registry import Registry, TrackerEntry
-from benchmark.runner import describe_exception
+from benchmark.runner import UserInterrupt, describe_exception, sigint_is_user_interrupt
 from benchmark.testing.checks import CHECKS, DEFAULT_FRAMES, Subject, prepare
 from benchmark.testing.time_limit import CheckTimeout, time_limit
 from benchmark.tracker import Tracker
@@ -120,7 +120,9 @@ def entry_of(entry_or_class: TrackerEntry | type[Tracker]) -> TrackerEntry:
         return entry_or_class
     try:
         params = entry_or_class.make_params()
-    except Exception:
+    except UserInterrupt:
+        raise
+    except BaseException:
         params = None  # reported by the metadata check
     return TrackerEntry(str(getattr(entry_or_class, "name", entry_or_class.__name__)), entry_or_class, params)
 
@@ -178,7 +180,7 @@ def prepare_within(
 ) -> Subject:
     """:func:`~benchmark.testing.checks.prepare` within the time limit: a fit that hangs is the subject's problem."""
     try:
-        with time_limit(time_limit_s), global_random_state_kept():
+        with sigint_is_user_interrupt(), time_limit(time_limit_s), global_random_state_kept():
             return prepare(entry, registry, modality_data, n_frames)
     except CheckTimeout as exc:
         return Subject(entry, dict(registry.modalities), problem=f"preparing its frames and model {exc}")
@@ -188,19 +190,22 @@ def run_check(check: Check, subject: Subject, time_limit_s: float | None = DEFAU
     """Run one check on a prepared subject, within the time limit; what it found.
 
     NumPy's and Python's global random state are left as they were,
-    whatever the tracker does; a tracker's fault is a failed result, never
-    an exception.
+    whatever the tracker does; a tracker's fault, ``SystemExit`` and its own
+    ``KeyboardInterrupt`` included, is a failed result, never an exception.
+    The user's Ctrl-C still stops the check.
     """
     name = subject.name
     started = time.perf_counter()
     try:
-        with time_limit(time_limit_s), global_random_state_kept():
+        with sigint_is_user_interrupt(), time_limit(time_limit_s), global_random_state_kept():
             detail, ok, message = check(subject), True, ""
     except CheckTimeout as exc:
         detail, ok, message = "", False, f"tracker {name!r}: the check {exc}: does it hang?"
     except AssertionError as exc:
         detail, ok, message = "", False, str(exc)
-    except Exception as exc:
+    except UserInterrupt:
+        raise
+    except BaseException as exc:
         detail, ok, message = "", False, f"tracker {name!r}: the check raised {describe_exception(exc)}"
     return CheckResult(name, check.name, ok, message, detail, time.perf_counter() - started)
 

@@ -39,7 +39,7 @@ from benchmark.identity import DatasetIdentity
 from benchmark.modality import Modality
 from benchmark.model import Frame, Sequence, SequenceInfo
 from benchmark.registry import Registry, TrackerEntry
-from benchmark.runner import cell_rng, describe_exception
+from benchmark.runner import UserInterrupt, cell_rng, describe_exception
 from benchmark.testing.beliefs import (
     GaussianBelief,
     ParticleBelief,
@@ -55,6 +55,14 @@ DEFAULT_FRAMES = 15
 
 SEED = 0
 """Seed of the checks' runs, turned into a generator by the runner's convention (:func:`cell_rng`)."""
+
+PASS_THROUGH = (UserInterrupt, CheckTimeout)
+"""What the kit lets through: the user's Ctrl-C and a check's time running out.
+
+Anything else a tracker raises, ``SystemExit`` and its own
+``KeyboardInterrupt`` included, is the failure of the check it happened in,
+as it is of its cell in a run (:func:`benchmark.runner.run_cell`).
+"""
 
 
 class FrameList(Sequence):
@@ -139,7 +147,9 @@ class Subject:
             tracker = self.entry.create()
             if self.model is not None:
                 tracker.use_model(self.model)  # type: ignore[attr-defined]
-        except Exception as exc:
+        except PASS_THROUGH:
+            raise
+        except BaseException as exc:
             raise self.fail(f"creating an instance raised {describe_exception(exc)}") from exc
         return tracker
 
@@ -175,7 +185,9 @@ class Subject:
             raise
         except CheckTimeout as exc:
             raise CheckTimeout(f"{exc} ({where}{suffix})") from None
-        except Exception as exc:
+        except PASS_THROUGH:
+            raise
+        except BaseException as exc:
             raise self.fail(f"{describe_exception(exc)} ({where}{suffix})") from exc
         return estimates
 
@@ -250,7 +262,9 @@ def prepare(
         frames = FrameList.head(source, n_frames)
         for frame in frames.frame_list:
             modality.check_frame(frame, f"sequence {frames.info.name!r}, frame {frame.index}")
-    except Exception as exc:
+    except PASS_THROUGH:
+        raise
+    except BaseException as exc:
         return dataclasses.replace(subject, problem=f"reading {source!r}: {describe_exception(exc)}")
     if not frames.frame_list:
         return dataclasses.replace(subject, problem=f"sequence {frames.info.name!r} has no frames")
@@ -264,7 +278,9 @@ def prepare(
         head = FrameList.head(training, n_frames)
         rng = np.random.default_rng([zlib.crc32(entry.name.encode()), head.identity.seed_material])
         model = entry.create().fit([head], rng)  # type: ignore[attr-defined]
-    except Exception as exc:
+    except PASS_THROUGH:
+        raise
+    except BaseException as exc:
         return dataclasses.replace(subject, problem=f"fit on {training!r} raised {describe_exception(exc)}")
     return dataclasses.replace(subject, model=model)
 
@@ -324,7 +340,9 @@ def check_metadata(subject: Subject) -> str:
         raise subject.fail(f"Params must be a frozen dataclass, not {params!r}")
     try:
         defaults = cls.make_params()
-    except Exception as exc:
+    except PASS_THROUGH:
+        raise
+    except BaseException as exc:
         raise subject.fail(f"the default parameters do not validate: {describe_exception(exc)}") from exc
     return f"{cls.name} {cls.version}, {cls.modality}, {len(dataclasses.fields(defaults))} parameters"
 
@@ -585,20 +603,26 @@ def check_pickles(subject: Subject) -> str:
     _, frames = subject.ready()
     try:
         pickle.loads(pickle.dumps(subject.entry))
-    except Exception as exc:
+    except PASS_THROUGH:
+        raise
+    except BaseException as exc:
         raise subject.fail(f"its registry entry does not pickle: {describe_exception(exc)}") from exc
     tracker = subject.create()
     subject.run(tracker, frames.frame_list[:1])
     try:
         copy = pickle.loads(pickle.dumps(tracker))
-    except Exception as exc:
+    except PASS_THROUGH:
+        raise
+    except BaseException as exc:
         raise subject.fail(f"an instance after reset and step does not pickle: {describe_exception(exc)}") from exc
     if len(frames.frame_list) < 2:
         return "pickled after one frame"
     following = frames.frame_list[1]
     try:
         original, copied = tracker.step(following), copy.step(following)
-    except Exception as exc:
+    except PASS_THROUGH:
+        raise
+    except BaseException as exc:
         raise subject.fail(f"{describe_exception(exc)} (step after pickling, frame {following.index})") from exc
     if not same(original, copied):
         raise subject.fail(f"the unpickled instance's estimate at frame {following.index} differs: {copied}")
@@ -616,7 +640,9 @@ def check_step_time(subject: Subject) -> str:
             tick = time.perf_counter()
             tracker.step(frame)
             elapsed += time.perf_counter() - tick
-    except Exception as exc:
+    except PASS_THROUGH:
+        raise
+    except BaseException as exc:
         return f"not timed: {describe_exception(exc)}"
     return f"{1000.0 * elapsed / len(frames.frame_list):.2f} ms per frame over {len(frames.frame_list)} frames"
 
@@ -673,7 +699,9 @@ def check_belief_invariants(subject: Subject) -> str:
             held += bool(now)
     except AssertionError:
         raise
-    except Exception as exc:
+    except PASS_THROUGH:
+        raise
+    except BaseException as exc:
         raise subject.fail(f"{describe_exception(exc)} ({where}, reading the belief)") from exc
     if not (isinstance(tracker, ParticleBelief) or isinstance(tracker, GaussianBelief)) and not kinds:
         return "exposes no belief"

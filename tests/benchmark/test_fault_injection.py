@@ -230,3 +230,24 @@ def test_a_fifo_as_a_frame_costs_its_cell_not_the_run(site: Path, tmp_path: Path
     assert process.returncode == 1, stderr
     cells = stored_cells(tmp_path / "out")
     assert cells.loc["honest", "status"] == "timeout"
+
+
+def test_check_gives_each_fault_its_failed_checks_and_goes_on(faults_installed: None) -> None:
+    trackers = ["exits", "interrupts", "raises-oddly", "spins", "exits-hard", "segfaults", "honest"]
+    result = invoke("check", *trackers, "--frames", "3", "--time-limit", "0.5")
+    assert result.exit_code == 1, result.output
+    assert "Traceback" not in result.output
+    rows = {tuple(line.split()[:2]): line for line in result.output.splitlines()[1:-1]}
+    assert len(rows) == 7 * 12
+    expected = {
+        "exits": "SystemExit: 3 (step, frame 2)",
+        "interrupts": "KeyboardInterrupt (step, frame 2)",
+        "raises-oddly": "Unprintable: <Unprintable that cannot be shown> (step, frame 2)",
+        "spins": "did not finish within 0.5 s (step, frame 2): does it hang?",
+        "exits-hard": "its worker process ended (exit status 7) during the check",
+        "segfaults": "its worker process ended (killed by SIGSEGV) during the check",
+    }
+    for tracker, words in expected.items():
+        assert "FAIL" in rows[tracker, "runs"] and words in rows[tracker, "runs"], rows[tracker, "runs"]
+        assert " ok " in rows[tracker, "metadata"]
+    assert " ok " in rows["honest", "runs"] and " ok " in rows["honest", "pickles"]

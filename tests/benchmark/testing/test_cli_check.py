@@ -38,3 +38,15 @@ def test_check_of_an_unknown_tracker_is_a_usage_error(invoke: Callable[..., Resu
     result = invoke("check", "nope")
     assert result.exit_code == 2
     assert "unknown tracker 'nope'" in result.output
+
+
+def test_in_process_gives_the_same_rows_as_the_workers(invoke: Callable[..., Result]) -> None:
+    isolated = invoke("check", "perfect", "--frames", "4")
+    here = invoke("check", "perfect", "--frames", "4", "--in-process")
+    assert isolated.exit_code == here.exit_code == 1
+
+    def verdicts(output: str) -> list[list[str]]:
+        return [line.split()[:3] for line in output.splitlines()]
+
+    assert verdicts(isolated.output) == verdicts(here.output)
+    assert "11 passed, 1 failed (1 trackers)" in here.output

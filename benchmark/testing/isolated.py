@@ -1,0 +1,118 @@
+"""The conformance kit in a worker process, for ``trackbench check``.
+
+In this process a tracker's exception, ``sys.exit`` and a hang in Python
+code are each the failure of one check (:func:`benchmark.testing.run_check`).
+What no process survives, ``os._exit``, a crash in native code or a hang
+inside one native call, would end a ``trackbench check`` of many trackers.
+So each check runs as a task of a warm worker (the pebble pool of
+:func:`benchmark.executors.local.worker_pool`, one native thread): the
+worker prepares a tracker's frames and model once and keeps them for the
+tracker's next checks, and a worker that dies, or is stopped a grace
+period after the check's time limit, costs only that check's row; pebble
+starts another in its place, which prepares the tracker again.
+
+Workers are forked with the registry the command already loaded, so they
+see the same plugins, ``--disable`` included; where processes are not
+forked they load the installed plugins themselves.
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Iterator, Sequence
+from typing import Any
+
+from benchmark.executors.local import exit_reason, hard_limit_s, worker_pool
+from benchmark.registry import Registry
+from benchmark.runner import describe_exception
+from benchmark.testing import (
+    DEFAULT_FRAMES,
+    DEFAULT_TIME_LIMIT_S,
+    CheckResult,
+    Subject,
+    checks,
+    prepare_within,
+    run_check,
+)
+
+_REGISTRY: Registry | None = None
+"""The registry of the command that started the workers, which forked workers inherit."""
+
+
+def check_in_workers(
+    names: Sequence[str],
+    registry: Registry,
+    n_frames: int = DEFAULT_FRAMES,
+    time_limit_s: float = DEFAULT_TIME_LIMIT_S,
+) -> Iterator[CheckResult]:
+    """Every check of every tracker named, each in a worker process; the results as they come.
+
+    Parameters
+    ----------
+    names : sequence of str
+        Registered trackers, in the order to check them.
+    registry : Registry
+        Where they are registered.
+    n_frames : int
+        Frames each run of a check reads.
+    time_limit_s : float
+        Time one check may take (and the preparation of a tracker's frames and model).
+
+    Yields
+    ------
+    CheckResult
+        One per tracker and check, in order; a check whose worker died or
+        had to be stopped fails with what became of the worker.
+    """
+    global _REGISTRY
+    _REGISTRY = registry
+    # A tracker's first check also prepares it, each under the limit; the worker gets a grace period on top.
+    limit = 2.0 * float(hard_limit_s(time_limit_s))
+    pool = worker_pool(1)
+    try:
+        for name in names:
+            for check in checks():
+                future = pool.schedule(_check_here, args=(name, check.name, n_frames, time_limit_s), timeout=limit)
+                yield _result(name, check.name, future, limit)
+    finally:
+        pool.stop()
+        pool.join()
+        _REGISTRY = None
+
+
+def _result(name: str, check: str, future: Any, limit: float) -> CheckResult:
+    """The check's own result, or a failure saying what became of its worker."""
+    from pebble import ProcessExpired
+
+    try:
+        return future.result()
+    except TimeoutError:
+        reason = f"its worker was still busy after {limit:g} s and was stopped: does it hang in native code?"
+    except ProcessExpired as exc:
+        reason = f"its worker process ended ({exit_reason(exc.exitcode)}) during the check: os._exit, or a crash?"
+    except BaseException as exc:
+        reason = f"the worker could not return the result: {describe_exception(exc)}"
+    return CheckResult(name, check, False, f"tracker {name!r}: {reason}")
+
+
+@functools.cache
+def _registry() -> Registry:
+    """The registry: the command's, inherited through fork, or the installed plugins'."""
+    if _REGISTRY is not None:
+        return _REGISTRY
+    from benchmark.plugins import load_registry
+
+    return load_registry()
+
+
+@functools.lru_cache(maxsize=1)
+def _subject(name: str, n_frames: int, time_limit_s: float) -> Subject:
+    """The prepared subject of tracker ``name``, kept for its next checks in this worker."""
+    registry = _registry()
+    return prepare_within(registry.trackers[name], registry, n_frames=n_frames, time_limit_s=time_limit_s)
+
+
+def _check_here(name: str, check_name: str, n_frames: int, time_limit_s: float) -> CheckResult:
+    """In a worker: run check ``check_name`` on tracker ``name``."""
+    (check,) = [check for check in checks() if check.name == check_name]
+    return run_check(check, _subject(name, n_frames, time_limit_s), time_limit_s)
