@@ -32,6 +32,8 @@ are registered through that hook exactly as a third-party sensor would be.
 
 from __future__ import annotations
 
+import functools
+import importlib
 import os
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -76,7 +78,24 @@ ExampleSequences = Callable[[int], Any]
 Each example is a :class:`~benchmark.model.Sequence` of 1 to ``max_frames``
 frames, simulated from a random scene; the conformance kit runs trackers on
 a few of them (:func:`benchmark.testing.checks.check_random_sequences`).
+:func:`sequences_in` makes one from a module's ``sequences`` function.
 """
+
+
+def sequences_in(module: str) -> ExampleSequences:
+    """The :data:`ExampleSequences` of ``module.sequences``, imported (hypothesis with it) only when called.
+
+    Parameters
+    ----------
+    module : str
+        A module with a function ``sequences(max_frames)`` that returns the strategy
+        (``"benchmark.modalities.sonar.strategies"``).
+    """
+    return functools.partial(_sequences_of_module, module)
+
+
+def _sequences_of_module(module: str, max_frames: int) -> Any:
+    return importlib.import_module(module).sequences(max_frames)
 
 
 @dataclass(frozen=True)

@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import math
+import pickle
+import sys
+import types
 from dataclasses import dataclass
 
 import numpy as np
@@ -15,7 +18,7 @@ from benchmark.modalities.sonar.modality import SONAR
 from benchmark.modalities.sonar.model import PipeEstimate, SonarTruth, Swath
 from benchmark.modalities.stereo.modality import STEREO
 from benchmark.modalities.stereo.model import StereoMeasurement, StereoTruth, TargetEstimate
-from benchmark.modality import ANY_FILE, EstimateError, Modality, Reader
+from benchmark.modality import ANY_FILE, EstimateError, Modality, Reader, sequences_in
 from benchmark.model import Frame
 
 TRUTH = CameraTruth(CableState(1.0, 0.1, 20.0, 0.02))
@@ -109,3 +112,13 @@ def test_the_built_in_modalities_draw_their_frames_as_bgr_pictures() -> None:
         assert modality.draw is not None, modality.name
         picture = modality.draw(frame, estimate)
         assert picture.dtype == np.uint8 and picture.ndim == 3 and picture.shape[2] == 3, modality.name
+
+
+def test_sequences_in_imports_its_module_only_when_called(monkeypatch: pytest.MonkeyPatch) -> None:
+    lazy = sequences_in("no_such_strategies_module")
+    with pytest.raises(ModuleNotFoundError, match="no_such_strategies_module"):
+        lazy(3)
+    module = types.ModuleType("fake_strategies")
+    module.sequences = lambda max_frames: ("strategy of", max_frames)  # type: ignore[attr-defined]
+    monkeypatch.setitem(sys.modules, "fake_strategies", module)
+    assert pickle.loads(pickle.dumps(sequences_in("fake_strategies")))(4) == ("strategy of", 4)

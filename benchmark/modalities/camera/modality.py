@@ -6,8 +6,6 @@ group, exactly as a third-party sensor would be.
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 
 from benchmark.hookspecs import hookimpl
@@ -20,16 +18,8 @@ from benchmark.modalities.camera.io.video import VIDEO_EXTENSIONS, VideoFile
 from benchmark.modalities.camera.model import CableState, CameraTruth
 from benchmark.modalities.camera.scenes.scene import CameraScene
 from benchmark.modalities.camera.scoring import CameraScorer
-from benchmark.modality import ANY_FILE, Modality, Reader, Starter
+from benchmark.modality import ANY_FILE, Modality, Reader, Starter, sequences_in
 from benchmark.registry import Registry
-
-
-def example_sequences(max_frames: int) -> Any:
-    """Random camera sequences as a hypothesis strategy, :func:`benchmark.modalities.camera.strategies.sequences`."""
-    from benchmark.modalities.camera.strategies import sequences  # hypothesis loads only when a check asks
-
-    return sequences(max_frames)
-
 
 CAMERA = Modality(
     name="camera",
@@ -47,7 +37,7 @@ CAMERA = Modality(
     description="grey images of a cable or pipe; estimates are cable states (d, alpha, w, beta), maybe with a pose",
     draw=draw_camera_frame,
     hard_observations=hard_observations,
-    example_sequences=example_sequences,
+    example_sequences=sequences_in("benchmark.modalities.camera.strategies"),
     starter=Starter(
         imports="from benchmark.modalities.camera.model import CableState, CameraTruth",
         truth="CameraTruth",

@@ -6,8 +6,6 @@ group, exactly as a third-party sensor would be.
 
 from __future__ import annotations
 
-from typing import Any
-
 from benchmark.hookspecs import hookimpl
 from benchmark.modalities.sonar.draw import draw_sonar_frame
 from benchmark.modalities.sonar.hard_observations import hard_observations
@@ -15,16 +13,8 @@ from benchmark.modalities.sonar.io import SWATH_SUFFIX, SwathFile, export_swath_
 from benchmark.modalities.sonar.model import PipeEstimate, SonarTruth, Swath
 from benchmark.modalities.sonar.scenes.scene import SonarScene
 from benchmark.modalities.sonar.scoring import SonarScorer
-from benchmark.modality import Modality, Reader, Starter
+from benchmark.modality import Modality, Reader, Starter, sequences_in
 from benchmark.registry import Registry
-
-
-def example_sequences(max_frames: int) -> Any:
-    """Random sonar sequences as a hypothesis strategy, :func:`benchmark.modalities.sonar.strategies.sequences`."""
-    from benchmark.modalities.sonar.strategies import sequences  # hypothesis loads only when a check asks
-
-    return sequences(max_frames)
-
 
 SONAR = Modality(
     name="sonar",
@@ -38,7 +28,7 @@ SONAR = Modality(
     description="multibeam echo-sounder swaths over a pipe; estimates are across-track positions",
     draw=draw_sonar_frame,
     hard_observations=hard_observations,
-    example_sequences=example_sequences,
+    example_sequences=sequences_in("benchmark.modalities.sonar.strategies"),
     starter=Starter(
         imports="from benchmark.modalities.sonar.model import PipeEstimate, SonarTruth",
         truth="SonarTruth",

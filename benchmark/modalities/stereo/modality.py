@@ -6,8 +6,6 @@ group, exactly as a third-party sensor would be.
 
 from __future__ import annotations
 
-from typing import Any
-
 from benchmark.hookspecs import hookimpl
 from benchmark.modalities.stereo.draw import draw_stereo_frame
 from benchmark.modalities.stereo.hard_observations import hard_observations
@@ -15,16 +13,8 @@ from benchmark.modalities.stereo.model import StereoMeasurement, StereoTruth, Ta
 from benchmark.modalities.stereo.scenes.images import StereoImageScene
 from benchmark.modalities.stereo.scenes.scene import StereoScene
 from benchmark.modalities.stereo.scoring import StereoScorer
-from benchmark.modality import Modality, Starter
+from benchmark.modality import Modality, Starter, sequences_in
 from benchmark.registry import Registry
-
-
-def example_sequences(max_frames: int) -> Any:
-    """Random stereo sequences as a hypothesis strategy, :func:`benchmark.modalities.stereo.strategies.sequences`."""
-    from benchmark.modalities.stereo.strategies import sequences  # hypothesis loads only when a check asks
-
-    return sequences(max_frames)
-
 
 STEREO = Modality(
     name="stereo",
@@ -36,7 +26,7 @@ STEREO = Modality(
     description="a target boat seen from a chase boat; estimates are its position and velocity",
     draw=draw_stereo_frame,
     hard_observations=hard_observations,
-    example_sequences=example_sequences,
+    example_sequences=sequences_in("benchmark.modalities.stereo.strategies"),
     starter=Starter(
         imports="from benchmark.modalities.stereo.model import StereoTruth, TargetEstimate",
         truth="StereoTruth",
