@@ -82,6 +82,14 @@ def _as_float(value: object, name: str, problems: list[str]) -> np.ndarray | Non
         return None
 
 
+def _all_finite(values: np.ndarray, what: str, problems: list[str]) -> bool:
+    """Whether every value is finite; if not, a line saying how many ``what`` are not is added to ``problems``."""
+    bad = int(np.count_nonzero(~np.isfinite(values)))
+    if bad:
+        problems.append(f"{bad} {what} are not finite")
+    return not bad
+
+
 def particle_belief_problems(particles: object, weights: object) -> list[str]:
     """What is wrong with a weighted particle set.
 
@@ -111,10 +119,8 @@ def particle_belief_problems(particles: object, weights: object) -> list[str]:
     if w.shape != (states.shape[0],):
         problems.append(f"weights of shape {w.shape} do not match particles of shape {states.shape}")
         return problems
-    if not np.all(np.isfinite(states)):
-        problems.append(f"{int(np.sum(~np.isfinite(states)))} particle coordinates are not finite")
-    if not np.all(np.isfinite(w)):
-        problems.append(f"{int(np.sum(~np.isfinite(w)))} weights are not finite")
+    _all_finite(states, "particle coordinates", problems)
+    if not _all_finite(w, "weights", problems):
         return problems
     if np.any(w < 0):
         bad = int(np.flatnonzero(w < 0)[0])
@@ -164,10 +170,8 @@ def gaussian_belief_problems(mean: object, cov: object, tol: float = SYMMETRY_TO
     if sigma.shape != (mu.size, mu.size):
         problems.append(f"covariance of shape {sigma.shape} does not match a mean of shape {mu.shape}")
         return problems
-    if not np.all(np.isfinite(mu)):
-        problems.append(f"{int(np.sum(~np.isfinite(mu)))} mean entries are not finite")
-    if not np.all(np.isfinite(sigma)):
-        problems.append(f"{int(np.sum(~np.isfinite(sigma)))} covariance entries are not finite")
+    _all_finite(mu, "mean entries", problems)
+    if not _all_finite(sigma, "covariance entries", problems):
         return problems
     if sigma.size == 0:
         return problems
