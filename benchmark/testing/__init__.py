@@ -30,18 +30,14 @@ command line.
 
 from __future__ import annotations
 
-import random
 import time
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from dataclasses import dataclass
-
-import numpy as np
 
 from benchmark.model import Sequence
 from benchmark.registry import Registry, TrackerEntry
 from benchmark.runner import UserInterrupt, describe_exception, sigint_is_user_interrupt
-from benchmark.testing.checks import CHECKS, DEFAULT_FRAMES, Subject, prepare
+from benchmark.testing.checks import CHECKS, DEFAULT_FRAMES, Subject, global_random_state_kept, prepare
 from benchmark.testing.time_limit import CheckTimeout, time_limit
 from benchmark.tracker import Tracker
 
@@ -209,16 +205,6 @@ def run_check(check: Check, subject: Subject, time_limit_s: float | None = DEFAU
         detail, ok, message = "", False, f"tracker {name!r}: the check raised {describe_exception(exc)}"
     return CheckResult(name, check.name, ok, message, detail, time.perf_counter() - started)
 
-
-@contextmanager
-def global_random_state_kept() -> Iterator[None]:
-    """Restore NumPy's legacy global generator and Python's ``random`` when the body ends."""
-    numpy_state, python_state = np.random.get_state(), random.getstate()
-    try:
-        yield
-    finally:
-        np.random.set_state(numpy_state)
-        random.setstate(python_state)
 
 
 from benchmark.testing.pytest_plugin import assert_conforms, conformance_cases  # noqa: E402

@@ -29,6 +29,7 @@ import time
 import zlib
 from collections.abc import Callable, Iterator, Mapping
 from collections.abc import Sequence as SequenceOf
+from contextlib import contextmanager
 from dataclasses import dataclass
 from itertools import islice
 from typing import Any
@@ -439,6 +440,17 @@ def _numpy_state_equal(a: tuple[Any, ...], b: tuple[Any, ...]) -> bool:
     return len(a) == len(b) and all(same(np.asarray(x), np.asarray(y)) for x, y in zip(a, b))
 
 
+@contextmanager
+def global_random_state_kept() -> Iterator[None]:
+    """Restore NumPy's legacy global generator and Python's ``random`` when the body ends."""
+    numpy_state, python_state = np.random.get_state(), random.getstate()
+    try:
+        yield
+    finally:
+        np.random.set_state(numpy_state)
+        random.setstate(python_state)
+
+
 def check_no_global_randomness(subject: Subject) -> str:
     """Creating and running the tracker leaves NumPy's and Python's global random state unchanged.
 
@@ -449,12 +461,9 @@ def check_no_global_randomness(subject: Subject) -> str:
     """
     subject.ready()
     numpy_before, python_before = np.random.get_state(), random.getstate()
-    try:
+    with global_random_state_kept():
         subject.run(subject.create())
         numpy_after, python_after = np.random.get_state(), random.getstate()
-    finally:
-        np.random.set_state(numpy_before)
-        random.setstate(python_before)
     used = [
         *(["NumPy's global generator (np.random.*)"] if not _numpy_state_equal(numpy_before, numpy_after) else []),
         *(["Python's random module"] if python_before != python_after else []),
