@@ -46,7 +46,7 @@ class Executor(Protocol):
         """``function(*args)`` in a worker under a time limit (a tracker's training).
 
         Raises whatever ``function`` raised, ``TimeoutError`` past the
-        limit, or ``RuntimeError`` if the worker process ended.
+        limit, or ``WorkerDied`` (a ``RuntimeError``) if the worker process ended.
         """
 
     def running(self) -> list[str]:

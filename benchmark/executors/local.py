@@ -36,8 +36,7 @@ def hard_limit_s(timeout_s: float | None) -> float | None:
     return None if timeout_s is None else timeout_s + grace_s(timeout_s)
 
 
-def exit_reason(code: int | None) -> str:
-    """How a process ended, from its exit code: ``killed by SIGSEGV`` or ``exit status 7``."""
+def _exit_reason(code: int | None) -> str:
     if code is not None and code < 0:
         try:
             return f"killed by {signal.Signals(-code).name}"
@@ -63,15 +62,27 @@ def cell_from_future(cell: Cell, future: concurrent.futures.Future, timeout_s: f
         return cell_result(
             cell,
             "error",
-            f"the worker process ended ({exit_reason(exc.exitcode)}) while running the cell; its frames are lost",
+            f"the worker process ended ({_exit_reason(exc.exitcode)}) while running the cell; its frames are lost",
             detail=traceback_text(exc),
         )
     except Exception as exc:
         return cell_result(cell, "error", f"{describe_exception(exc)} (worker process)", detail=traceback_text(exc))
 
 
+class WorkerDied(RuntimeError):
+    """The worker process ended while it ran a task (``os._exit``, a crash in native code)."""
+
+
 def value_from_future(future: concurrent.futures.Future, timeout_s: float | None) -> Any:
-    """The value of a pebble future of :meth:`LocalExecutor.call`, with the worker's fate as the exception."""
+    """The value of a pebble future of :meth:`LocalExecutor.call`, with the worker's fate as the exception.
+
+    Raises
+    ------
+    TimeoutError
+        If the worker was stopped at the limit.
+    WorkerDied
+        If the worker process ended, saying how.
+    """
     from pebble import ProcessExpired
 
     try:
@@ -79,7 +90,7 @@ def value_from_future(future: concurrent.futures.Future, timeout_s: float | None
     except TimeoutError:
         raise TimeoutError(f"no result within the {timeout_s:g} s limit; the worker was stopped") from None
     except ProcessExpired as exc:
-        raise RuntimeError(f"the worker process ended ({exit_reason(exc.exitcode)})") from None
+        raise WorkerDied(f"the worker process ended ({_exit_reason(exc.exitcode)})") from None
 
 
 def worker_pool(workers: int) -> Any:

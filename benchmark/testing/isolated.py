@@ -22,7 +22,7 @@ import functools
 from collections.abc import Iterator, Sequence
 from typing import Any
 
-from benchmark.executors.local import exit_reason, hard_limit_s, worker_pool
+from benchmark.executors.local import WorkerDied, hard_limit_s, value_from_future, worker_pool
 from benchmark.registry import Registry
 from benchmark.runner import describe_exception
 from benchmark.testing import (
@@ -82,14 +82,12 @@ def check_in_workers(
 
 def _result(name: str, check: str, future: Any, limit: float) -> CheckResult:
     """The check's own result, or a failure saying what became of its worker."""
-    from pebble import ProcessExpired
-
     try:
-        return future.result()
+        return value_from_future(future, limit)
     except TimeoutError:
         reason = f"its worker was still busy after {limit:g} s and was stopped: does it hang in native code?"
-    except ProcessExpired as exc:
-        reason = f"its worker process ended ({exit_reason(exc.exitcode)}) during the check: os._exit, or a crash?"
+    except WorkerDied as exc:
+        reason = f"{exc} during the check: os._exit, or a crash?"
     except BaseException as exc:
         reason = f"the worker could not return the result: {describe_exception(exc)}"
     return CheckResult(name, check, False, f"tracker {name!r}: {reason}")

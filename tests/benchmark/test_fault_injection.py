@@ -244,8 +244,8 @@ def test_check_gives_each_fault_its_failed_checks_and_goes_on(faults_installed: 
         "interrupts": "KeyboardInterrupt (step, frame 2)",
         "raises-oddly": "Unprintable: <Unprintable that cannot be shown> (step, frame 2)",
         "spins": "did not finish within 0.5 s (step, frame 2): does it hang?",
-        "exits-hard": "its worker process ended (exit status 7) during the check",
-        "segfaults": "its worker process ended (killed by SIGSEGV) during the check",
+        "exits-hard": "the worker process ended (exit status 7) during the check",
+        "segfaults": "the worker process ended (killed by SIGSEGV) during the check",
     }
     for tracker, words in expected.items():
         assert "FAIL" in rows[tracker, "runs"] and words in rows[tracker, "runs"], rows[tracker, "runs"]
