@@ -6,7 +6,9 @@ frame interval and seed.  :class:`SimulatedScene` holds the scaffolding
 the scenes of this package have in common:
 
 * construction from the spec, or from a plain mapping through the spec
-  class's ``from_dict`` (:attr:`SimulatedScene.spec_type`);
+  class's ``from_dict`` (:attr:`SimulatedScene.spec_type`), after the
+  mapping's ``draw`` table is drawn (:mod:`benchmark.scenes.draws`); the
+  conditions drawn are kept as :attr:`SimulatedScene.conditions`;
 * a cache of whatever the scene computes once (trajectories, maps, a
   renderer), built on first use by :meth:`SimulatedScene._build_cache` and
   dropped when the scene is pickled, so that the object a worker process
@@ -34,6 +36,7 @@ import numpy as np
 
 from benchmark.identity import DatasetIdentity, digest, generator_source
 from benchmark.model import Frame, Sequence
+from benchmark.scenes.draws import Conditions, resolve_draws
 
 
 class SceneSpec(Protocol):
@@ -56,6 +59,9 @@ class SimulatedScene(Sequence, Generic[SpecT, CacheT]):
     ----------
     spec : SpecT
         The definition, seed included.
+    conditions : Mapping, optional
+        The conditions the scene was drawn under (water type, altitude, ...),
+        by name; empty for a scene written out in full.
 
     Attributes
     ----------
@@ -66,14 +72,21 @@ class SimulatedScene(Sequence, Generic[SpecT, CacheT]):
     spec_type: ClassVar[Any]
     cache_frames: ClassVar[bool] = True
 
-    def __init__(self, spec: SpecT) -> None:
+    def __init__(self, spec: SpecT, conditions: Mapping[str, Any] | None = None) -> None:
         self._spec = spec
+        self._conditions: Conditions = dict(conditions or {})
         self._cache: CacheT | None = None
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> Self:
-        """A scene from a plain mapping; see the ``from_dict`` of :attr:`spec_type`."""
-        return cls(cls.spec_type.from_dict(data, source))
+        """A scene from a plain mapping, its draws drawn; see the ``from_dict`` of :attr:`spec_type`."""
+        table, conditions = resolve_draws(data, source)
+        return cls(cls.spec_type.from_dict(table, source), conditions)
+
+    @property
+    def conditions(self) -> Conditions:
+        """The conditions the scene was drawn under, by name (a copy); empty when it was not drawn."""
+        return dict(self._conditions)
 
     @property
     def spec(self) -> SpecT:
@@ -88,10 +101,11 @@ class SimulatedScene(Sequence, Generic[SpecT, CacheT]):
         )
 
     def __getstate__(self) -> dict[str, Any]:
-        return {"_spec": self._spec}
+        return {"_spec": self._spec, "_conditions": self._conditions}
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self._spec = state["_spec"]
+        self._conditions = state.get("_conditions", {})
         self._cache = None
 
     def _state(self) -> CacheT:

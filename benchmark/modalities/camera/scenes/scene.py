@@ -102,7 +102,12 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
             frame_size=spec.frame_size,
             frame_interval_s=spec.frame_interval_s,
             calibration=CameraCalibration(spec.focal_px, spec.pipe_diameter_m, spec.nominal_tilt),
-            extra={"description": spec.description, "seed": spec.seed, "source": "rendered"},
+            extra={
+                "description": spec.description,
+                "seed": spec.seed,
+                "source": "rendered",
+                "conditions": self.conditions,
+            },
         )
 
     def _build_cache(self) -> _Cache:

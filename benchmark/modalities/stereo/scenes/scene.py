@@ -102,6 +102,7 @@ class StereoScene(SimulatedScene[StereoSceneSpec, _Cache]):
                 "speed": spec.speed,
                 "seed": spec.seed,
                 "source": "simulated",
+                "conditions": self.conditions,
             },
         )
 
