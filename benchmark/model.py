@@ -138,6 +138,17 @@ class Sequence(ABC):
         generator = f"{type(self).__module__}.{type(self).__qualname__}"
         return DatasetIdentity(info.name, info.modality, source=generator, fingerprint=digest(info.name))
 
+    def conditions(self) -> Mapping[str, Any]:
+        """The conditions the sequence was made under, by name, for boards that split results by them.
+
+        This default gives ``info.extra["conditions"]`` (what a drawn scene
+        drew: :mod:`benchmark.scenes.draws`), or nothing.  A sequence may add
+        what it measures of itself (a camera scene its cable's contrast);
+        it is asked in the coordinating process, once per sequence a board
+        shows, so it may render a frame or two but should not read them all.
+        """
+        return dict(self.info.extra.get("conditions", {}))
+
     def __iter__(self) -> Iterator[Frame]:
         return self.frames()
 

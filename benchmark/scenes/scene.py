@@ -8,7 +8,7 @@ the scenes of this package have in common:
 * construction from the spec, or from a plain mapping through the spec
   class's ``from_dict`` (:attr:`SimulatedScene.spec_type`), after the
   mapping's ``draw`` table is drawn (:mod:`benchmark.scenes.draws`); the
-  conditions drawn are kept as :attr:`SimulatedScene.conditions`;
+  conditions drawn are kept as :attr:`SimulatedScene.drawn_conditions`;
 * a cache of whatever the scene computes once (trajectories, maps, a
   renderer), built on first use by :meth:`SimulatedScene._build_cache` and
   dropped when the scene is pickled, so that the object a worker process
@@ -84,7 +84,7 @@ class SimulatedScene(Sequence, Generic[SpecT, CacheT]):
         return cls(cls.spec_type.from_dict(table, source), conditions)
 
     @property
-    def conditions(self) -> Conditions:
+    def drawn_conditions(self) -> Conditions:
         """The conditions the scene was drawn under, by name (a copy); empty when it was not drawn."""
         return dict(self._conditions)
 

@@ -118,10 +118,10 @@ def test_a_drawn_scene_keeps_its_conditions_through_pickling_and_shows_them() ->
         "draw": {"altitude_m": {"uniform": [1.5, 2.5], "into": "motion.cy_m.mean"}},
     }
     scene = CameraScene.from_dict(table)
-    altitude = scene.conditions["altitude_m"]
+    altitude = scene.drawn_conditions["altitude_m"]
     assert scene.spec.motion.cy_m.mean == altitude
     assert scene.info.extra["conditions"] == {"altitude_m": altitude}
-    assert pickle.loads(pickle.dumps(scene)).conditions == {"altitude_m": altitude}
+    assert pickle.loads(pickle.dumps(scene)).conditions() == {"altitude_m": altitude}
     assert CameraScene.from_dict(table).identity == scene.identity
 
 

@@ -106,7 +106,7 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
                 "description": spec.description,
                 "seed": spec.seed,
                 "source": "rendered",
-                "conditions": self.conditions,
+                "conditions": self.drawn_conditions,
             },
         )
 

@@ -144,7 +144,7 @@ class SonarScene(SimulatedScene[SonarSceneSpec, _Cache]):
                 "second_pipe": spec.second_pipe is not None,
                 "seed": spec.seed,
                 "source": "simulated",
-                "conditions": self.conditions,
+                "conditions": self.drawn_conditions,
             },
         )
 

@@ -102,7 +102,7 @@ class StereoScene(SimulatedScene[StereoSceneSpec, _Cache]):
                 "speed": spec.speed,
                 "seed": spec.seed,
                 "source": "simulated",
-                "conditions": self.conditions,
+                "conditions": self.drawn_conditions,
             },
         )
 
