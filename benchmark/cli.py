@@ -171,7 +171,9 @@ def list_trackers(session: Session) -> None:
 @main.command("datasets")
 @click.pass_obj
 def list_datasets(session: Session) -> None:
-    """List the suites and their sequences."""
+    """List the suites and their sequences, with the conditions each drawn sequence was drawn under."""
+    from benchmark.scenes.draws import condition_label
+
     suites = session.registry.suites
     if not suites:
         click.echo("No suites registered.")
@@ -185,6 +187,10 @@ def list_datasets(session: Session) -> None:
             info = sequence.info
             frames = "?" if info.n_frames is None else str(info.n_frames)
             description = str(info.extra.get("description", "")).strip()
+            drawn = info.extra.get("conditions") or {}
+            if drawn:
+                described = ", ".join(f"{name} {condition_label(value)}" for name, value in drawn.items())
+                description = f"{description} Drawn: {described}.".strip()
             line = f"    {info.name}  {info.modality}  {frames} frames"
             click.echo(f"{line}  {description}" if description else line)
 

@@ -51,7 +51,7 @@ import os
 import pickle
 import sys
 import uuid
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Any
@@ -259,7 +259,7 @@ def _read_entry(path: Path, name: str) -> Iterator[Frame]:
 
 @dataclass(frozen=True)
 class CachedSequence(Sequence):
-    """A sequence whose frames come from a :class:`FrameCache`; info and identity are the inner sequence's."""
+    """A sequence whose frames come from a :class:`FrameCache`; info, identity and conditions are the inner sequence's."""
 
     inner: Sequence
     cache: FrameCache
@@ -272,6 +272,9 @@ class CachedSequence(Sequence):
     @property
     def identity(self) -> DatasetIdentity:
         return self.inner.identity
+
+    def conditions(self) -> Mapping[str, Any]:
+        return self.inner.conditions()
 
     def frames(self) -> Iterator[Frame]:
         return self.cache.frames(self.inner, self.key)

@@ -13,16 +13,20 @@ asks for (:func:`benchmark.selection.select_cells`) and
 4. reads every simulated sequence through the frame cache
    (:mod:`benchmark.frame_cache`), so that each is rendered once, by the
    first cell that reads it, and never again while the cache holds it;
-5. fits the trackers that learn, once per training set, on the cells left
+5. keeps the conditions each sequence was made under
+   (:func:`record_conditions`), for the boards by condition;
+6. fits the trackers that learn, once per training set, on the cells left
    to run (:func:`benchmark.training.fit_models`), reusing a model stored
    in ``OUT/models``;
-6. runs the cells on an executor (:mod:`benchmark.executors`: warm local
+7. runs the cells on an executor (:mod:`benchmark.executors`: warm local
    worker processes, or a Dask cluster), storing each one in its own
    transaction as it finishes, so an interrupted run loses nothing
    finished, and telling a :class:`~benchmark.progress.Progress` about it;
-7. publishes the run's leaderboards (:func:`publish`): ranked per modality,
-   written atomically to ``OUT/leaderboard.{csv,md,html}``, also after the
-   user's Ctrl-C.
+8. publishes the run's leaderboards (:func:`publish`): ranked per modality,
+   written atomically to ``OUT/leaderboard.{csv,md,html}``, and, where its
+   sequences record conditions, correct % by condition in
+   ``OUT/conditions.{csv,md}`` (:mod:`benchmark.by_condition`), also after
+   the user's Ctrl-C.
 
 Commands (``trackbench run``, ``trackbench leaderboard``) are thin layers
 over :func:`run_benchmark` and :func:`publish`; whatever they print goes
@@ -44,14 +48,15 @@ from typing import Any
 import filelock
 import pandas as pd
 
+from benchmark.by_condition import condition_board
 from benchmark.errors import DataError
 from benchmark.executors import Executor
 from benchmark.files import make_folder
 from benchmark.frame_cache import CachedSequence, FrameCache
-from benchmark.leaderboard import load_leaderboards
+from benchmark.leaderboard import leaderboards
 from benchmark.modality import Modality
 from benchmark.progress import Progress, SilentProgress
-from benchmark.report import write_leaderboards
+from benchmark.report import write_condition_board, write_leaderboards
 from benchmark.results import CellResult
 from benchmark.runner import DEFAULT_TIMEOUT_S, Cell, run_cells
 from benchmark.store import DATABASE_NAME, ResultStore
@@ -72,13 +77,22 @@ class Publication:
     boards : dict
         Modality name to ranked board (:func:`benchmark.leaderboard.leaderboards`).
     files : list of pathlib.Path
-        ``leaderboard.csv``, ``leaderboard.md`` and ``leaderboard.html``.
+        ``leaderboard.csv``, ``leaderboard.md`` and ``leaderboard.html``, then
+        ``conditions.csv`` and ``conditions.md`` when the run has sequences
+        with conditions.
+    problems : list of str
+        What went wrong outside any cell.
+    by_condition : pandas.DataFrame
+        Correct, false and missed per cent per suite, condition and bin
+        (:func:`benchmark.by_condition.condition_board`); empty when no
+        sequence of the run records its conditions.
     """
 
     run_id: int | None
     boards: dict[str, pd.DataFrame]
     files: list[Path]
     problems: list[str] = field(default_factory=list)
+    by_condition: pd.DataFrame = field(default_factory=pd.DataFrame)
 
 
 @dataclass(frozen=True)
@@ -176,13 +190,36 @@ def publish(
         Publish the latest cell of every run instead.
     """
     run_id = store.latest_run() if run_id is None and not all_runs else run_id
-    boards = load_leaderboards(store, modalities, run_id, all_runs=all_runs)
+    cells = store.cells(run_id, all_runs=all_runs)
+    frames = store.frame_tables(cells["id"])
+    boards = leaderboards(cells, frames, modalities)
+    by_condition = condition_board(cells, frames, store.conditions(cells["dataset_key"]))
     problems = [] if all_runs else store.run_problems(run_id)
     caption = (
         f"All runs of {store.path}." if all_runs else f"Run {run_id} of {store.path}." if run_id else "No runs."
     )
     files = write_leaderboards(boards, out, caption, problems=problems)
-    return Publication(None if all_runs else run_id, boards, files, problems)
+    files += write_condition_board(by_condition, out, caption)
+    return Publication(None if all_runs else run_id, boards, files, problems, by_condition)
+
+
+def record_conditions(store: ResultStore, cells: Iterable[Cell], log: Log) -> None:
+    """Keep the conditions of every sequence the cells read (:meth:`benchmark.model.Sequence.conditions`).
+
+    A sequence that fails to tell its conditions costs only them: the
+    failure is logged, naming the sequence, and the run goes on.
+    """
+    found: dict[str, dict[str, Any]] = {}
+    for cell in cells:
+        key = cell.identity.key
+        if key in found:
+            continue
+        try:
+            found[key] = dict(cell.sequence.conditions())
+        except Exception as exc:  # noqa: BLE001 - a sequence's own failure must not stop the run
+            found[key] = {}
+            log(f"{cell.identity.name}: its conditions could not be measured ({type(exc).__name__}: {exc})")
+    store.add_conditions({key: conditions for key, conditions in found.items() if conditions})
 
 
 def _lock(out: Path) -> filelock.BaseFileLock:
@@ -308,6 +345,7 @@ def run_benchmark(
                 todo = _read_through(todo, frame_cache)
                 missing = _unrendered(todo, frame_cache)
             try:
+                record_conditions(store, todo, log)
                 todo = fit_models(todo, out, executor.call, timeout_s, log)
                 if frame_cache is not None:  # a reused model needs none of its training sequences
                     log(f"frame cache {frame_cache.folder}: {len(_unrendered(todo, frame_cache))} sequences to render")

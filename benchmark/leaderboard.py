@@ -88,7 +88,7 @@ def pooled_status(cells: pd.DataFrame) -> str:
     return f"{kind} ({len(failed)}/{len(cells)} cells): {first['message']}"
 
 
-def _labels(cells: pd.DataFrame, name: str, key: str) -> pd.Series:
+def key_labels(cells: pd.DataFrame, name: str, key: str) -> pd.Series:
     """The ``name`` column, with the start of ``key`` added where one name has several keys.
 
     A tracker name run with several parameter sets, or a dataset name
@@ -147,7 +147,7 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
     if "cell_id" not in frames.columns:
         frames = pd.DataFrame(columns=["cell_id", "frame", "outcome", "step_ms"])
     cells = cells.assign(
-        label=_labels(cells, "tracker", "tracker_key"), dataset=_labels(cells, "dataset", "dataset_key")
+        label=key_labels(cells, "tracker", "tracker_key"), dataset=key_labels(cells, "dataset", "dataset_key")
     )
     by_cell = {int(cell_id): group for cell_id, group in frames.groupby("cell_id", sort=False)}
     empty = frames.iloc[0:0]

@@ -25,6 +25,7 @@ import dataclasses
 import os
 from collections import defaultdict
 from collections.abc import Iterable, Iterator, Mapping
+from typing import Any
 
 from benchmark.errors import ParameterError, TrackbenchError
 from benchmark.identity import DatasetIdentity
@@ -147,6 +148,9 @@ class NamedSequence(Sequence):
     @property
     def identity(self) -> DatasetIdentity:
         return self.inner.identity.renamed(self.name)
+
+    def conditions(self) -> Mapping[str, Any]:
+        return self.inner.conditions()
 
     def frames(self) -> Iterator[Frame]:
         return self.inner.frames()

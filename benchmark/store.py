@@ -16,6 +16,7 @@ Schema (``PRAGMA user_version`` = :data:`SCHEMA_VERSION`)::
     frames(cell_id -> cells, position, frame, outcome, step_ms)
     frame_errors(cell_id, position, name, value)
     pictures(cell_id -> cells, frame, outcome, png BLOB)
+    conditions(dataset_key, name, value JSON)
 
 ``training`` names the training set of a tracker that learns (empty for
 the others; :mod:`benchmark.training`).  ``problems`` lists, one line each, what went wrong in a run outside any
@@ -36,11 +37,16 @@ fit the same table; a non-finite error is simply not stored.
 run of false or missed frames (:class:`benchmark.results.Picture`), keyed
 by the sequence's frame index; a cell whose modality draws nothing has none.
 
+``conditions`` holds, per dataset identity, the conditions its sequence
+was made under (:meth:`benchmark.model.Sequence.conditions`: water type,
+altitude, cable contrast, ...), for the boards by condition
+(:mod:`benchmark.by_condition`); a dataset without conditions has no rows.
+
 ``run_cells`` lists the cells that make up a run's results: those it ran
 and those it took over from earlier runs with ``--resume``.
 
 A database of schema version 1 (no ``problems``, no ``dataset_key``), 2
-(no ``training``) or 3 (no ``pictures``) is upgraded in place when opened,
+(no ``training``), 3 (no ``pictures``) or 4 (no ``conditions``) is upgraded in place when opened,
 its cells keeping no pictures; version 1's cells get their ``dataset`` as
 ``dataset_key``, which no identity's key equals, so they are shown but
 never resumed.  Any SQLite error, such as a file damaged on disk, is
@@ -67,7 +73,7 @@ from benchmark.results import Picture
 if TYPE_CHECKING:
     from benchmark.results import CellKey, CellResult
 
-SCHEMA_VERSION = 4
+SCHEMA_VERSION = 5
 DATABASE_NAME = "results.sqlite"
 
 _SCHEMA = """
@@ -129,6 +135,12 @@ CREATE TABLE IF NOT EXISTS pictures (
     png BLOB NOT NULL,
     PRIMARY KEY (cell_id, frame)
 );
+CREATE TABLE IF NOT EXISTS conditions (
+    dataset_key TEXT NOT NULL,
+    name TEXT NOT NULL,
+    value TEXT NOT NULL,
+    PRIMARY KEY (dataset_key, name)
+);
 """
 
 _UPGRADES = {
@@ -143,6 +155,7 @@ ALTER TABLE cells ADD COLUMN training TEXT NOT NULL DEFAULT '';
 ALTER TABLE cells ADD COLUMN training TEXT NOT NULL DEFAULT '';
 """,
     3: "",
+    4: "",
 }
 """Schema version to the SQL that brings it to :data:`SCHEMA_VERSION` (``_SCHEMA`` then adds what is missing)."""
 
@@ -204,7 +217,7 @@ def _reports_database_errors(
     return wrapper
 
 
-def _chunks(values: Sequence[int], size: int = 500) -> Iterable[Sequence[int]]:
+def _chunks(values: Sequence[_T], size: int = 500) -> Iterable[Sequence[_T]]:
     for start in range(0, len(values), size):
         yield values[start : start + size]
 
@@ -394,6 +407,45 @@ class ResultStore:
             )
             for cell_id, frame, outcome, png in rows:
                 found.setdefault(int(cell_id), []).append(Picture(int(frame), str(outcome), bytes(png)))
+        return found
+
+    @_reports_database_errors
+    def add_conditions(self, conditions: Mapping[str, Mapping[str, Any]]) -> None:
+        """Keep the conditions of datasets, replacing what was kept for the same dataset and name.
+
+        Parameters
+        ----------
+        conditions : Mapping
+            Dataset key to its conditions by name; values must be JSON
+            (numbers, strings, lists, tables).
+        """
+        rows = [
+            (key, str(name), json.dumps(value, allow_nan=False))
+            for key, found in conditions.items()
+            for name, value in found.items()
+        ]
+        with self._db:
+            self._db.executemany("INSERT OR REPLACE INTO conditions (dataset_key, name, value) VALUES (?, ?, ?)", rows)
+
+    @_reports_database_errors
+    def conditions(self, dataset_keys: Iterable[str]) -> dict[str, dict[str, Any]]:
+        """The conditions kept for the given datasets (see :meth:`add_conditions`).
+
+        Returns
+        -------
+        dict
+            Dataset key to its conditions by name, in the order they were
+            added, for the datasets that have any.
+        """
+        keys = sorted(set(dataset_keys))
+        found: dict[str, dict[str, Any]] = {}
+        for chunk in _chunks(keys):
+            marks = ", ".join("?" * len(chunk))
+            rows = self._db.execute(
+                f"SELECT dataset_key, name, value FROM conditions WHERE dataset_key IN ({marks}) ORDER BY rowid", chunk
+            )
+            for key, name, value in rows:
+                found.setdefault(str(key), {})[str(name)] = json.loads(value)
         return found
 
     @_reports_database_errors

@@ -14,7 +14,7 @@ from collections.abc import Mapping, Sequence
 
 import pandas as pd
 
-from benchmark.report.display import alignment, display_table, one_line
+from benchmark.report.display import alignment, display_table, format_value, one_line
 
 _INLINE_MARKUP = re.compile(r"[\\`*_\[\]|~$]")
 """Characters that mean something anywhere in a line: code, emphasis, links, table cells, strikethrough, math."""
@@ -74,6 +74,36 @@ def to_markdown(boards: Mapping[str, pd.DataFrame], caption: str = "", problems:
         parts += [f"## {escape_markdown(modality)}", "", table, ""]
     if problems:
         parts += ["## Problems", "", *(f"- {escape_markdown(problem)}" for problem in problems), ""]
+    return "\n".join(parts)
+
+
+def condition_markdown(tables: Mapping[tuple[str, str, str], pd.DataFrame], caption: str = "") -> str:
+    """Boards by condition (:func:`benchmark.by_condition.condition_tables`) as a Markdown page.
+
+    One section per modality and suite, one table per condition: per cent
+    of frames correct, a row per tracker and a column per bin.
+    """
+    parts = ["# trackbench: correct % by condition", ""]
+    if caption:
+        parts += [escape_markdown(caption), ""]
+    suite = None
+    for (modality, suite_name, condition), table in tables.items():
+        if (modality, suite_name) != suite:
+            suite = (modality, suite_name)
+            parts += [f"## {escape_markdown(suite_name)} ({escape_markdown(modality)})", ""]
+        cells = {
+            escape_markdown(column): [
+                escape_markdown(value) if column == "tracker" else format_value("correct_pct", value)
+                for value in table[column]
+            ]
+            for column in table.columns
+        }
+        shown = pd.DataFrame(cells, dtype=object)
+        aligned = ["left", *["right"] * (len(table.columns) - 1)]
+        body = shown.to_markdown(index=False, disable_numparse=True, colalign=aligned)
+        parts += [f"### {escape_markdown(condition)}", "", body, ""]
+    if not tables:
+        parts += ["No sequence of this run records its conditions.", ""]
     return "\n".join(parts)
 
 

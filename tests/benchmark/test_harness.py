@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import sqlite3
 import types
 from pathlib import Path
@@ -129,3 +130,31 @@ def test_an_output_folder_that_cannot_be_made_is_an_error_naming_it(registry: Re
     cells = select_cells(registry, Selection(trackers=("perfect",), suites=("fake",)))
     with pytest.raises(DataError, match=r"file/sub: cannot create folder"):
         run_benchmark(cells, registry.modalities, tmp_path / "file" / "sub")
+
+
+def test_a_run_keeps_conditions_and_publishes_the_board_by_condition(
+    fakes: types.ModuleType, tmp_path: Path
+) -> None:
+    @dataclasses.dataclass(frozen=True)
+    class Drawn(fakes.FakeSequence):
+        water: str = "I"
+
+        def conditions(self) -> dict[str, object]:
+            if self.water == "broken":
+                raise RuntimeError("no frame to measure")
+            return {"water": self.water}
+
+    registry = fakes.make_registry()
+    cells = select_cells(registry, Selection(trackers=("perfect", "blind"), suites=("fake",)))
+    sequences = {"fake/S1": Drawn("world/A", 4, water="9C"), "fake/S2": Drawn("world/B", 4, water="broken")}
+    cells = [dataclasses.replace(cell, sequence=sequences[cell.sequence.info.name]) for cell in cells]
+    lines: list[str] = []
+    publication = run_benchmark(cells, registry.modalities, tmp_path, in_process=True, log=lines.append).publication
+    assert [path.name for path in publication.files][-2:] == ["conditions.csv", "conditions.md"]
+    board = publication.by_condition.set_index("tracker")
+    assert board.loc["perfect", "bin"] == "9C" and board.loc["perfect", "correct_pct"] == 100.0
+    assert board.loc["blind", "missed_pct"] == 100.0 and set(board["sequences"]) == {1}
+    assert any(line.startswith("world/B: its conditions could not be measured (RuntimeError") for line in lines)
+    assert "### water" in (tmp_path / "conditions.md").read_text()
+    run_benchmark(cells[:0], registry.modalities, tmp_path, in_process=True)
+    assert not (tmp_path / "conditions.md").exists()

@@ -359,7 +359,7 @@ def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, resul
         new_id = store.add_cell(store.start_run([], {}), dataclasses.replace(results["noisy"], pictures=PICTURES))
         assert store.pictures([old_id, new_id]) == {new_id: list(PICTURES)}
     connection = sqlite3.connect(path)
-    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 4
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 5
     columns = [(row[1], row[2], row[5]) for row in connection.execute("PRAGMA table_info(pictures)")]
     connection.close()
     assert columns == [("cell_id", "INTEGER", 1), ("frame", "INTEGER", 2), ("outcome", "TEXT", 0), ("png", "BLOB", 0)]
@@ -437,3 +437,30 @@ def test_run_options_are_stored_as_json(tmp_path: Path) -> None:
     assert runs.loc[0, "argv"] == '["trackbench", "run", "--seeds", "2"]'
     assert '"seeds": 2' in runs.loc[0, "options"]
     assert isinstance(runs.loc[0, "started"], str) and pd.isna(runs.loc[0, "finished"])
+
+
+def test_conditions_are_kept_per_dataset_and_replaced_by_name(tmp_path: Path) -> None:
+    with ResultStore(tmp_path / "r.sqlite") as store:
+        store.add_conditions({"k1": {"water": "9C", "contrast_grey": 21.5}, "k2": {"frame_size": [640, 480]}})
+        store.add_conditions({"k1": {"contrast_grey": 22.0}, "k3": {}})
+        assert store.conditions(["k1", "k2", "k3", "k4"]) == {
+            "k1": {"water": "9C", "contrast_grey": 22.0},
+            "k2": {"frame_size": [640, 480]},
+        }
+        assert store.conditions([]) == {}
+        with pytest.raises(ValueError, match="JSON"):
+            store.add_conditions({"k5": {"contrast_grey": math.nan}})
+
+
+def test_a_version_4_database_gets_an_empty_conditions_table(tmp_path: Path, results: dict[str, CellResult]) -> None:
+    path = tmp_path / "r.sqlite"
+    with ResultStore(path) as store:
+        old_id = store.add_cell(store.start_run([], {}), results["noisy"])
+    connection = sqlite3.connect(path)
+    connection.executescript("DROP TABLE conditions; PRAGMA user_version = 4;")
+    connection.close()
+    with ResultStore(path) as store:
+        assert store.cells(all_runs=True)["id"].tolist() == [old_id]
+        assert store.conditions([results["noisy"].key.dataset_key]) == {}
+        store.add_conditions({"k": {"water": "I"}})
+        assert store.conditions(["k"]) == {"k": {"water": "I"}}
