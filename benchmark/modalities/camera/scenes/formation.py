@@ -186,9 +186,9 @@ class WaterFormation:
         rx, ry, rz = depth * dx, depth * dy, depth * dz
         normal_y = np.ones_like(depth)
         normal_y[pipe.index] = np.maximum(pipe.normal_y, 0.0)
-        direct = [np.exp(range_m * f32(-beta)) for beta in self.optics.beta_d]
         channels = [np.zeros_like(depth) for _ in range(3)]
         lamp_white = np.zeros_like(depth)
+        path = np.empty_like(depth)
         to_world = np.linalg.inv(axes)
         for lamp, axis_cam in zip(self._lamps, self._axes):
             offset = to_world @ np.asarray(lamp.offset_m, dtype=float)
@@ -206,9 +206,11 @@ class WaterFormation:
             light *= incidence
             light /= distance * distance2
             light *= f32(lamp.intensity)
-            for channel, weight, beta, passed in zip(channels, GREY_WEIGHTS, self.optics.beta_d, direct):
-                arriving = np.exp(distance * f32(-beta))
-                arriving *= passed
+            # Lamp to surface to camera: one exponential per channel over the whole path.
+            np.add(distance, range_m, out=path)
+            for channel, weight, beta in zip(channels, GREY_WEIGHTS, self.optics.beta_d):
+                arriving = np.multiply(path, f32(-beta))
+                np.exp(arriving, out=arriving)
                 arriving *= light
                 channel += arriving
                 arriving *= f32(weight)
@@ -217,8 +219,12 @@ class WaterFormation:
             day = normal_y * f32(1.0 - self.water.sky_ambient) + f32(self.water.sky_ambient)
             if self.caustics is not None and self.caustics.amplitude > 0:
                 day *= self.caustics.factor(rx + f32(pose.cx), rz + f32(pose.cz), time_s)
-            for channel, sun, passed in zip(channels, self.daylight, direct):
-                channel += day * f32(sun) * passed
+            for channel, sun, beta in zip(channels, self.daylight, self.optics.beta_d):
+                passed = np.multiply(range_m, f32(-beta))
+                np.exp(passed, out=passed)
+                passed *= day
+                passed *= f32(sun)
+                channel += passed
         grey = self._weighted(channels, self._seabed_weights)
         grey *= albedo
         if pipe.index.size:

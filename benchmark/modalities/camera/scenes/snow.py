@@ -111,7 +111,7 @@ def splat(
         if not chosen.any():
             continue
         # Wide kernels are applied on a grid ``factor`` times coarser, then enlarged.
-        factor = max(1, int(sigma // 2))
+        factor = max(1, round(sigma / 1.5))
         shape = (-(-height // factor), -(-width // factor))
         layers = np.zeros((*shape, 2), dtype=np.float32)
         u = (pixels[0, chosen] + 0.5) / factor - 0.5

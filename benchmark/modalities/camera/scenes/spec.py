@@ -20,7 +20,7 @@ The tree mirrors the parts of the scene model of seeds/004, section II:
 * :class:`OpticsSpec`: light, water and sensor; its optional
   :class:`WaterSpec` (``[optics.water]``) switches from the haze of the
   thesis suites to the image formation model of
-  :mod:`~benchmark.modalities.camera.scenes.water`, lit by :class:`Lamp`\ s
+  :mod:`~benchmark.modalities.camera.scenes.water`, lit by lamps (:class:`Lamp`)
   and daylight.
 
 Fields added after the thesis suites were written carry
