@@ -43,6 +43,14 @@ import numpy as np
 DIGEST_CHARS = 32
 """Hex characters kept of a SHA-256 digest (128 bits)."""
 
+OMIT_AT_DEFAULT = {"identity": "omit-at-default"}
+"""Metadata of a dataclass field added later: left out of digests while it holds its default.
+
+A field that a spec gains with a default that keeps the old behaviour
+(``field(default=None, metadata=OMIT_AT_DEFAULT)``) leaves the digest of
+every spec written before it unchanged.
+"""
+
 
 @dataclass(frozen=True)
 class DatasetIdentity:
@@ -83,7 +91,11 @@ class DatasetIdentity:
 def _canonical(value: Any) -> Any:
     """``value`` as plain JSON data with a single spelling for each value."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        fields = {field.name: _canonical(getattr(value, field.name)) for field in dataclasses.fields(value)}
+        fields = {
+            field.name: _canonical(getattr(value, field.name))
+            for field in dataclasses.fields(value)
+            if not _omitted(field, getattr(value, field.name))
+        }
         return {"__type__": type(value).__qualname__, **fields}
     if isinstance(value, enum.Enum):
         return _canonical(value.value)
@@ -104,6 +116,15 @@ def _canonical(value: Any) -> Any:
     if isinstance(value, Iterable):
         return [_canonical(item) for item in value]
     return repr(value)
+
+
+def _omitted(field: dataclasses.Field[Any], value: Any) -> bool:
+    """Whether a field marked :data:`OMIT_AT_DEFAULT` holds its default, and so stays out of a digest."""
+    if field.metadata.get("identity") != OMIT_AT_DEFAULT["identity"]:
+        return False
+    if field.default is not dataclasses.MISSING:
+        return bool(value == field.default)
+    return field.default_factory is not dataclasses.MISSING and bool(value == field.default_factory())
 
 
 def digest(*parts: Any) -> str:

@@ -41,8 +41,14 @@ The distributions:
     drawn after the entries declared before it.
 
 ``choice`` and ``options`` take ``weights`` (one per value, any positive
-scale).  Every value lands at ``into``, a dotted path of table keys;
-missing tables on the way are created.
+scale).  ``options`` may depend on a condition drawn before it: with
+``given = "polarity"`` and ``allowed = { dark = ["sand", "gravel"], bright
+= ["mud"] }`` only the options allowed for the value drawn for
+``polarity`` are drawn from (with their weights), so a bright cable is
+never laid on sand.  Every value lands at ``into``, a dotted path of table keys;
+missing tables on the way are created, and a whole number steps into a
+list already written (``motion.phi_deg.waves.0.amplitude`` draws the
+amplitude of the first wave).
 """
 
 from __future__ import annotations
@@ -75,15 +81,15 @@ class _Draw(pydantic.BaseModel):
 
     into: str = ""
 
-    def value(self, rng: np.random.Generator) -> tuple[Any, Any]:
-        """The value to write and the condition to record."""
+    def value(self, rng: np.random.Generator, drawn: Conditions) -> tuple[Any, Any]:
+        """The value to write and the condition to record, given the conditions ``drawn`` so far."""
         raise NotImplementedError
 
 
 class _Uniform(_Draw):
     uniform: _Pair
 
-    def value(self, rng: np.random.Generator) -> tuple[Any, Any]:
+    def value(self, rng: np.random.Generator, drawn: Conditions) -> tuple[Any, Any]:
         low, high = self.uniform
         drawn = float(rng.uniform(low, high))
         return drawn, drawn
@@ -92,7 +98,7 @@ class _Uniform(_Draw):
 class _LogUniform(_Draw):
     log_uniform: tuple[pydantic.PositiveFloat, pydantic.PositiveFloat]
 
-    def value(self, rng: np.random.Generator) -> tuple[Any, Any]:
+    def value(self, rng: np.random.Generator, drawn: Conditions) -> tuple[Any, Any]:
         low, high = self.log_uniform
         drawn = float(math.exp(rng.uniform(math.log(low), math.log(high))))
         return drawn, drawn
@@ -101,7 +107,7 @@ class _LogUniform(_Draw):
 class _Integers(_Draw):
     integers: tuple[int, int]
 
-    def value(self, rng: np.random.Generator) -> tuple[Any, Any]:
+    def value(self, rng: np.random.Generator, drawn: Conditions) -> tuple[Any, Any]:
         low, high = self.integers
         drawn = int(rng.integers(low, high, endpoint=True))
         return drawn, drawn
@@ -111,18 +117,26 @@ class _Choice(_Draw):
     choice: list[Any]
     weights: list[pydantic.PositiveFloat] | None = None
 
-    def value(self, rng: np.random.Generator) -> tuple[Any, Any]:
-        drawn = self.choice[_pick(rng, len(self.choice), self.weights)]
-        return drawn, drawn
+    def value(self, rng: np.random.Generator, drawn: Conditions) -> tuple[Any, Any]:
+        picked = self.choice[_pick(rng, len(self.choice), self.weights)]
+        return picked, picked
 
 
 class _Options(_Draw):
     options: dict[str, dict[str, Any]]
     weights: list[pydantic.PositiveFloat] | None = None
+    given: str = ""
+    allowed: dict[str, list[str]] = {}
 
-    def value(self, rng: np.random.Generator) -> tuple[Any, Any]:
+    def value(self, rng: np.random.Generator, drawn: Conditions) -> tuple[Any, Any]:
         names = list(self.options)
-        name = names[_pick(rng, len(names), self.weights)]
+        weights = self.weights
+        if self.given:
+            allowed = set(self.allowed[str(drawn[self.given])])
+            kept = [i for i, name in enumerate(names) if name in allowed]
+            names = [names[i] for i in kept]
+            weights = None if weights is None else [weights[i] for i in kept]
+        name = names[_pick(rng, len(names), weights)]
         return self.options[name], name
 
 
@@ -183,6 +197,13 @@ def _check_draw(draw: _Draw, kind: str, at: str) -> None:
         weights = getattr(draw, "weights", None)
         if weights is not None and len(weights) != len(bounds):
             raise DataError(f"{at}: weights needs one value per {kind} entry ({len(bounds)}), got {len(weights)}")
+    if isinstance(draw, _Options) and (bool(draw.given) != bool(draw.allowed)):
+        raise DataError(f"{at}: given and allowed go together (options allowed for each value of a condition)")
+    if isinstance(draw, _Options):
+        for value, names in draw.allowed.items():
+            unknown = sorted(set(names) - set(draw.options))
+            if unknown or not names:
+                raise DataError(f"{at}: allowed[{value!r}] must name some of the options, got {names}")
 
 
 def _merge(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[str, Any]:
@@ -196,13 +217,22 @@ def _merge(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[str, An
     return merged
 
 
-def _place(table: dict[str, Any], path: str, value: Any, merge: bool, at: str) -> dict[str, Any]:
-    """A copy of ``table`` with ``value`` at the dotted ``path`` (merged into a table there if ``merge``)."""
+def _place(table: Any, path: str, value: Any, merge: bool, at: str) -> Any:
+    """A copy of ``table`` with ``value`` at the dotted ``path`` (merged into a table there if ``merge``).
+
+    A key that is a whole number steps into a list already there (``waves.0.amplitude``).
+    """
     if not path:
         return _merge(table, value) if merge else value
     head, _, rest = path.partition(".")
+    if isinstance(table, list):
+        if not head.isdigit() or int(head) >= len(table):
+            raise DataError(f"{at}: into {path!r}: {head!r} is not an index of a list of {len(table)}")
+        updated_list = list(table)
+        updated_list[int(head)] = _place(table[int(head)], rest, value, merge, at)
+        return updated_list
     inner = table.get(head, {})
-    if not isinstance(inner, Mapping) and (rest or merge):
+    if not isinstance(inner, Mapping | list) and (rest or merge):
         raise DataError(f"{at}: into {path!r} passes through {head!r}, which is not a table")
     updated = dict(table)
     updated[head] = _place(dict(inner) if isinstance(inner, Mapping) else inner, rest, value, merge, at)
@@ -255,7 +285,8 @@ def resolve_draws(table: Mapping[str, Any], where: str = "<dict>") -> tuple[dict
         if name in conditions:
             raise DataError(f"{where}.{DRAW_KEY}.{name}: condition drawn twice (an option declares it again)")
         draw = parse_draw(name, entry, where)
-        value, conditions[name] = draw.value(rng)
+        _check_given(draw, conditions, f"{where}.{DRAW_KEY}.{name}")
+        value, conditions[name] = draw.value(rng, conditions)
         if isinstance(draw, _Options):
             nested = value.get(DRAW_KEY)
             value = {key: item for key, item in value.items() if key != DRAW_KEY}
@@ -263,6 +294,16 @@ def resolve_draws(table: Mapping[str, Any], where: str = "<dict>") -> tuple[dict
                 queue = _entries(nested, f"{where}.{DRAW_KEY}.{name}.options.{conditions[name]}") + queue
         concrete = _place(concrete, draw.into, value, isinstance(draw, _Options), f"{where}.{DRAW_KEY}.{name}")
     return concrete, conditions
+
+
+def _check_given(draw: _Draw, conditions: Conditions, at: str) -> None:
+    """An ``options`` draw that depends on a condition needs it drawn before, with a value ``allowed`` names."""
+    if not isinstance(draw, _Options) or not draw.given:
+        return
+    if draw.given not in conditions:
+        raise DataError(f"{at}: given {draw.given!r} is not a condition drawn before it")
+    if str(conditions[draw.given]) not in draw.allowed:
+        raise DataError(f"{at}: allowed says nothing for {draw.given} = {conditions[draw.given]!r}")
 
 
 def _entries(pending: Any, where: str) -> list[tuple[str, Any]]:

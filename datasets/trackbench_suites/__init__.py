@@ -21,6 +21,18 @@ family: ``camera-clutter/S1-d01`` to ``S1-d10`` are ``based_on``
 ``camera/S1`` with ten more seeds (3101, 4101, ..., 12101, continuing S1b
 and S1c), fixed before any tracker ran on them.
 
+The camera world (``worlds/camera.toml``) declares the ranges the wide
+camera splits are drawn from: Jerlov water type, lamps and daylight, cable
+polarity and seabed, altitude, tilt and motion, frame size, sensor noise and
+JPEG quality, rendered through the image formation model of
+:mod:`benchmark.modalities.camera.scenes.water`.  ``camera-train``
+(``camera_train.toml``, not scored) holds S1-S7 with other seeds and 24
+sequences of the world (``w01``-``w24``); ``camera-dev`` holds 24 and
+``camera-test`` 48 more, with seeds of their own, the test seeds written
+before any tracker ran on them.  Thresholds and models are fitted on
+``camera-train``, defaults chosen on ``camera-dev``; ``camera-test`` is
+scored to publish, never to choose.
+
 The ``stereo`` suite (``stereo.toml``) holds nine simulated chase-boat
 sequences, ``stereo/case1-slow`` to ``stereo/case3-fast``: the three
 trajectory cases of seeds/002, section 3 (case 1 both boats straight,

@@ -34,6 +34,22 @@ definition::
 
 Its table is then the named sequence's merged table (its name dropped),
 under this file's ``[defaults]``, under the entry itself.
+
+A sequence may also start from a *world*: a table shipped in
+``worlds/<name>.toml`` next to this module that declares the ranges a
+family of suites draws its sequences from (a ``draw`` table,
+:mod:`benchmark.scenes.draws`), so that the train, dev and test splits of
+one world share a single definition::
+
+    [defaults]
+    world = "camera"        # worlds/camera.toml, under everything else
+
+    [[sequence]]
+    name = "w01"
+    seed = 61001
+
+The world's table lies under the sequence's (``based_on`` base, defaults
+and entry merged); the key may stand in ``[defaults]`` or in an entry.
 """
 
 from __future__ import annotations
@@ -50,6 +66,11 @@ from benchmark.model import Sequence
 
 BASE_KEY = "based_on"
 """Key of a sequence table that names the sequence, ``"<suite>/<sequence>"``, it starts from."""
+
+WORLD_KEY = "world"
+"""Key of a sequence table that names the world, ``worlds/<name>.toml``, it is drawn from."""
+
+WORLDS_FOLDER = "worlds"
 
 BaseResolver = Callable[[str, str], Mapping[str, Any]]
 """Returns the merged table of the sequence a reference names; the second argument says where it was asked for."""
@@ -107,7 +128,30 @@ def _tables(
             base.pop("name", None)
             table = merge_tables(merge_tables(base, defaults), entry)
             table.pop(BASE_KEY, None)
+        world = table.pop(WORLD_KEY, None)
+        if world is not None:
+            table = merge_tables(shipped_world(world, f"{source} [sequence {short}]"), table)
         yield short, table
+
+
+def shipped_world(name: Any, where: str) -> dict[str, Any]:
+    """The table of the world ``worlds/<name>.toml`` shipped in this package.
+
+    Raises
+    ------
+    DataError
+        Naming ``where``, when ``name`` is not a plain name, no such world
+        is shipped, or its file is not valid TOML.
+    """
+    if not isinstance(name, str) or not name.replace("-", "").replace("_", "").isalnum():
+        raise DataError(f"{where}: {WORLD_KEY} must be the name of a shipped world, got {name!r}")
+    item = resources.files(__package__).joinpath(WORLDS_FOLDER, f"{name}.toml")
+    if not item.is_file():
+        raise DataError(f"{where}: {WORLD_KEY} {name!r} names no world in {WORLDS_FOLDER}/")
+    try:
+        return tomllib.loads(item.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise DataError(f"{WORLDS_FOLDER}/{name}.toml: not valid TOML: {exc}") from exc
 
 
 def shipped_table(reference: str, where: str, _chain: tuple[str, ...] = ()) -> dict[str, Any]:

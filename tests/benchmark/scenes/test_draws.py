@@ -121,7 +121,9 @@ def test_a_drawn_scene_keeps_its_conditions_through_pickling_and_shows_them() ->
     altitude = scene.drawn_conditions["altitude_m"]
     assert scene.spec.motion.cy_m.mean == altitude
     assert scene.info.extra["conditions"] == {"altitude_m": altitude}
-    assert pickle.loads(pickle.dumps(scene)).conditions() == {"altitude_m": altitude}
+    conditions = pickle.loads(pickle.dumps(scene)).conditions()
+    assert conditions["altitude_m"] == altitude
+    assert set(conditions) == {"altitude_m", "contrast_grey", "noise_grey"}
     assert CameraScene.from_dict(table).identity == scene.identity
 
 
@@ -130,3 +132,49 @@ def test_a_drawn_scene_keeps_its_conditions_through_pickling_and_shows_them() ->
 )
 def test_condition_labels(value: object, label: str) -> None:
     assert condition_label(value) == label
+
+
+def test_a_draw_may_step_into_a_list_already_written() -> None:
+    table = {
+        "seed": 2,
+        "motion": {"phi_deg": {"waves": [{"amplitude": 0.0, "period_frames": 40.0}, {"amplitude": 1.0}]}},
+        "draw": {"pitch": {"uniform": [2.0, 3.0], "into": "motion.phi_deg.waves.0.amplitude"}},
+    }
+    concrete, conditions = resolve_draws(table)
+    waves = concrete["motion"]["phi_deg"]["waves"]
+    assert waves[0] == {"amplitude": conditions["pitch"], "period_frames": 40.0}
+    assert waves[1] == {"amplitude": 1.0} and 2.0 <= conditions["pitch"] <= 3.0
+    assert table["motion"]["phi_deg"]["waves"][0]["amplitude"] == 0.0
+    with pytest.raises(DataError, match="not an index of a list of 2"):
+        resolve_draws({**table, "draw": {"p": {"uniform": [0, 1], "into": "motion.phi_deg.waves.2.amplitude"}}})
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_options_given_an_earlier_condition_draw_only_among_those_allowed(seed: int) -> None:
+    draw = {
+        "polarity": {"options": {"dark": {}, "bright": {}}},
+        "seabed": {
+            "given": "polarity",
+            "allowed": {"dark": ["sand", "gravel"], "bright": ["mud"]},
+            "options": {"sand": {"s": 1}, "mud": {"s": 2}, "gravel": {"s": 3}},
+        },
+    }
+    concrete, conditions = resolve_draws({"seed": seed, "draw": draw})
+    allowed = {"dark": {"sand", "gravel"}, "bright": {"mud"}}
+    assert conditions["seabed"] in allowed[conditions["polarity"]]
+    assert concrete["s"] == {"sand": 1, "mud": 2, "gravel": 3}[conditions["seabed"]]
+
+
+@pytest.mark.parametrize(
+    ("entry", "message"),
+    [
+        ({"given": "polarity", "options": {"a": {}}}, "go together"),
+        ({"given": "polarity", "allowed": {"dark": ["b"]}, "options": {"a": {}}}, "must name some of the options"),
+        ({"given": "colour", "allowed": {"dark": ["a"]}, "options": {"a": {}}}, "not a condition drawn before"),
+        ({"given": "polarity", "allowed": {"light": ["a"]}, "options": {"a": {}}}, "says nothing for polarity"),
+    ],
+)
+def test_a_dependent_draw_that_cannot_be_followed_is_named(entry: dict, message: str) -> None:
+    draw = {"polarity": {"choice": ["dark"], "into": "p"}, "seabed": entry}
+    with pytest.raises(DataError, match=message):
+        resolve_draws({"seed": 1, "draw": draw})

@@ -41,8 +41,11 @@ import cv2
 import numpy as np
 
 from benchmark.modalities.camera.model import CameraPose
+from benchmark.modalities.camera.scenes.formation import PipePixels, WaterFormation
+from benchmark.modalities.camera.scenes.lighting import CausticWaves
 from benchmark.modalities.camera.scenes.projection import pixel_rays, pose_axes
 from benchmark.modalities.camera.scenes.spec import CameraSceneSpec
+from benchmark.modalities.camera.scenes.snow import SnowCloud
 from benchmark.modalities.camera.scenes.texture import PSI_CELLS, TextureGrid
 from benchmark.scenes.noise import gaussian_table
 
@@ -99,6 +102,10 @@ class SceneAssets:
         when there is none.
     cover_x0 : float
         ``X`` of the first column of ``cover``, m.
+    snow : SnowCloud or None
+        Marine snow of the water model.
+    caustics : CausticWaves or None
+        Sun flicker of the water model.
     """
 
     grid: TextureGrid
@@ -112,6 +119,23 @@ class SceneAssets:
     reference_distance_m: float
     cover: np.ndarray | None = None
     cover_x0: float = 0.0
+    snow: SnowCloud | None = None
+    caustics: CausticWaves | None = None
+
+
+@dataclass(frozen=True)
+class _PipeSurface:
+    """Where rays meet the pipe: depth ``t``, point ``(px, py)``, ray ``hy`` and ``|D|``, facing, map row, albedo, buried."""
+
+    t: np.ndarray
+    px: np.ndarray
+    py: np.ndarray
+    hy: np.ndarray
+    hn: np.ndarray
+    facing: np.ndarray
+    row: np.ndarray
+    albedo: np.ndarray
+    under: np.ndarray
 
 
 def remap_flat(source: np.ndarray, col: np.ndarray, row: np.ndarray) -> np.ndarray:
@@ -189,15 +213,24 @@ class Renderer:
         self.spec = spec
         self.assets = assets
         optics = spec.optics
-        if optics.attenuation_per_m > 0:
+        self._formation: WaterFormation | None = None
+        if optics.water is not None:
+            formation = WaterFormation(spec, assets.reference_distance_m, MAX_RANGE_M, assets.snow, assets.caustics)
+            clearest = float(np.min(formation.optics.beta_d))
+            self._max_range = min(MAX_RANGE_M, -math.log(OPAQUE_TRANSMISSION) / clearest)
+            formation.max_range_m = self._max_range
+            self._formation = formation
+        elif optics.attenuation_per_m > 0:
             self._max_range = min(MAX_RANGE_M, -math.log(OPAQUE_TRANSMISSION) / optics.attenuation_per_m)
         else:
             self._max_range = MAX_RANGE_M
         self._gain = (assets.vignette * np.float32(optics.exposure)).astype(np.float32)
         self._work = _Workspace(spec.frame_size)
-        self._normal_table = gaussian_table() if optics.noise_grey > 0 else None
+        self._normal_table = gaussian_table() if optics.noise_grey > 0 or optics.shot_noise > 0 else None
 
-    def render(self, pose: CameraPose, rng: np.random.Generator) -> np.ndarray:
+    def render(
+        self, pose: CameraPose, rng: np.random.Generator, time_s: float = 0.0, clean: bool = False
+    ) -> np.ndarray:
         """One grey frame seen from ``pose``.
 
         Parameters
@@ -206,6 +239,12 @@ class Renderer:
             Camera pose in the pipeline frame.
         rng : numpy.random.Generator
             Source of the sensor noise and suspended particles of this frame.
+        time_s : float
+            Time of the frame, for what moves by itself (the water model's
+            sun flicker and marine snow).
+        clean : bool
+            Stop before the sensor's noise, quantisation and compression:
+            return the blurred ``float32`` image (``rng`` is not used).
 
         Returns
         -------
@@ -269,6 +308,8 @@ class Renderer:
         np.less(qb, f32(-1e-9), out=work.ahead)
         work.hit &= work.ahead
         hits = np.flatnonzero(work.hit)
+        if self._formation is not None:
+            return self._sensor(self._water_image(pose, axes, hits, time_s).reshape(height, width), rng, clean)
 
         lit = work.lit
         np.multiply(facing, f32(1.0 - optics.ambient), out=lit)
@@ -302,7 +343,7 @@ class Renderer:
             lit -= water
             lit *= tmp
             lit += water
-        return self._sensor(lit.reshape(height, width), rng)
+        return self._sensor(lit.reshape(height, width), rng, clean)
 
     def _lamp_factor(self, distance: float) -> float:
         """Light at ``distance`` relative to the reference distance: daylight plus the lamp's fall-off."""
@@ -370,20 +411,9 @@ class Renderer:
         fine[span] += blend
         return fine
 
-    def _shade_pipe(
-        self, hits: np.ndarray, pose: CameraPose
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Shade the pixels whose ray meets the pipe.
-
-        Returns
-        -------
-        exposed, lit, depth : numpy.ndarray
-            Pixels that see the pipe above the sand, their lit albedo and depth.
-        buried, relief : numpy.ndarray
-            Pixels where sand covers the pipe: they keep the seabed's values,
-            times ``relief``, a faint trace of the mound over the pipe.
-        """
-        spec, assets, optics, work = self.spec, self.assets, self.spec.optics, self._work
+    def _pipe_surface(self, hits: np.ndarray, pose: CameraPose) -> _PipeSurface:
+        """Where the rays ``hits`` meet the pipe, and its surface there."""
+        spec, assets, work = self.spec, self.assets, self._work
         grid = assets.grid
         radius = np.float32(spec.radius)
         dx, dy, dz = work.rays
@@ -398,32 +428,94 @@ class Renderer:
         row = (pz - np.float32(grid.z0)) / np.float32(grid.cell)
         col = psi * np.float32(PSI_CELLS / (2 * math.pi)) + np.float32(PSI_CELLS / 2)
         surface = remap_flat(assets.cable, col, row)
-        albedo = surface[:, 0]
-        ambient = np.float32(optics.ambient)
-        lit = albedo * (ambient + (1 - ambient) * facing)
-        if spec.cable.specular > 0:
-            highlight = facing * facing
-            for _ in range(HIGHLIGHT_SQUARINGS - 1):
-                highlight *= highlight
-            lit += np.float32(spec.cable.specular) * highlight
-        if assets.cover is not None:
-            self._overgrow(lit, hits, px, py, row)
         sand_rows = np.clip(row.astype(np.int32), 0, grid.nz - 1)
         under = py < assets.sand[sand_rows] + surface[:, 1]
+        return _PipeSurface(t, px, py, hy, hn, facing, row, surface[:, 0], under)
+
+    def _highlight(self, facing: np.ndarray) -> np.ndarray:
+        """The highlight along the middle of the pipe, ``specular cos^(2^4)`` of the angle to the lamp."""
+        highlight = facing * facing
+        for _ in range(HIGHLIGHT_SQUARINGS - 1):
+            highlight *= highlight
+        return np.float32(self.spec.cable.specular) * highlight
+
+    def _shade_pipe(
+        self, hits: np.ndarray, pose: CameraPose
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Shade the pixels whose ray meets the pipe.
+
+        Returns
+        -------
+        exposed, lit, depth : numpy.ndarray
+            Pixels that see the pipe above the sand, their lit albedo and depth.
+        buried, relief : numpy.ndarray
+            Pixels where sand covers the pipe: they keep the seabed's values,
+            times ``relief``, a faint trace of the mound over the pipe.
+        """
+        optics = self.spec.optics
+        pipe = self._pipe_surface(hits, pose)
+        facing, t = pipe.facing, pipe.t
+        ambient = np.float32(optics.ambient)
+        lit = pipe.albedo * (ambient + (1 - ambient) * facing)
+        if self.spec.cable.specular > 0:
+            lit += self._highlight(facing)
+        if self.assets.cover is not None:
+            self._overgrow(lit, hits, pipe.px, pipe.py, pipe.row)
+        under = pipe.under
         if not under.any():
             return hits, lit, t, hits[:0], lit[:0]
         above = ~under
-        relief = 1.0 + MOUND_RELIEF * (facing[under] + hy[under] / hn[under])
-        return hits[above], lit[above], t[above], hits[under], relief.astype(np.float32)
+        return hits[above], lit[above], t[above], hits[under], self._relief(pipe)
 
-    def _overgrow(self, lit: np.ndarray, hits: np.ndarray, px: np.ndarray, py: np.ndarray, row: np.ndarray) -> None:
-        """Lay the overgrowth over the lit pipe pixels ``hits`` (in place on ``lit``).
+    @staticmethod
+    def _relief(pipe: _PipeSurface) -> np.ndarray:
+        """The faint trace of the mound over a buried pipe, a factor on the seabed's light."""
+        under = pipe.under
+        relief = 1.0 + MOUND_RELIEF * (pipe.facing[under] + pipe.hy[under] / pipe.hn[under])
+        return relief.astype(np.float32)
+
+    def _water_image(self, pose: CameraPose, axes: np.ndarray, hits: np.ndarray, time_s: float) -> np.ndarray:
+        """The frame through the image formation model (:class:`WaterFormation`), before the sensor."""
+        assert self._formation is not None
+        work, spec = self._work, self.spec
+        albedo, depth = work.albedo.reshape(-1), work.t_ground
+        empty = np.zeros(0, dtype=np.float32)
+        pipe = PipePixels(hits[:0], empty, empty, empty, empty, empty)
+        if hits.size:
+            surface = self._pipe_surface(hits, pose)
+            lit = surface.albedo.copy()
+            cover = np.zeros_like(lit)
+            if self.assets.cover is not None:
+                cover = self._overgrow(lit, hits, surface.px, surface.py, surface.row, shaded=False)
+            above = ~surface.under
+            highlight = self._highlight(surface.facing) if spec.cable.specular > 0 else np.zeros_like(lit)
+            inverse_radius = np.float32(1.0 / spec.radius)
+            pipe = PipePixels(
+                hits[above],
+                surface.px[above] * inverse_radius,
+                surface.py[above] * inverse_radius,
+                lit[above],
+                cover[above],
+                highlight[above],
+            )
+            depth[pipe.index] = surface.t[above]
+            if surface.under.any():
+                albedo[hits[surface.under]] *= self._relief(surface)
+        return self._formation.image(
+            pose, axes, time_s, work.rays, depth, work.norm, albedo, pipe, self.assets.vignette
+        )
+
+    def _overgrow(
+        self, lit: np.ndarray, hits: np.ndarray, px: np.ndarray, py: np.ndarray, row: np.ndarray, shaded: bool = True
+    ) -> np.ndarray:
+        """Lay the overgrowth over the lit pipe pixels ``hits`` (in place on ``lit``); returns the share it covers.
 
         The layer is sampled at the pipe point's ``(X, Z)``; it hides the
         pipe where its top is above the point (with a soft step of
         :data:`COVER_EDGE_M`) and is lit with the seabed's Lambertian
         factor of the same ray, so an alga or a stone looks the same on both
-        sides of a border it crosses.
+        sides of a border it crosses.  Unshaded (``shaded=False``), ``lit``
+        is an albedo and the overgrowth's albedo is laid over it as it is.
         """
         spec, assets = self.spec, self.assets
         cell = np.float32(assets.grid.cell)
@@ -434,27 +526,59 @@ class Renderer:
         step *= np.float32(1.0 / COVER_EDGE_M)
         step += np.float32(0.5)
         np.clip(step, 0.0, 1.0, out=step)
-        ambient = np.float32(spec.optics.ambient)
-        shade = self._work.facing[hits] * (1 - ambient) + ambient
         lit *= 1.0 - cover[:, 0] * step
-        lit += cover[:, 1] * step * shade
+        if shaded:
+            ambient = np.float32(spec.optics.ambient)
+            shade = self._work.facing[hits] * (1 - ambient) + ambient
+            lit += cover[:, 1] * step * shade
+        else:
+            lit += cover[:, 1] * step
+        return cover[:, 0] * step
 
-    def _sensor(self, image: np.ndarray, rng: np.random.Generator) -> np.ndarray:
-        """Blur, suspended particles, noise and quantisation."""
+    def _sensor(self, image: np.ndarray, rng: np.random.Generator, clean: bool = False) -> np.ndarray:
+        """Blur, suspended particles, noise, quantisation and compression (only blur and particles when ``clean``).
+
+        The noise has the variance ``noise_grey^2 + shot_noise * I`` at grey
+        level ``I``: read noise and the shot noise of the photons counted
+        (Poisson, so its variance grows with the signal).
+        """
         optics, work = self.spec.optics, self._work
         height, width = image.shape
-        if optics.snow_per_frame > 0:
+        if optics.snow_per_frame > 0 and optics.water is None and not clean:
             count = int(rng.poisson(optics.snow_per_frame))
             rows = rng.integers(0, height, count)
             cols = rng.integers(0, width, count)
             np.add.at(image, (rows, cols), rng.uniform(60.0, 160.0, count).astype(np.float32))
         if optics.blur_px > 0:
             image = cv2.GaussianBlur(image, (0, 0), optics.blur_px, dst=work.blurred)
+        if clean:
+            return image.copy()
         if self._normal_table is not None:
             draws = rng.integers(0, len(self._normal_table), image.size, dtype=np.uint16)
             np.take(self._normal_table, draws.reshape(image.shape), out=work.noise)
-            work.noise *= np.float32(optics.noise_grey)
+            if optics.shot_noise > 0:
+                work.noise *= noise_sigma(image, optics.noise_grey, optics.shot_noise)
+            else:
+                work.noise *= np.float32(optics.noise_grey)
             image += work.noise
         image += np.float32(0.5)
         np.clip(image, 0.0, 255.0, out=image)
-        return image.astype(np.uint8)
+        frame = image.astype(np.uint8)
+        if optics.jpeg_quality > 0:
+            frame = jpeg_roundtrip(frame, optics.jpeg_quality)
+        return frame
+
+
+def noise_sigma(grey: np.ndarray | float, read_grey: float, shot_noise: float) -> np.ndarray:
+    """Standard deviation of the sensor noise at grey level ``grey``: ``sqrt(read^2 + shot * max(grey, 0))``."""
+    variance = np.maximum(np.asarray(grey, dtype=np.float32), np.float32(0.0)) * np.float32(shot_noise)
+    variance += np.float32(read_grey**2)
+    return np.sqrt(variance)
+
+
+def jpeg_roundtrip(frame: np.ndarray, quality: int) -> np.ndarray:
+    """A grey ``uint8`` frame encoded as JPEG at ``quality`` (1-100) and decoded, as a video link would deliver it."""
+    ok, encoded = cv2.imencode(".jpg", frame, [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
+    if not ok:
+        raise ValueError(f"JPEG encoding failed at quality {quality}")
+    return cv2.imdecode(encoded, cv2.IMREAD_GRAYSCALE)

@@ -27,7 +27,9 @@ Each frame carries
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -37,7 +39,10 @@ from benchmark.modalities.camera.scenes.burial import sand_level, visible_fracti
 from benchmark.modalities.camera.scenes.motion import Trajectory, build_trajectory, vehicle_speeds
 from benchmark.modalities.camera.scenes.overgrowth import overgrowth_layer
 from benchmark.modalities.camera.scenes.projection import pixel_rays, pose_axes
-from benchmark.modalities.camera.scenes.render import Renderer, SceneAssets, camera_rays, vignette_gain
+from benchmark.modalities.camera.contrast import measure_contrast
+from benchmark.modalities.camera.scenes.lighting import CausticWaves
+from benchmark.modalities.camera.scenes.render import Renderer, SceneAssets, camera_rays, noise_sigma, vignette_gain
+from benchmark.modalities.camera.scenes.snow import SNOW_RANGE_M, SnowCloud
 from benchmark.modalities.camera.scenes.silhouette import cable_truth
 from benchmark.modalities.camera.scenes.spec import CameraSceneSpec
 from benchmark.modalities.camera.scenes.texture import TextureGrid, cable_map, coarse_level, lowpass_noise, seabed_map
@@ -51,6 +56,9 @@ COARSE_FACTOR = 4
 
 FAR_VIEW_M = 12.0
 """Seabed farther ahead than this reuses the map (it wraps); haze hides it."""
+
+CONTRAST_FRAMES = 3
+"""Frames, spread over the sequence, on which the cable's contrast is measured."""
 
 # Indices of the independent random streams spawned from the seed.
 _TEXTURE, _TRAJECTORY, _NAVIGATION, _FRAMES = range(4)
@@ -90,6 +98,14 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
     """
 
     spec_type = CameraSceneSpec
+
+    def __init__(self, spec: CameraSceneSpec, conditions: Mapping[str, Any] | None = None) -> None:
+        super().__init__(spec, conditions)
+        self._measured: dict[str, float] | None = None
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        super().__setstate__(state)
+        self._measured = None
 
     @property
     def info(self) -> SequenceInfo:
@@ -138,6 +154,7 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
         if layer is not None:
             seabed = layer.composite(seabed)
             cover, cover_x0 = layer.pipe_band(spec.radius)
+        snow, caustics = self._water_assets(state)
         return SceneAssets(
             grid=grid,
             seabed=seabed,
@@ -150,7 +167,31 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
             reference_distance_m=_reference_distance(spec, state.trajectory),
             cover=cover,
             cover_x0=cover_x0,
+            snow=snow,
+            caustics=caustics,
         )
+
+    def _water_assets(self, state: _Cache) -> tuple[SnowCloud | None, CausticWaves | None]:
+        """Marine snow in the water the camera passes through, and the sun flicker's waves (water model only)."""
+        spec = self._spec
+        water = spec.optics.water
+        if water is None:
+            return None, None
+        snow = None
+        if water.snow_per_m3 > 0:
+            trajectory = state.trajectory
+            box = (
+                (float(np.min(trajectory.cx)) - SNOW_RANGE_M, float(np.max(trajectory.cx)) + SNOW_RANGE_M),
+                (-spec.radius, float(np.max(trajectory.cy)) + 1.0),
+                (float(np.min(trajectory.cz)) - 1.0, float(np.max(trajectory.cz)) + SNOW_RANGE_M),
+            )
+            snow = SnowCloud.draw(self._stream(_TEXTURE, 5), box, water.snow_per_m3, water.snow_size_mm)
+        caustics = None
+        if water.sun > 0 and water.caustics > 0:
+            caustics = CausticWaves.draw(
+                self._stream(_TEXTURE, 6), water.caustic_scale_m, water.caustic_speed_mps, water.caustics, water.depth_m
+            )
+        return snow, caustics
 
     def trajectory(self) -> Trajectory:
         """The camera poses, ``n_frames + 1`` samples."""
@@ -172,7 +213,46 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
     def render(self, index: int) -> np.ndarray:
         """The image of frame ``index`` alone (identical to the one :meth:`frames` yields)."""
         pose = self._state().trajectory.pose(self._check(index))
-        return self._renderer().render(pose, self._stream(_FRAMES, index))
+        return self._renderer().render(pose, self._stream(_FRAMES, index), self._time(index))
+
+    def render_clean(self, index: int) -> np.ndarray:
+        """Frame ``index`` before the sensor's noise, quantisation and compression: ``float32`` grey levels."""
+        pose = self._state().trajectory.pose(self._check(index))
+        return self._renderer().render(pose, self._stream(_FRAMES, index), self._time(index), clean=True)
+
+    def _time(self, index: int) -> float:
+        return index * self._spec.frame_interval_s
+
+    def conditions(self) -> dict[str, Any]:
+        """The drawn conditions, plus ``contrast_grey`` and ``noise_grey`` measured on the sequence.
+
+        ``contrast_grey`` is :func:`~benchmark.modalities.camera.contrast.cable_contrast`
+        averaged over :data:`CONTRAST_FRAMES` frames spread over the
+        sequence, rendered without noise or compression (clipped to the
+        grey levels an image can hold); ``noise_grey`` is
+        the standard deviation of the sensor noise at the mean grey level of
+        the cable in those frames.  Both are measured once and kept.
+        """
+        if self._measured is None:
+            self._measured = self._measure()
+        return {**self.drawn_conditions, **self._measured}
+
+    def _measure(self) -> dict[str, float]:
+        spec = self._spec
+        frames = np.unique(np.linspace(0, spec.n_frames - 1, CONTRAST_FRAMES).round().astype(int))
+        contrasts, cable_greys = [], []
+        for index in frames:
+            truth = self.truth(int(index))
+            if not truth.cable.is_known:
+                continue
+            measured = measure_contrast(np.clip(self.render_clean(int(index)), 0.0, 255.0), truth.cable)
+            if measured is not None:
+                contrasts.append(measured.contrast)
+                cable_greys.append(measured.cable_grey)
+        if not contrasts:
+            return {"contrast_grey": math.nan, "noise_grey": math.nan}
+        sigma = noise_sigma(float(np.mean(cable_greys)), spec.optics.noise_grey, spec.optics.shot_noise)
+        return {"contrast_grey": round(float(np.mean(contrasts)), 2), "noise_grey": round(float(sigma), 2)}
 
     def observation(self, index: int) -> np.ndarray:
         """The grey image of frame ``index``: :meth:`render`."""

@@ -17,7 +17,15 @@ The tree mirrors the parts of the scene model of seeds/004, section II:
 * :class:`Burial`: stretches where sand covers the pipe (seeds/004, Fig. 14);
 * :class:`Overgrowth`: algae and stones on the pipe and against its sides,
   which break its borders (seeds/000, section 5.2.3);
-* :class:`OpticsSpec`: light, water and sensor.
+* :class:`OpticsSpec`: light, water and sensor; its optional
+  :class:`WaterSpec` (``[optics.water]``) switches from the haze of the
+  thesis suites to the image formation model of
+  :mod:`~benchmark.modalities.camera.scenes.water`, lit by lamps (:class:`Lamp`)
+  and daylight.
+
+Fields added after the thesis suites were written carry
+:data:`benchmark.identity.OMIT_AT_DEFAULT`, so that a spec that leaves them
+at their defaults keeps its identity (and its frames) exactly.
 
 Lengths are in metres, angles in degrees (converted to radians where the
 scene is built), times in frames unless a name says otherwise.
@@ -27,6 +35,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+
+from benchmark.identity import OMIT_AT_DEFAULT
+from benchmark.modalities.camera.scenes.water import JERLOV_KD
 
 from benchmark.scenes.signal import Signal
 from benchmark.scenes.spec import TableSpec
@@ -58,6 +69,18 @@ def check_profile(points: DensityProfile) -> None:
         raise ValueError(f"density profile needs finite positions and factors >= 0, got {points}")
     if any(b <= a for a, b in zip(zs, zs[1:])):
         raise ValueError(f"density profile positions must increase strictly, got {zs}")
+
+
+Tint = tuple[float, float, float]
+"""Relative reflectance of the R, G and B channels."""
+
+WHITE: Tint = (1.0, 1.0, 1.0)
+
+
+def check_tint(tint: Tint) -> None:
+    """A tint has three finite factors in ``[0, 1.5]``."""
+    if not all(math.isfinite(c) and 0 <= c <= 1.5 for c in tint):
+        raise ValueError(f"tint needs three factors in [0, 1.5], got {tint}")
 
 
 @dataclass(frozen=True)
@@ -178,6 +201,10 @@ class SeabedSpec:
         Relative strength of the finest, per-centimetre grain.
     ripples : tuple of Ripples
     clutter : tuple of Clutter
+    tint : tuple of float
+        Reflectance of R, G and B relative to ``albedo`` (the grey map is
+        multiplied by it per channel); used by the water model only.  The
+        clutter and the overgrowth share it.
     """
 
     albedo: float = 0.5
@@ -187,10 +214,12 @@ class SeabedSpec:
     grain: float = 0.06
     ripples: tuple[Ripples, ...] = ()
     clutter: tuple[Clutter, ...] = ()
+    tint: Tint = field(default=WHITE, metadata=OMIT_AT_DEFAULT)
 
     def __post_init__(self) -> None:
         if not 0 <= self.albedo <= 1:
             raise ValueError(f"albedo must be in [0, 1], got {self.albedo}")
+        check_tint(self.tint)
 
 
 @dataclass(frozen=True)
@@ -213,6 +242,9 @@ class CableLook:
     growth_angle_deg, growth_spread_deg : float
         Where the growth sits, as the angle around the pipe from its top
         (90 is the flank the camera sees as a border), and how wide.
+    tint : tuple of float
+        Reflectance of R, G and B relative to ``albedo`` (a yellow paint is
+        about ``(1, 0.85, 0.15)``); used by the water model only.
     """
 
     albedo: float = 0.22
@@ -222,10 +254,12 @@ class CableLook:
     growth_albedo: float = 0.4
     growth_angle_deg: float = 80.0
     growth_spread_deg: float = 30.0
+    tint: Tint = field(default=WHITE, metadata=OMIT_AT_DEFAULT)
 
     def __post_init__(self) -> None:
         if not (0 <= self.albedo <= 1 and 0 <= self.growth_albedo <= 1 and 0 <= self.growth_coverage <= 1):
             raise ValueError("albedo, growth_albedo and growth_coverage must be in [0, 1]")
+        check_tint(self.tint)
 
 
 @dataclass(frozen=True)
@@ -336,6 +370,107 @@ class Overgrowth:
 
 
 @dataclass(frozen=True)
+class Lamp:
+    """A lamp on the vehicle, aimed at the point the camera looks at.
+
+    Attributes
+    ----------
+    offset_m : tuple of float
+        Position relative to the camera in the camera's frame: right, down,
+        forward (``(0, -0.4, 0)`` is 40 cm above it).
+    intensity : float
+        Radiant intensity on the beam's axis, in the units where a white
+        surface facing the lamp 1 m away receives ``intensity``.
+    cone_deg : float
+        Half angle of the beam, to the middle of its soft edge.
+    edge_deg : float
+        Half width of the soft edge (smoothstep from full to no light).
+    hotspot : float
+        Extra light on the axis, as a share of the beam's (0 for an even beam).
+    hotspot_deg : float
+        Angular radius of the hot spot (``1/e`` of its extra light).
+    """
+
+    offset_m: tuple[float, float, float] = (0.0, -0.4, 0.0)
+    intensity: float = 1.0
+    cone_deg: float = 35.0
+    edge_deg: float = 8.0
+    hotspot: float = 0.5
+    hotspot_deg: float = 10.0
+
+    def __post_init__(self) -> None:
+        if not (self.intensity >= 0 and self.hotspot >= 0 and self.hotspot_deg > 0 and 0 <= self.edge_deg):
+            raise ValueError("need intensity >= 0, hotspot >= 0, hotspot_deg > 0 and edge_deg >= 0")
+        if not (0 < self.cone_deg - self.edge_deg and self.cone_deg + self.edge_deg < 90):
+            raise ValueError(f"need 0 < cone_deg - edge_deg and cone_deg + edge_deg < 90, got {self.cone_deg}, {self.edge_deg}")
+        if not all(math.isfinite(c) for c in self.offset_m):
+            raise ValueError(f"offset_m must be finite, got {self.offset_m}")
+
+
+@dataclass(frozen=True)
+class WaterSpec:
+    """Water, light and camera exposure of the image formation model (:mod:`~benchmark.modalities.camera.scenes.water`).
+
+    Attributes
+    ----------
+    jerlov : str
+        Jerlov water type: ``I``, ``IA``, ``IB``, ``II``, ``III`` (oceanic)
+        or ``1C``, ``3C``, ``5C``, ``7C``, ``9C`` (coastal, turbid).
+    depth_m : float
+        Depth of the camera below the surface: it filters the daylight.
+    sun : float
+        White daylight on a horizontal surface just below the surface, in the
+        lamp's units (:attr:`Lamp.intensity`); 0 for none (deep water, night).
+    sky_ambient : float
+        Share of the daylight that comes from all directions rather than
+        from above.
+    caustics : float
+        Relative depth of the sun flicker (the light focused by surface waves
+        into moving bright lines on the seabed), just below the surface; it
+        fades with depth over :data:`~benchmark.modalities.camera.scenes.lighting.CAUSTIC_FADE_M`.
+    caustic_scale_m, caustic_speed_mps : float
+        Size of the flicker's cells and the speed at which they move.
+    lamps : tuple of Lamp
+    mean_grey : float
+        Grey level the camera's automatic exposure brings the mean of each
+        frame to.
+    snow_per_m3 : float
+        Marine snow: particles per cubic metre large enough to see.
+    snow_size_mm : float
+        Their median diameter.
+    defocus_px : float
+        Blur (standard deviation, px) of a particle at half the focus
+        distance; the focus is at the distance the lamps are aimed at.
+    """
+
+    jerlov: str = "II"
+    depth_m: float = 50.0
+    sun: float = 0.0
+    sky_ambient: float = 0.3
+    caustics: float = 0.0
+    caustic_scale_m: float = 0.5
+    caustic_speed_mps: float = 0.3
+    lamps: tuple[Lamp, ...] = (Lamp(),)
+    mean_grey: float = 110.0
+    snow_per_m3: float = 0.0
+    snow_size_mm: float = 1.5
+    defocus_px: float = 2.0
+
+    def __post_init__(self) -> None:
+        if self.jerlov not in JERLOV_KD:
+            raise ValueError(f"jerlov must be one of {', '.join(JERLOV_KD)}, got {self.jerlov!r}")
+        values = (self.depth_m, self.sun, self.caustics, self.snow_per_m3, self.defocus_px)
+        if not all(math.isfinite(v) and v >= 0 for v in values):
+            raise ValueError("depth_m, sun, caustics, snow_per_m3 and defocus_px must be finite and >= 0")
+        if not (0 <= self.sky_ambient <= 1 and 0 < self.mean_grey < 255):
+            raise ValueError("need 0 <= sky_ambient <= 1 and 0 < mean_grey < 255")
+        if not (self.caustic_scale_m > 0 and self.caustic_speed_mps >= 0 and self.snow_size_mm > 0):
+            raise ValueError("need caustic_scale_m > 0, caustic_speed_mps >= 0 and snow_size_mm > 0")
+        if self.sun == 0 and not any(lamp.intensity > 0 for lamp in self.lamps):
+            raise ValueError("the scene needs light: a lamp with intensity > 0 or sun > 0")
+
+
+@dataclass(frozen=True)
 class OpticsSpec:
     """Light, water and sensor.
 
@@ -370,7 +505,19 @@ class OpticsSpec:
     noise_grey : float
         Standard deviation of the sensor noise in grey levels.
     snow_per_frame : float
-        Mean number of bright suspended particles per frame.
+        Mean number of bright suspended particles per frame (haze model only).
+    shot_noise : float
+        Signal-dependent (shot) noise: the noise variance grows by this many
+        grey levels squared per grey level, on top of ``noise_grey ** 2``
+        (the read noise); 0 for none.
+    jpeg_quality : int
+        Quality (1-100) of the JPEG compression a video link applies to
+        every frame; 0 for none.
+    water : WaterSpec or None
+        The water, light and camera of the image formation model; None keeps
+        the haze model above (``water_grey``, ``attenuation_per_m``,
+        ``exposure``, ``ambient``, ``light_falloff``, ``daylight``,
+        ``auto_gain`` and ``snow_per_frame`` serve it only).
     """
 
     exposure: float = 430.0
@@ -385,10 +532,15 @@ class OpticsSpec:
     blur_px: float = 0.8
     noise_grey: float = 3.5
     snow_per_frame: float = 0.0
+    shot_noise: float = field(default=0.0, metadata=OMIT_AT_DEFAULT)
+    jpeg_quality: int = field(default=0, metadata=OMIT_AT_DEFAULT)
+    water: WaterSpec | None = field(default=None, metadata=OMIT_AT_DEFAULT)
 
     def __post_init__(self) -> None:
         if min(self.attenuation_per_m, self.blur_px, self.noise_grey, self.snow_per_frame, self.vignetting) < 0:
             raise ValueError("attenuation, blur, noise, snow and vignetting must be >= 0")
+        if not (math.isfinite(self.shot_noise) and self.shot_noise >= 0 and 0 <= self.jpeg_quality <= 100):
+            raise ValueError("need shot_noise >= 0 and jpeg_quality in 0..100 (0: no compression)")
         if self.reference_distance_m is not None and not self.reference_distance_m > 0:
             raise ValueError("reference_distance_m must be > 0")
         if not (0 <= self.daylight <= 1 and 0 <= self.auto_gain <= 1):
