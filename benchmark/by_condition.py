@@ -29,7 +29,7 @@ from typing import Any
 
 import pandas as pd
 
-from benchmark.leaderboard import key_labels
+from benchmark.leaderboard import key_labels, suite_of
 from benchmark.model import Outcome
 from benchmark.results import summarise
 from benchmark.scenes.draws import condition_label
@@ -40,12 +40,6 @@ COLUMNS = ("modality", "suite", "condition", "bin", "order", "tracker", "init", 
 
 RANK_BINS = ("lowest tenth", "10-50 %", "50-90 %", "highest tenth")
 """Names of the bins of a numeric condition, lowest values first."""
-
-
-def suite_of(dataset: str) -> str:
-    """The suite a dataset name belongs to: ``camera-test/T01`` -> ``camera-test``; a path is its own suite."""
-    suite, slash, _ = dataset.partition("/")
-    return suite if slash and suite else dataset
 
 
 def _numeric(values: list[Any]) -> bool:

@@ -12,7 +12,10 @@ RMSE also has its 95 % interval (``correct_lo_pct`` to ``correct_hi_pct``), a bo
 over seeds (:mod:`benchmark.intervals`), and ``deterministic`` says
 whether all seeds gave the same frames (empty for a single seed).  A row with dataset
 ``(all)`` pools each tracker over every dataset of the board and comes
-first.  A tracker name that ran with several
+first.  Where a board holds several suites (a thesis suite, a dev and a
+test split), a row ``SUITE (all)`` pools each tracker over the datasets of
+one suite (the part of a dataset's name before its ``/``) and comes next,
+so a split is never read through another's numbers.  A tracker name that ran with several
 parameter sets, or a dataset name that stood for several datasets (a file
 edited between runs), gets a row per key, labelled ``name [key prefix]``.
 
@@ -47,6 +50,20 @@ if TYPE_CHECKING:
 
 ALL_DATASETS = "(all)"
 """Dataset name of the row that pools a tracker over all datasets of a board."""
+
+SUITE_POOL = " (all)"
+"""Ending of the dataset name of a row that pools a tracker over one suite: ``camera-test (all)``."""
+
+
+def suite_of(dataset: str) -> str:
+    """The suite a dataset name belongs to: ``camera-test/t01`` -> ``camera-test``; a path is its own suite."""
+    suite, slash, _ = dataset.partition("/")
+    return suite if slash and suite else dataset
+
+
+def is_pooled(dataset: str) -> bool:
+    """Whether a board's dataset name is a pooled row: ``(all)`` or ``SUITE (all)``."""
+    return dataset == ALL_DATASETS or dataset.endswith(SUITE_POOL)
 
 LEADING_COLUMNS = ("rank", "tracker", "dataset", "init", "training", "seeds", "frames")
 RATE_COLUMNS = tuple(f"{outcome}_pct" for outcome in Outcome)
@@ -105,7 +122,7 @@ def _rank(board: pd.DataFrame, first_rmse: str | None) -> pd.DataFrame:
         _failed=board["status"] != "ok",
         _correct=-board["correct_pct"].fillna(-math.inf),
         _rmse=board[first_rmse].fillna(math.inf) if first_rmse else 0.0,
-        _all=board["dataset"] != ALL_DATASETS,
+        _all=[0 if name == ALL_DATASETS else 1 if is_pooled(name) else 2 for name in board["dataset"]],
     )
     ordered = ordered.sort_values(
         ["_all", "dataset", "init", "_failed", "_correct", "_rmse", "tracker"], kind="stable"
@@ -133,8 +150,9 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
     Returns
     -------
     pandas.DataFrame
-        Columns :func:`board_columns`; ``(all)`` rows first, then each
-        dataset's rows in rank order.
+        Columns :func:`board_columns`; ``(all)`` rows first, then the
+        ``SUITE (all)`` rows of a board of several suites (for suites of more
+        than one dataset), then each dataset's rows in rank order.
 
     References
     ----------
@@ -180,6 +198,13 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
         row(group, label, ALL_DATASETS, init)
         for (label, init), group in cells.groupby(["label", "init"], sort=True)
     ]
+    suites = cells["dataset"].map(suite_of)
+    if suites.nunique() > 1:
+        rows += [
+            row(group, label, f"{suite}{SUITE_POOL}", init)
+            for (suite, label, init), group in cells.assign(suite=suites).groupby(["suite", "label", "init"], sort=True)
+            if group["dataset"].nunique() > 1
+        ]
     rows += [
         row(group, label, dataset, init)
         for (label, dataset, init), group in cells.groupby(["label", "dataset", "init"], sort=True)

@@ -13,7 +13,7 @@ from collections.abc import Sequence
 
 import pandas as pd
 
-from benchmark.leaderboard import ALL_DATASETS
+from benchmark.leaderboard import is_pooled
 
 
 def split_grid_name(dataset: str) -> tuple[str, str] | None:
@@ -49,7 +49,7 @@ def grid_tables(board: pd.DataFrame, metrics: Sequence[str], order: Sequence[str
     of the raw measurements, per case and speed).
     """
     rank = {name: position for position, name in enumerate(order)}
-    rows = board[board["dataset"] != ALL_DATASETS].copy()
+    rows = board[~board["dataset"].map(is_pooled)].copy()
     parts = [split_grid_name(name) for name in rows["dataset"]]
     rows["case"] = [part[0] if part else None for part in parts]
     rows["condition"] = [part[1] if part else None for part in parts]

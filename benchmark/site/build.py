@@ -33,7 +33,7 @@ from markupsafe import Markup
 from benchmark.errors import DataError
 from benchmark.history.database import History
 from benchmark.history.regressions import Step, Thresholds, find_changes, steps
-from benchmark.leaderboard import ALL_DATASETS, error_columns, leaderboards
+from benchmark.leaderboard import error_columns, is_pooled, leaderboards
 from benchmark.modality import Modality
 from benchmark.report.display import alignment, display_table, format_value
 from benchmark.site.figures import OUTCOME_COLOURS, cell_figure, trend_figure
@@ -191,7 +191,7 @@ def _board(night: _Night, board: pd.DataFrame, table_id: str, root: str) -> dict
         name = str(of_tracker["tracker"].iloc[0]) if len(of_tracker) else str(row.tracker)
         trackers.append(link(row.tracker, night.tracker_href(name, root)))
         of_row = _labelled(of_tracker[of_tracker["init"] == row.init], row.dataset, "dataset", "dataset_key")
-        cells.append(night.cell_links(of_row, root) if row.dataset != ALL_DATASETS else Markup(""))
+        cells.append(night.cell_links(of_row, root) if not is_pooled(row.dataset) else Markup(""))
     table["tracker"] = [str(markup) for markup in trackers]
     table.insert(list(table.columns).index("dataset") + 1, "cells", [str(markup) for markup in cells])
     return {"table": datatable(table, table_id, numeric), "shared": shared}

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from benchmark.by_condition import RANK_BINS, condition_bins, condition_board, condition_tables, suite_of
+from benchmark.by_condition import RANK_BINS, condition_bins, condition_board, condition_tables
 
 
 def test_words_and_lists_get_one_bin_per_value() -> None:
@@ -35,11 +35,6 @@ def test_every_sequence_gets_one_bin_and_bins_are_ordered_by_value(values: list[
     filled = [values for values in members if values]
     assert all(max(lower) <= min(upper) for lower, upper in zip(filled, filled[1:]))
     assert sum(1 for order, _ in bins.values() if order == 0) == max(1, -(-len(values) // 10))
-
-
-def test_suites_are_read_from_dataset_names() -> None:
-    assert suite_of("camera-test/T01") == "camera-test"
-    assert suite_of("/data/run/seq.txt") == "/data/run/seq.txt"
 
 
 def cells_and_frames() -> tuple[pd.DataFrame, pd.DataFrame]:

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from benchmark.leaderboard import ALL_DATASETS, board_columns, error_columns, leaderboards
+from benchmark.leaderboard import ALL_DATASETS, board_columns, error_columns, is_pooled, leaderboards, suite_of
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.modalities.sonar.modality import SONAR
 from benchmark.modality import Modality
@@ -230,3 +230,27 @@ def test_error_columns_come_from_the_modality_or_else_from_the_frames() -> None:
     assert error_columns(SONAR, frames) == ("err_across_m",)
     assert error_columns(None, frames) == ("err_range_m", "err_bearing_deg")
     assert error_columns(None, pd.DataFrame()) == ()
+
+
+def test_a_board_of_several_suites_pools_each_suite_after_the_whole() -> None:
+    data = Cells()
+    data.add("a", "dev/1", 0, ["correct", "correct"])
+    data.add("a", "dev/2", 0, ["false", "correct"])
+    data.add("a", "test/1", 0, ["missed", "missed"])
+    data.add("a", "test/2", 0, ["correct", "missed"])
+    data.add("a", "alone/1", 0, ["correct"])
+    board = data.boards()["camera"]
+    assert board["dataset"].tolist()[:3] == [ALL_DATASETS, "dev (all)", "test (all)"]
+    assert rows(board, "dev (all)").loc["a", "correct_pct"] == 75.0
+    assert rows(board, "test (all)").loc["a", "missed_pct"] == 75.0
+    assert "alone (all)" not in set(board["dataset"])
+    single = Cells()
+    single.add("a", "dev/1", 0, ["correct"])
+    single.add("a", "dev/2", 0, ["false"])
+    assert single.boards()["camera"]["dataset"].tolist() == [ALL_DATASETS, "dev/1", "dev/2"]
+
+
+def test_suites_and_pooled_rows_are_read_from_dataset_names() -> None:
+    assert suite_of("camera-test/t01") == "camera-test"
+    assert suite_of("/data/run/seq.txt") == "/data/run/seq.txt"
+    assert is_pooled(ALL_DATASETS) and is_pooled("camera-test (all)") and not is_pooled("camera-test/t01")

@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pandas as pd
 
-from benchmark.leaderboard import ALL_DATASETS, leaderboards
+from benchmark.leaderboard import is_pooled, leaderboards
 from benchmark.modalities.camera.geometry import DetectionRule
 from benchmark.modalities.camera.model import CableState
 from benchmark.modalities.camera.scoring import CameraScorer
@@ -334,7 +334,7 @@ def latest_correct_pct(
         if not mine.empty:
             boards = leaderboards(mine, store.frame_tables(mine["id"]), modalities)
             rows = pd.concat(boards.values())
-            return float(rows.loc[rows["dataset"] != ALL_DATASETS, "correct_pct"].iloc[0])
+            return float(rows.loc[~rows["dataset"].map(is_pooled), "correct_pct"].iloc[0])
     return math.nan
 
 
