@@ -125,21 +125,24 @@ class Silhouette:
         if not w > 0:
             return np.asarray(state[:4], dtype=float).copy()
         radius = self.radius
-        reach = int(np.ceil(0.5 * w)) + radius
-        offsets = np.arange(-reach, radius + 1, dtype=float)
+        image = as_grey_image(image)
         # Each border is a straight line with its own normal n(alpha -+ beta), at the
         # distance (d -+ w/2) cos(beta) from the centre; its count is that line's score.
-        image = as_grey_image(image)
+        normals = (np.array([alpha - beta]), np.array([alpha + beta]))
         cos_beta = np.cos(beta)
-        left = line_scores(image, self.taps, self.spacing, np.array([alpha - beta]), (d - 0.5 * w + offsets) * cos_beta)[0]
-        right = line_scores(image, self.taps, self.spacing, np.array([alpha + beta]), (d + 0.5 * w - offsets) * cos_beta)[0]
-        own_left, own_right = left[reach], right[reach]
+
+        def counts(side: int, offsets: np.ndarray) -> np.ndarray:
+            # side -1: the left border, moved inwards (+n) by the offsets; +1: the right one (-n).
+            lines = (d + side * (0.5 * w - offsets)) * cos_beta
+            return line_scores(image, self.taps, self.spacing, normals[(side + 1) // 2], lines)[0]
+
         # Eq. (4.11)'s polarity: a bright cable has c_l < 0 < c_r.
-        sign = 1.0 if own_right - own_left > 0 else -1.0
-        if sign < 0:
+        here = np.zeros(1)
+        if not counts(1, here)[0] - counts(-1, here)[0] > 0:
             return np.array([d, alpha, w, beta])
-        shift_left = self._shift(offsets, -sign * left)
-        shift_right = self._shift(offsets, sign * right)
+        offsets = np.arange(-(int(np.ceil(0.5 * w)) + radius), radius + 1, dtype=float)
+        shift_left = self._shift(offsets, -counts(-1, offsets))
+        shift_right = self._shift(offsets, counts(1, offsets))
         width = max(w - shift_left - shift_right, 1.0)
         return np.array([d + 0.5 * (shift_left - shift_right), alpha, width, beta])
 
