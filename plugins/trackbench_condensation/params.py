@@ -141,6 +141,11 @@ clutter family 88.1 % either way unless said.
   and its 200 px scaled.  With 100: dev 88.3 %, train unchanged, the clutter
   family 87.7 % and the thesis suite 92.3 % (re-detection's scans differ).
 
+The outline costs frame rate where it acts: tracker time alone, seed 0, in
+one process, each run twice in turn with the code before it, 470-520 ->
+433-438 frames per second on camera-dev and 511-605 -> 532-538 on the
+thesis suite, whose cables are mostly dark.
+
 What does *not* scale with the frame, measured: the filter size, the
 sample distance and the diffusion variances stay in pixels.  Scaled as the
 limits are (at 640 x 480: 21 px filter, 40 px sample distance, variances in
