@@ -6,7 +6,8 @@ the velocities ``v_d`` and ``v_alpha`` (section 4.4).  Particles drift at
 their velocities and diffuse (eq. 4.9); each is weighed by the grey-level
 changes a derivative-of-Gaussian filter finds across its two projected
 borders (section 4.5, eqs. 4.10-4.11).  The reported state is the weighted
-mean of the particles (eq. 3.11), or the peak of eq. (4.11) beside it.
+mean of the particles (eq. 3.11), or the peak of eq. (4.11) beside it,
+with its borders moved out to the cable's outline.
 
 The plugin registers, through the ``trackbench`` entry-point group every
 third-party tracker uses::
@@ -19,8 +20,10 @@ five trackers, one class with different parameters:
 * ``condensation``: the thesis' settings (Table 5.1, 500 particles) with the
   departures :mod:`trackbench_condensation.params` documents (sharper
   weights, a larger angle-velocity variance, lost-cable test,
-  re-detection, what is reported and a prior on the width);
-* ``condensation-thesis``: exactly the thesis' tracker, for comparison;
+  re-detection, what is reported, a prior on the width, borders reported
+  at the cable's outline, and Table 5.2's limits scaled to the frame);
+* ``condensation-thesis``: exactly the thesis' tracker, for comparison
+  (Table 5.2's limits in pixels as printed, whatever the frame);
 * ``condensation-fast``: its high-speed settings, 300 particles and a 5 px
   filter (section 5.2.5, Fig. 5.9);
 * ``condensation-8d``: velocities for width and skew as well, the
@@ -43,7 +46,11 @@ VARIANTS: dict[str, dict[str, object]] = {
         "lost_threshold": 0.0,
         "width_prior_spread": 0.0,
         "max_spread_px": 0.0,
+        "spread_share": 0.0,
         "report_mode": False,
+        "outline_fraction": 0.0,
+        "reference_width_px": 0.0,
+        "init_w_px": (5.0, 100.0),
     },
     "condensation-fast": {"n_particles": 300, "filter_size_px": 5},
     "condensation-8d": {"width_skew_velocities": True},

@@ -19,6 +19,7 @@ Table 5.2 gives no limits for them, so they start at 0 in both cases.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -51,6 +52,23 @@ class InitLimits:
             if len(pair) != 2 or not all(math.isfinite(v) for v in pair) or pair[0] > pair[1]:
                 raise ValueError(f"init limits {name} must be (min, max) with min <= max, got {getattr(self, name)}")
             object.__setattr__(self, name, pair)
+
+    def scaled(self, factor: float) -> InitLimits:
+        """The limits for a frame ``factor`` times as wide: ``d``, ``w`` and ``v_d`` (px) times ``factor``.
+
+        Raises
+        ------
+        ValueError
+            If ``factor`` is not positive and finite.
+        """
+        if not (math.isfinite(factor) and factor > 0):
+            raise ValueError(f"frame scale factor must be positive and finite, got {factor}")
+        return dataclasses.replace(
+            self,
+            d_px=tuple(factor * v for v in self.d_px),
+            w_px=tuple(factor * v for v in self.w_px),
+            v_d_px=tuple(factor * v for v in self.v_d_px),
+        )
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Lower and upper bounds of ``(d, alpha, w, beta, v_d, v_alpha)`` in px and rad."""

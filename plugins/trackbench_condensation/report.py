@@ -73,10 +73,15 @@ class Report:
     max_spread_px: float
     mode_gain: float | None
     ascent: LocalAscent = field(default_factory=LocalAscent)
+    spread_share: float = 0.0
 
-    def too_wide(self, particles: ParticleSet) -> bool:
-        """True when the particles disagree on ``d`` by more than ``max_spread_px`` (rule 1)."""
-        return self.max_spread_px > 0 and spread_of_distance(particles) > self.max_spread_px
+    def spread_limit(self, width: float) -> float:
+        """The spread allowed a cable ``width`` px wide: ``max(max_spread_px, spread_share * width)``, px."""
+        return max(self.max_spread_px, self.spread_share * width)
+
+    def too_wide(self, particles: ParticleSet, width: float) -> bool:
+        """True when the particles disagree on ``d`` by more than :meth:`spread_limit` of ``width`` (rule 1)."""
+        return self.max_spread_px > 0 and spread_of_distance(particles) > self.spread_limit(width)
 
     def state(
         self,

@@ -14,7 +14,17 @@ core of :mod:`benchmark.filters`:
    ``(d, alpha, w, beta)``, or the peak of eq. (4.11) beside it when that
    clearly scores higher; or no cable, when the lost-cable test
    (:mod:`trackbench_condensation.lost`) says the cable is not in view or
-   the particles disagree on where it is (:mod:`trackbench_condensation.report`).
+   the particles disagree on where it is (:mod:`trackbench_condensation.report`);
+5. move the reported borders of a cable brighter than the seabed from the
+   steepest edges, where eq. (4.11) holds the particles, out to the cable's
+   outline (:mod:`trackbench_condensation.silhouette`).
+
+The limits of Table 5.2 are given in pixels of a frame
+``reference_width_px`` (320) wide; on another frame the limits of ``d``,
+``w`` and ``v_d`` scale with its width, read from the sequence's info or
+else from the first image (:meth:`CondensationTracker._fit_frame`).  The
+filter, the sample distance and the diffusion variances stay in pixels
+(:mod:`trackbench_condensation.params` gives the measurements).
 
 Before the step, when due, part of the particles is re-drawn around the
 candidate cables of a line scan (:mod:`trackbench_condensation.detect`):
@@ -76,6 +86,7 @@ from trackbench_condensation.observation import BorderObservation, as_grey_image
 from trackbench_condensation.params import CondensationParams
 from trackbench_condensation.prior import InitLimits, particles_at, uniform_particles
 from trackbench_condensation.report import Report
+from trackbench_condensation.silhouette import Silhouette
 from trackbench_condensation.width import WidthPrior
 
 
@@ -97,6 +108,10 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
         What is reported once the lost test let a frame through.
     width_prior : WidthPrior or None
         The prior on the width in the particle weights (None when off).
+    silhouette : Silhouette or None
+        Moves the reported borders out to the cable's outline (None when off).
+    limits : InitLimits
+        Table 5.2's limits scaled to the current frame's width.
 
     References
     ----------
@@ -105,7 +120,7 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
     """
 
     name = "condensation"
-    version = "1.0"
+    version = "1.1"
     modality = "camera"
     Params = CondensationParams
 
@@ -126,16 +141,14 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
         noise = diffusion_std(
             p.var_d_px2, p.var_alpha_deg2, p.var_w_px2, p.var_beta_deg2, p.var_v_d_px2, p.var_v_alpha_deg2, *extra
         )
-        self.limits = InitLimits(
+        self.table_limits = InitLimits(
             p.init_d_px, p.init_alpha_deg, p.init_w_px, p.init_beta_deg, p.init_v_d_px, p.init_v_alpha_deg
         )
         self.lost = LostCable(p.lost_threshold, p.lost_decay)
-        self.scan = LineScan(alpha_range_deg=self.limits.alpha_deg, width_range_px=self.limits.w_px)
         self.ascent = LocalAscent()
-        self.report = Report(p.max_spread_px, p.mode_gain if p.report_mode else None, self.ascent)
-        low, high = self.limits.bounds()
-        # Candidates may lie anywhere across the image; alpha, w and beta stay within Table 5.2.
-        self._refine_bounds = (np.r_[-np.inf, low[1:4]], np.r_[np.inf, high[1:4]])
+        self.report = Report(p.max_spread_px, p.mode_gain if p.report_mode else None, self.ascent, p.spread_share)
+        self._frame_width: int | None = None
+        self._fit_frame(None)
         self.width_prior = (
             WidthPrior(self.observation, p.width_prior_spread, p.width_prior_rate) if p.width_prior_spread > 0 else None
         )
@@ -156,10 +169,30 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
                 math.radians(0.5),
             ]
         )
+        self.silhouette = (
+            Silhouette(self.observation.taps, p.sample_distance_px, p.outline_fraction, p.rim_ratio, p.rim_reach_px)
+            if p.outline_fraction > 0
+            else None
+        )
         self.particle_set: ParticleSet | None = None
         self._rng: np.random.Generator | None = None
         self._steps = 0
         self._lost = False
+
+    def _fit_frame(self, width: int | None) -> None:
+        """Set the limits of Table 5.2, the line scan and the ascent's bounds for a frame ``width`` px wide.
+
+        The px limits (``d``, ``w``, ``v_d``) scale with ``width / reference_width_px``;
+        an unknown width, or ``reference_width_px = 0``, keeps them as given.
+        """
+        reference = self.params.reference_width_px
+        factor = width / reference if width is not None and reference > 0 else 1.0
+        self._frame_width = width
+        self.limits = self.table_limits.scaled(factor)
+        self.scan = LineScan(alpha_range_deg=self.limits.alpha_deg, width_range_px=self.limits.w_px)
+        low, high = self.limits.bounds()
+        # Candidates may lie anywhere across the image; alpha, w and beta stay within Table 5.2.
+        self._refine_bounds = (np.r_[-np.inf, low[1:4]], np.r_[np.inf, high[1:4]])
 
     @property
     def dims(self) -> int:
@@ -172,7 +205,8 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
         Parameters
         ----------
         info : SequenceInfo
-            Not used: the image size is read from each frame.
+            Its ``frame_size``, when known, scales the limits of Table 5.2
+            (``reference_width_px``); otherwise the first frame's does.
         rng : numpy.random.Generator
             The tracker's only source of randomness.
         init : CameraTruth, optional
@@ -188,6 +222,7 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
         seeds/000, section 4.3, eq. (4.1), Table 5.2, Fig. 4.10 step 1.
         """
         _compile_kernels(self.params)
+        self._fit_frame(info.frame_size[0] if info.frame_size is not None else None)
         n = int(self.params.n_particles)
         known = init is not None and init.cable.is_known
         if self.width_prior is not None:
@@ -239,19 +274,23 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
             image = as_grey_image(frame.observation)
         except DataError as exc:
             raise DataError(f"condensation: frame {frame.index}: {exc}") from exc
+        if image.shape[1] != self._frame_width:
+            self._fit_frame(image.shape[1])
         self._refresh(image)
         self._steps += 1
         self.particle_set = self.filter.step(self.particle_set, image, self._rng)
         mean = self.particle_set.mmse()[:4]
         mean_score = float(self.observation.score(mean[None, :], image)[0])
         self._lost = self.lost.update(mean_score)
-        if self._lost or self.report.too_wide(self.particle_set):
+        if self._lost or self.report.too_wide(self.particle_set, float(mean[2])):
             return None
         state = self.report.state(
             mean, mean_score, lambda states: self.observation.score(states, image), *self._refine_bounds
         )
         if self.width_prior is not None:
             self.width_prior.update(float(state[2]))
+        if self.silhouette is not None:
+            state = self.silhouette.outline(state, image)
         return CableState.from_array(state)
 
     def score_states(self, frame: CameraFrame, states: np.ndarray) -> np.ndarray:

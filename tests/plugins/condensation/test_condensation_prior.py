@@ -6,6 +6,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from trackbench_condensation.prior import InitLimits, particles_at, uniform_particles
 
 from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState
@@ -45,3 +47,20 @@ def test_particles_at_a_known_state_have_zero_velocities():
 def test_bad_limits_are_rejected(limits):
     with pytest.raises(ValueError, match="init limits"):
         InitLimits(**limits)
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.floats(0.1, 10.0), st.floats(0.1, 10.0))
+def test_scaling_the_limits_scales_only_the_pixel_ranges(first, second):
+    table = InitLimits()
+    scaled = table.scaled(first).scaled(second)
+    for name in ("d_px", "w_px", "v_d_px"):
+        np.testing.assert_allclose(getattr(scaled, name), np.multiply(getattr(table, name), first * second))
+    for name in ("alpha_deg", "beta_deg", "v_alpha_deg"):
+        assert getattr(scaled, name) == getattr(table, name)
+
+
+@pytest.mark.parametrize("factor", [0.0, -2.0, float("nan"), float("inf")])
+def test_a_bad_scale_factor_is_rejected(factor):
+    with pytest.raises(ValueError, match="scale factor"):
+        InitLimits().scaled(factor)

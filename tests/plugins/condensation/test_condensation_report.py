@@ -42,8 +42,25 @@ def test_a_few_particles_proposed_far_off_do_not_widen_the_spread():
 def test_too_wide_compares_the_spread_with_the_limit_and_zero_turns_it_off():
     wide = particles_in_d(np.random.default_rng(2).normal(0.0, 6.0, 1000))
     narrow = particles_in_d(np.random.default_rng(3).normal(0.0, 1.0, 1000))
-    assert Report(3.0, None).too_wide(wide) and not Report(3.0, None).too_wide(narrow)
-    assert not Report(0.0, None).too_wide(wide)
+    assert Report(3.0, None).too_wide(wide, 30.0) and not Report(3.0, None).too_wide(narrow, 30.0)
+    assert not Report(0.0, None).too_wide(wide, 30.0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.floats(0.5, 10.0), st.floats(0.0, 0.2), st.floats(1.0, 400.0))
+def test_the_spread_limit_is_the_floor_or_the_share_of_the_width_whichever_is_larger(floor, share, width):
+    report = Report(floor, None, spread_share=share)
+    limit = report.spread_limit(width)
+    assert limit == max(floor, share * width)
+    cloud = particles_in_d(np.random.default_rng(4).normal(0.0, 1.0, 2000))
+    spread = spread_of_distance(cloud)
+    assert report.too_wide(cloud, width) == (spread > limit)
+
+
+def test_a_wide_cable_may_spread_further_before_it_is_too_wide():
+    cloud = particles_in_d(np.random.default_rng(5).normal(0.0, 4.0, 2000))
+    report = Report(3.0, None, spread_share=0.04)
+    assert report.too_wide(cloud, 30.0) and not report.too_wide(cloud, 150.0)
 
 
 def test_the_peak_is_reported_when_it_clearly_beats_the_mean():

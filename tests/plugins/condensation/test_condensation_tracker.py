@@ -11,6 +11,7 @@ import pytest
 import trackbench_condensation.tracker as tracker_module
 from trackbench_condensation import CondensationParams, CondensationTracker
 from trackbench_condensation.observation import INTERPOLATIONS
+from trackbench_condensation.prior import InitLimits
 
 from benchmark.errors import DataError, ParameterError
 from benchmark.filters import RESAMPLERS
@@ -60,7 +61,7 @@ def test_follows_a_moving_cable_from_its_first_state(sequence):
 
 def test_estimate_is_the_weighted_mean_of_the_particles(sequence):
     states, images = sequence
-    tracker = make(report_mode=False)
+    tracker = make(report_mode=False, outline_fraction=0.0)
     estimate = run(tracker, images[:3], init=CameraTruth(states[0]))[-1]
     np.testing.assert_allclose(estimate.as_array(), tracker.weights @ tracker.particles[:, :4])
 
@@ -71,7 +72,7 @@ def test_the_peak_beside_a_lagging_mean_is_reported(sequence):
     first = states[0]
     start = CameraTruth(CableState(first.d + 4.0, first.alpha + math.radians(2.5), first.w + 6.0, first.beta))
     mean_only, with_mode = (
-        run(make(report_mode=mode, redetect_fraction=0.0, max_spread_px=0.0), images[:1], init=start)[0]
+        run(make(report_mode=mode, redetect_fraction=0.0, max_spread_px=0.0, outline_fraction=0.0), images[:1], init=start)[0]
         for mode in (False, True)
     )
     assert outcomes([mean_only, with_mode], states[:1] * 2) == [Outcome.FALSE, Outcome.CORRECT]
@@ -79,7 +80,7 @@ def test_the_peak_beside_a_lagging_mean_is_reported(sequence):
 
 def test_particles_that_disagree_on_the_distance_report_no_cable(sequence):
     states, images = sequence
-    tracker = make(max_spread_px=0.2)
+    tracker = make(max_spread_px=0.2, spread_share=0.0)
     estimates = run(tracker, images[:3], init=CameraTruth(states[0]))
     assert estimates == [None] * 3
     assert not tracker._lost  # reported as no detection, but the filter still tracks
@@ -87,7 +88,7 @@ def test_particles_that_disagree_on_the_distance_report_no_cable(sequence):
 
 def test_the_width_prior_starts_at_the_true_width_and_follows_the_reports(sequence):
     states, images = sequence
-    tracker = make()
+    tracker = make(outline_fraction=0.0)
     estimates = run(tracker, images[:2], init=CameraTruth(states[0]))
     rate = tracker.params.width_prior_rate
     expected = (1 - rate) * ((1 - rate) * states[0].w + rate * estimates[0].w) + rate * estimates[1].w
@@ -96,11 +97,29 @@ def test_the_width_prior_starts_at_the_true_width_and_follows_the_reports(sequen
     assert tracker.width_prior.mean_width is None
 
 
+def test_the_outline_moves_only_what_is_reported(sequence):
+    states, images = sequence
+    plain, outlined = make(outline_fraction=0.0), make()
+    reports = [run(tracker, images[:4], init=CameraTruth(states[0])) for tracker in (plain, outlined)]
+    np.testing.assert_array_equal(plain.particles, outlined.particles)
+    np.testing.assert_array_equal(plain.weights, outlined.weights)
+    assert plain.width_prior.mean_width == outlined.width_prior.mean_width
+    # On the drawn band's sharp borders the outline stays within a pixel of the tracked edges.
+    for before, after in zip(*reports, strict=True):
+        assert abs(after.alpha - before.alpha) < 1e-12 and abs(after.beta - before.beta) < 1e-12
+        for side in (-1.0, 1.0):
+            assert abs((after.d + side * after.w / 2) - (before.d + side * before.w / 2)) <= 1.5
+
+
 def test_the_thesis_variant_reports_the_mean_without_a_width_prior():
     from trackbench_condensation import VARIANTS
 
     tracker = make(**VARIANTS["condensation-thesis"])
     assert tracker.width_prior is None and tracker.report.mode_gain is None and tracker.report.max_spread_px == 0
+    # Nor is its outline moved, and Table 5.2's limits stay in pixels as printed on any frame.
+    assert tracker.silhouette is None
+    tracker.reset(SequenceInfo("drawn", "camera", frame_size=(640, 480)), np.random.default_rng(0))
+    assert tracker.limits == InitLimits()
 
 
 def test_same_seed_replays_and_another_seed_differs(sequence):
@@ -114,7 +133,7 @@ def test_same_seed_replays_and_another_seed_differs(sequence):
 
 def test_uniform_initialisation_within_table_5_2(sequence):
     _, images = sequence
-    tracker = make(n_particles=2000)
+    tracker = make(n_particles=2000, init_w_px=(5.0, 100.0))
     tracker.reset(INFO, np.random.default_rng(0), init=None)
     states = tracker.particles
     assert states.shape == (2000, 6)
@@ -131,6 +150,32 @@ def test_without_initialisation_the_cable_is_found(sequence):
     states, images = sequence
     estimates = run(make(), images, seed=1, init=None)
     assert outcomes(estimates, states)[-10:].count(Outcome.CORRECT) >= 8
+
+
+@pytest.mark.parametrize(("reference", "found"), [(320.0, True), (0.0, False)])
+def test_a_wide_cable_on_a_large_frame_is_found_within_the_scaled_limits(scene, reference, found):
+    # 250 px wide on 640 x 480: beyond the 190 px allowed at 320 px, within the 380 px at twice that width.
+    size = (640, 480)
+    cable = CableState(30.0, math.radians(5.0), 250.0, math.radians(1.0))
+    images = [scene.draw_cable(cable, contrast=-50.0, seed=k, size=size) for k in range(6)]
+    tracker = make(reference_width_px=reference)
+    tracker.reset(SequenceInfo("drawn", "camera", frame_size=size), np.random.default_rng(3), init=None)
+    assert tracker.limits.w_px == ((10.0, 380.0) if reference else (5.0, 190.0))
+    estimates = [tracker.step(Frame(k, image)) for k, image in enumerate(images)]
+    correct = [
+        score_line_pair(None if e is None else cable_borders(e), cable_borders(cable), size) == Outcome.CORRECT
+        for e in estimates
+    ]
+    assert all(correct[-3:]) if found else not any(correct)
+
+
+def test_the_limits_follow_the_frame_when_its_size_is_not_told_in_advance(sequence):
+    _, images = sequence
+    tracker = make()
+    tracker.reset(SequenceInfo("drawn", "camera"), np.random.default_rng(0), init=None)
+    assert tracker.limits.d_px == (-150.0, 150.0)
+    tracker.step(Frame(0, np.repeat(np.repeat(images[0], 2, axis=0), 2, axis=1)))
+    assert tracker.limits.d_px == (-300.0, 300.0) and tracker.scan.width_range_px == (10.0, 380.0)
 
 
 def test_truth_initialisation_puts_every_particle_at_the_truth(sequence):
