@@ -29,12 +29,14 @@ are read off the classified image (:mod:`trackbench_texture.borders`).
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, Literal
 
 import pydantic
 from annotated_types import Ge, Interval, Le
 
 from benchmark.parameters import NonNegative, Positive, Share, require_order
+from trackbench_texture.borders import Pairing
+from trackbench_texture.working import Normalisation
 
 OddSize = Annotated[int, Ge(3), Le(63)]
 """A mask size in px; even values are rounded up to the next odd one."""
@@ -49,6 +51,21 @@ class DescriptorParams:
     pixels that differ only softly from their neighbours, all counted in a
     square neighbourhood of ``window_px``.
     """
+
+    working_height_px: Annotated[int, Ge(0), Le(4096)] = 0
+    """Rows the frame is resampled to before any descriptor, its aspect kept (0: the frame as it is).
+
+    Every other size in px, here and in the border tests, is one at this height
+    (:mod:`trackbench_texture.working`)."""
+
+    normalisation: Normalisation = "none"
+    """How the frame's grey levels are normalised before any descriptor (:data:`~trackbench_texture.working.NORMALISERS`)."""
+
+    normalised_spread: Positive = 40.0
+    """Standard deviation of grey levels the normaliser gives the image (not used by ``"none"``)."""
+
+    normalisation_scale: Annotated[float, Interval(gt=0, le=1)] = 0.1
+    """The local normaliser's neighbourhood (Gaussian standard deviation), a share of the working height."""
 
     smoothing_sigma: NonNegative = 1.0
     """Standard deviation in px of the Gaussian applied before any descriptor (0: none)."""
@@ -121,6 +138,12 @@ class TextureParams(DescriptorParams):
     min_length_share: Share = 0.5
     """Share of the image rows (or columns) the cable region must span to be cable-shaped."""
 
+    border_pairing: Pairing = "sides"
+    """How the two borders are found among the straight pieces (:data:`~trackbench_texture.borders.PAIRINGS`)."""
+
+    border_search: Literal["strip", "region"] = "strip"
+    """Where the straight pieces of the borders are looked for: in the strip, or anywhere in the cable region."""
+
     inlier_px: Positive = 1.0
     """Largest distance of a straight-piece pixel from a border that counts it as the border's, px."""
 
@@ -153,6 +176,10 @@ class TextureParams(DescriptorParams):
     def descriptor_params(self) -> DescriptorParams:
         """The descriptor settings alone, as a model stores them."""
         return DescriptorParams(
+            working_height_px=self.working_height_px,
+            normalisation=self.normalisation,
+            normalised_spread=self.normalised_spread,
+            normalisation_scale=self.normalisation_scale,
             smoothing_sigma=self.smoothing_sigma,
             edge_low=self.edge_low,
             edge_high=self.edge_high,

@@ -164,17 +164,21 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
         DataError
             If the observation is not an image, naming the frame.
         """
-        kinds, grid = self._require_model().analyse_grid(_grey(frame))
+        kinds, grid, work = self._require_model().analyse_grid(_grey(frame))
         if self._rng is None:
             raise RuntimeError("texture: call reset(info, rng) before step")
         p = self.params
-        strip = cable_strip(grid.classes == Region.CABLE, p.min_region_px, grid.rows, grid.cols)
+        on_cable = grid.classes == Region.CABLE
+        strip = cable_strip(on_cable, p.min_region_px, grid.rows, grid.cols)
         if strip is None:
             return None
         return fit_borders(
             strip,
             kinds.straight,
             self._rng,
+            work,
+            on_cable[grid.rows][:, grid.cols] if p.border_search == "region" else None,
+            p.border_pairing,
             inlier_px=p.inlier_px,
             trials=p.ransac_trials,
             min_length_share=p.min_length_share,
