@@ -144,6 +144,12 @@ class TextureParams(DescriptorParams):
     border_search: Literal["strip", "region"] = "strip"
     """Where the straight pieces of the borders are looked for: in the strip, or anywhere in the cable region."""
 
+    foot_reach_px: NonNegative = 0.0
+    """How far from each fitted border its edge's steepest point is looked for before the border is moved out to the edge's foot, px at the working height (0: borders stay where fitted; :mod:`trackbench_texture.feet`)."""
+
+    foot_share: Annotated[float, Interval(gt=0, lt=1)] = 0.5
+    """Share of the edge's steepest slope below which, walking outwards, the edge has ended (its foot)."""
+
     inlier_px: Positive = 1.0
     """Largest distance of a straight-piece pixel from a border that counts it as the border's, px."""
 
@@ -192,3 +198,14 @@ class TextureParams(DescriptorParams):
             window_px=self.window_px,
             grid_px=self.grid_px,
         )
+
+
+PAPER: dict[str, object] = {
+    "working_height_px": 0,
+    "normalisation": "none",
+    "border_pairing": "sides",
+    "border_search": "strip",
+    "max_width_px": 120.0,
+    "foot_reach_px": 0.0,
+}
+"""The overrides that give ``texture-paper``: the reading for one camera (see the module docstring)."""

@@ -36,6 +36,7 @@ from benchmark.tracker import Tracker
 from trackbench_texture.borders import cable_strip, fit_borders
 from trackbench_texture.classes import Region
 from trackbench_texture.descriptors import PixelKinds
+from trackbench_texture.feet import border_feet
 from trackbench_texture.model import TextureModel, train
 from trackbench_texture.params import TextureParams
 
@@ -53,7 +54,7 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
     """
 
     name = "texture"
-    version = "1.0"
+    version = "2.0"
     modality = "camera"
     deterministic = True
     Params = TextureParams
@@ -164,7 +165,8 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
         DataError
             If the observation is not an image, naming the frame.
         """
-        kinds, grid, work = self._require_model().analyse_grid(_grey(frame))
+        image = _grey(frame)
+        kinds, grid, work = self._require_model().analyse_grid(image)
         if self._rng is None:
             raise RuntimeError("texture: call reset(info, rng) before step")
         p = self.params
@@ -172,7 +174,7 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
         strip = cable_strip(on_cable, p.min_region_px, grid.rows, grid.cols)
         if strip is None:
             return None
-        return fit_borders(
+        state = fit_borders(
             strip,
             kinds.straight,
             self._rng,
@@ -187,6 +189,10 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
             max_width_px=p.max_width_px,
             max_skew=math.radians(p.max_skew_deg),
         )
+        if state is None or p.foot_reach_px == 0:
+            return state
+        scale = work.frame_size[1] / work.size[1]
+        return border_feet(image, state, p.foot_reach_px * scale, p.smoothing_sigma * scale, p.foot_share)
 
 
 def _grey(frame: CameraFrame) -> np.ndarray:
