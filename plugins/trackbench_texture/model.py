@@ -31,7 +31,7 @@ from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState
 from benchmark.model import Frame, Sequence
 from trackbench_texture.classes import RegionClassifier, train_regions
-from trackbench_texture.descriptors import PixelKinds, densities_at, pixel_kinds, texture_descriptors
+from trackbench_texture.descriptors import PixelKinds, densities, densities_at, pixel_kinds
 from trackbench_texture.labels import cable_mask
 from trackbench_texture.params import DescriptorParams, TextureParams
 from trackbench_texture.working import WorkingImage, working_image
@@ -91,7 +91,7 @@ class TextureModel:
         """
         settings = self.descriptors
         work = prepare(image, settings)
-        kinds = pixel_kinds(work.image, settings)
+        kinds = working_kinds(work, settings)
         step = settings.grid_px
         offset = step // 2
         height, width = work.image.shape
@@ -101,6 +101,13 @@ class TextureModel:
         nearest_row = np.clip(np.rint((np.arange(height) - rows[0]) / step).astype(int), 0, len(rows) - 1)
         nearest_col = np.clip(np.rint((np.arange(width) - cols[0]) / step).astype(int), 0, len(cols) - 1)
         return kinds, RegionGrid(classes, nearest_row, nearest_col), work
+
+
+def working_kinds(work: WorkingImage, settings: DescriptorParams) -> PixelKinds:
+    """The pixels the descriptors count on a working image: the lines on the normalised image, the
+    specks and soft pixels on the normalised or the resampled one as ``settings.normalised_kinds`` says."""
+    noise = work.grey if settings.normalised_kinds == "lines" else None
+    return pixel_kinds(work.image, settings, noise)
 
 
 def prepare(image: np.ndarray, settings: DescriptorParams) -> WorkingImage:
@@ -176,7 +183,7 @@ def _reservoir(sequence: Sequence, k: int, rng: np.random.Generator) -> list[_La
 def _pixels(frame: _Labelled, settings: DescriptorParams, count: int, rng: np.random.Generator):
     """``count`` pixels of a frame's working image, half on the cable, half off: their descriptors and labels."""
     work = prepare(frame.image, settings)
-    descriptors = texture_descriptors(work.image, settings)
+    descriptors = densities(working_kinds(work, settings), settings.window_px)
     on_cable = work.frame_mask(cable_mask(frame.cable, work.frame_size)).ravel()
     chosen = []
     for side in (np.flatnonzero(on_cable), np.flatnonzero(~on_cable)):

@@ -100,13 +100,16 @@ class WorkingImage:
     Attributes
     ----------
     image : numpy.ndarray
-        ``uint8`` grey image of shape ``(h, w)``.
+        ``uint8`` grey image of shape ``(h, w)``, its grey levels normalised.
     frame_size : tuple of int
         The frame's ``(W, H)`` in px.
+    grey : numpy.ndarray
+        The same before normalisation: the frame resampled.
     """
 
     image: np.ndarray
     frame_size: tuple[int, int]
+    grey: np.ndarray
 
     @property
     def size(self) -> tuple[int, int]:
@@ -169,4 +172,4 @@ def working_image(
         shrinking = height_px < height
         work = cv2.resize(image, size, interpolation=cv2.INTER_AREA if shrinking else cv2.INTER_LINEAR)
     normalised = NORMALISERS[normalisation](work, spread, max(scale_share * work.shape[0], 0.5))
-    return WorkingImage(normalised, (width, height))
+    return WorkingImage(normalised, (width, height), work)
