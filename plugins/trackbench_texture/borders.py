@@ -21,7 +21,13 @@ counts) along the two sides of that strip.  The reading implemented here:
    ``inlier_px``, refined by least squares on those.  A border is the
    longest straight line on its side, so clutter inside the strip rarely
    outvotes it.  The pairs of pixels are drawn from the run's random
-   generator.
+   generator.  That is the ``"sides"`` pairing (:data:`PAIRINGS`); the
+   ``"parallel"`` pairing needs no centreline: the first border is the
+   best-supported line along the strip, the second the best-supported line
+   off it that runs within twice the largest skew of it at a plausible
+   width, and the straight pieces may be looked for in the whole cable
+   region rather than the strip, so that a cable wider than the texture
+   neighbourhood, whose cable class is a band along each border, is found.
 
 The strip is **not cable-shaped**, and no detection is reported, when no
 part is large enough, when the chosen part spans less than

@@ -7,7 +7,12 @@ classified into region classes learned from labelled images (cable, sand,
 stones and vegetation, undefined; :mod:`trackbench_texture.classes`,
 :mod:`trackbench_texture.model`).  The thesis leaves open how the cable's
 position follows from the classified image; here its two borders are
-fitted to the edges of the cable region (:mod:`trackbench_texture.borders`).
+fitted to the edges of the cable region (:mod:`trackbench_texture.borders`)
+and moved out to the feet of those edges on the frame itself
+(:mod:`trackbench_texture.feet`).  The descriptors are measured on a
+working image, the frame resampled to a fixed height with its grey levels
+normalised (:mod:`trackbench_texture.working`), so that a model learned on
+frames of one size and exposure applies to others.
 
 Each frame is classified on its own: the tracker keeps no state between
 frames but its random generator, never reads a frame's truth and ignores
