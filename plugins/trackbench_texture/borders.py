@@ -21,7 +21,13 @@ counts) along the two sides of that strip.  The reading implemented here:
    ``inlier_px``, refined by least squares on those.  A border is the
    longest straight line on its side, so clutter inside the strip rarely
    outvotes it.  The pairs of pixels are drawn from the run's random
-   generator.
+   generator.  That is the ``"sides"`` pairing (:data:`PAIRINGS`); the
+   ``"parallel"`` pairing needs no centreline: the first border is the
+   best-supported line along the strip, the second the best-supported line
+   off it that runs within twice the largest skew of it at a plausible
+   width, and the straight pieces may be looked for in the whole cable
+   region rather than the strip, so that a cable wider than the texture
+   neighbourhood, whose cable class is a band along each border, is found.
 
 The strip is **not cable-shaped**, and no detection is reported, when no
 part is large enough, when the chosen part spans less than
@@ -36,7 +42,9 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Literal
 
 import cv2
 import numba
@@ -44,6 +52,7 @@ import numpy as np
 
 from benchmark.modalities.camera.geometry import Line, cable_from_borders
 from benchmark.modalities.camera.model import CableState
+from trackbench_texture.working import WorkingImage
 
 
 @dataclass(frozen=True, eq=False)
@@ -182,8 +191,17 @@ def _support(
     return support
 
 
+Admissible = Callable[[np.ndarray, np.ndarray], np.ndarray]
+"""``(slopes, intercepts) -> bool`` per candidate line: whether RANSAC may choose it."""
+
+
 def ransac_line(
-    along: np.ndarray, across: np.ndarray, inlier_px: float, trials: int, rng: np.random.Generator
+    along: np.ndarray,
+    across: np.ndarray,
+    inlier_px: float,
+    trials: int,
+    rng: np.random.Generator,
+    admissible: Admissible | None = None,
 ) -> tuple[ScanLine, np.ndarray] | None:
     """The line through two of the points with the most points within ``inlier_px``, refined by least squares.
 
@@ -197,12 +215,15 @@ def ransac_line(
         Number of pairs of points tried.
     rng : numpy.random.Generator
         Draws the pairs.
+    admissible : callable, optional
+        Which candidate lines may be chosen (all when None); the refined
+        line is kept only while it stays admissible.
 
     Returns
     -------
     (ScanLine, numpy.ndarray) or None
         The refined line and its inliers (``(N,)`` bool); None for fewer
-        than two points or when no pair spans two scan lines.
+        than two points or when no pair spans two scan lines (or none is admissible).
     """
     n = len(along)
     if n < 2:
@@ -215,6 +236,11 @@ def ransac_line(
     pairs, d_along = pairs[usable], d_along[usable]
     slopes = (across[pairs[:, 1]] - across[pairs[:, 0]]) / d_along
     intercepts = across[pairs[:, 0]] - slopes * along[pairs[:, 0]]
+    if admissible is not None:
+        allowed = admissible(slopes, intercepts)
+        if not allowed.any():
+            return None
+        slopes, intercepts = slopes[allowed], intercepts[allowed]
     support = _support(along, across, slopes, intercepts, inlier_px * np.hypot(1.0, slopes))
     best = int(np.argmax(support))
     line = ScanLine(float(slopes[best]), float(intercepts[best]))
@@ -223,23 +249,96 @@ def ransac_line(
         if inliers.sum() < 2 or np.ptp(along[inliers]) == 0:
             break
         slope, intercept = np.polyfit(along[inliers], across[inliers], 1)
+        if admissible is not None and not admissible(np.array([slope]), np.array([intercept]))[0]:
+            break
         line = ScanLine(float(slope), float(intercept))
     return line, line.distance(along, across) <= inlier_px
 
 
-def _model_line(line: ScanLine, by_rows: bool, size: tuple[int, int]) -> Line:
-    """The model-coordinate line of a scan line of an image of ``size = (W, H)``."""
+def _pixel_ends(line: ScanLine, by_rows: bool, size: tuple[int, int]) -> tuple[tuple[float, float], ...]:
+    """Two pixel points ``(u, v)`` of a scan line of an image of ``size = (W, H)``."""
     extent = max((size[1] if by_rows else size[0]) - 1.0, 1.0)
     ends = [(float(line.at(t)), t) for t in (0.0, extent)]
     if not by_rows:
         ends = [(t, a) for a, t in ends]
-    return Line.from_pixels(ends[0], ends[1], size)
+    return tuple(ends)
+
+
+@dataclass(frozen=True)
+class _PairLimits:
+    """What a pair of borders must satisfy: RANSAC's settings and the cable-shape tests (scan-line units)."""
+
+    inlier_px: float
+    trials: int
+    min_rows: float
+    min_width_px: float
+    max_width_px: float
+    max_skew: float
+
+    def supported(self, along: np.ndarray, inliers: np.ndarray) -> bool:
+        """Whether a border's inliers lie on at least ``min_rows`` scan lines."""
+        return len(np.unique(along[inliers])) >= self.min_rows
+
+
+def _by_sides(
+    strip: Strip, along: np.ndarray, across: np.ndarray, limits: _PairLimits, rng: np.random.Generator
+) -> list[ScanLine] | None:
+    """One border on each side of the strip's centreline: each side's RANSAC line."""
+    left_side = across < centreline(strip).at(along)
+    borders = []
+    for side in (left_side, ~left_side):
+        fit = ransac_line(along[side], across[side], limits.inlier_px, limits.trials, rng)
+        if fit is None or not limits.supported(along[side], fit[1]):
+            return None
+        borders.append(fit[0])
+    return borders
+
+
+def _parallel(
+    strip: Strip, along: np.ndarray, across: np.ndarray, limits: _PairLimits, rng: np.random.Generator
+) -> list[ScanLine] | None:
+    """The best-supported line along the strip, then the best-supported line a cable's width from it.
+
+    The second line is drawn from the points off the first, among lines
+    that make at most twice the largest skew with it and lie between the
+    smallest and the largest width from it at the middle scan line.
+    """
+    middle = 0.5 * (strip.mask.shape[0] - 1)
+    first = ransac_line(
+        along, across, limits.inlier_px, limits.trials, rng, lambda slopes, _: np.abs(slopes) <= 1.0
+    )
+    if first is None or not limits.supported(along, first[1]):
+        return None
+    line, taken = first
+    angle = math.atan(line.slope)
+
+    def partner(slopes: np.ndarray, intercepts: np.ndarray) -> np.ndarray:
+        gap = np.abs(slopes * middle + intercepts - line.at(middle)) / math.hypot(1.0, line.slope)
+        parallel = np.abs(np.arctan(slopes) - angle) <= 2.0 * limits.max_skew
+        return parallel & (gap >= limits.min_width_px) & (gap <= limits.max_width_px)
+
+    rest_along, rest_across = along[~taken], across[~taken]
+    second = ransac_line(rest_along, rest_across, limits.inlier_px, limits.trials, rng, partner)
+    if second is None or not limits.supported(rest_along, second[1]):
+        return None
+    return sorted([line, second[0]], key=lambda border: border.at(middle))
+
+
+Pairing = Literal["sides", "parallel"]
+"""The names of :data:`PAIRINGS`."""
+
+PAIRINGS: dict[str, Callable[..., list[ScanLine] | None]] = {"sides": _by_sides, "parallel": _parallel}
+"""How the two borders are found among the straight pieces, by name: ``(strip, along, across, limits, rng)``
+to the two scan lines in order of their across-coordinate, or None."""
 
 
 def fit_borders(
     strip: Strip,
     straight: np.ndarray,
     rng: np.random.Generator,
+    work: WorkingImage | None = None,
+    region: np.ndarray | None = None,
+    pairing: Pairing = "sides",
     *,
     inlier_px: float,
     trials: int,
@@ -260,6 +359,14 @@ def fit_borders(
         (:attr:`trackbench_texture.descriptors.PixelKinds.straight`).
     rng : numpy.random.Generator
         Draws RANSAC's pairs of points.
+    work : WorkingImage, optional
+        The working image ``straight`` belongs to: the state is returned in
+        its frame's pixels.  None: in ``straight``'s own.
+    region : numpy.ndarray, optional
+        ``(H, W)`` bool: where the straight pieces are looked for (all the
+        cable-class pixels); None: in the strip.
+    pairing : str
+        A key of :data:`PAIRINGS`.
     inlier_px, trials : float, int
         RANSAC's inlier distance (px) and number of pairs.
     min_length_share, min_inlier_share, min_width_px, max_width_px : float
@@ -270,30 +377,27 @@ def fit_borders(
     Returns
     -------
     CableState or None
-        None when the strip is not cable-shaped.
+        None when the strip is not cable-shaped (the width and skew tests
+        are taken on the working image).
     """
     crossed = strip.crossed
     if crossed.mean() < min_length_share:
         return None
-    middle = centreline(strip)
-    along, across = np.divmod(np.flatnonzero(strip.scan(straight > 0) & strip.mask), strip.mask.shape[1])
-    along, across = along.astype(np.float64), across.astype(np.float64)
-    left_side = across < middle.at(along)
-    borders = []
-    for side in (left_side, ~left_side):
-        fit = ransac_line(along[side], across[side], inlier_px, trials, rng)
-        if fit is None:
-            return None
-        line, inliers = fit
-        if len(np.unique(along[side][inliers])) < min_inlier_share * crossed.sum():
-            return None
-        borders.append(line)
+    searched = strip.mask if region is None else strip.scan(region)
+    along, across = np.divmod(np.flatnonzero(strip.scan(straight > 0) & searched), strip.mask.shape[1])
+    limits = _PairLimits(inlier_px, trials, min_inlier_share * crossed.sum(), min_width_px, max_width_px, max_skew)
+    borders = PAIRINGS[pairing](strip, along.astype(np.float64), across.astype(np.float64), limits, rng)
+    if borders is None:
+        return None
     low, high = borders
     extent = float(strip.mask.shape[0] - 1)
     if any(high.at(t) <= low.at(t) for t in (0.0, extent)):
         return None
     size = (straight.shape[1], straight.shape[0])
-    state = cable_from_borders(_model_line(low, strip.by_rows, size), _model_line(high, strip.by_rows, size))
+    ends = [_pixel_ends(border, strip.by_rows, size) for border in (low, high)]
+    state = cable_from_borders(*(Line.from_pixels(*pair, size) for pair in ends))
     if not (min_width_px <= state.w <= max_width_px and abs(state.beta) <= max_skew):
         return None
-    return state
+    if work is None or not work.resampled:
+        return state
+    return cable_from_borders(*(work.frame_line(*pair) for pair in ends))

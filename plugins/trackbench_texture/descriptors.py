@@ -193,7 +193,7 @@ class PixelKinds:
         return self.straight, self.abrupt, self.ends, self.specks, self.soft
 
 
-def pixel_kinds(image: np.ndarray, params: DescriptorParams) -> PixelKinds:
+def pixel_kinds(image: np.ndarray, params: DescriptorParams, noise_image: np.ndarray | None = None) -> PixelKinds:
     """Find the pixels the five descriptors count (see the module docstring).
 
     Parameters
@@ -202,6 +202,9 @@ def pixel_kinds(image: np.ndarray, params: DescriptorParams) -> PixelKinds:
         A ``uint8`` grey image of shape ``(H, W)``.
     params : DescriptorParams
         Mask sizes and thresholds.
+    noise_image : numpy.ndarray, optional
+        The image whose specks and soft pixels are counted (granularity and
+        blurriness), of ``image``'s shape; None: ``image`` itself.
 
     Returns
     -------
@@ -240,6 +243,9 @@ def pixel_kinds(image: np.ndarray, params: DescriptorParams) -> PixelKinds:
     # An edge pixel's 3 x 3 square holds itself and, at a line end, one edge neighbour.
     ends = _scatter(around == 2, at, on_edge.shape)
 
+    if noise_image is not None:
+        check_grey_image(noise_image)
+        image, raw = noise_image, noise_image.astype(np.float32)
     brightest = cv2.dilate(image, _RING, borderType=cv2.BORDER_REFLECT)
     darkest = cv2.erode(image, _RING, borderType=cv2.BORDER_REFLECT)
     # A whole number of grey levels exceeds the (float32) step exactly when it exceeds the step's floor.

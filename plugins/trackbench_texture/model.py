@@ -31,9 +31,10 @@ from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState
 from benchmark.model import Frame, Sequence
 from trackbench_texture.classes import RegionClassifier, train_regions
-from trackbench_texture.descriptors import PixelKinds, densities_at, pixel_kinds, texture_descriptors
+from trackbench_texture.descriptors import PixelKinds, densities, densities_at, pixel_kinds
 from trackbench_texture.labels import cable_mask
 from trackbench_texture.params import DescriptorParams, TextureParams
+from trackbench_texture.working import WorkingImage, working_image
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,9 +59,11 @@ class TextureModel:
     n_frames: int
 
     def analyse(self, image: np.ndarray) -> tuple[PixelKinds, np.ndarray]:
-        """The descriptors' pixels and the region class of every pixel of a ``uint8`` grey image.
+        """The descriptors' pixels and the region class of every pixel of the working image of a ``uint8`` grey frame.
 
-        The classes are computed on a grid of spacing ``grid_px`` (the
+        The working image is the frame resampled and normalised
+        (:func:`prepare`); with ``working_height_px`` 0 it has the frame's
+        size.  The classes are computed on a grid of spacing ``grid_px`` (the
         descriptors vary slowly, being densities over ``window_px``), and
         each grid point's class fills the pixels nearest to it.
 
@@ -69,12 +72,12 @@ class TextureModel:
         kinds : PixelKinds
             What each descriptor counts (the straight pieces locate the borders).
         regions : numpy.ndarray
-            ``uint8`` array of shape ``(H, W)`` of :class:`~trackbench_texture.classes.Region` values.
+            ``uint8`` array of the working image's shape of :class:`~trackbench_texture.classes.Region` values.
         """
-        kinds, grid = self.analyse_grid(image)
+        kinds, grid, _ = self.analyse_grid(image)
         return kinds, grid.pixels()
 
-    def analyse_grid(self, image: np.ndarray) -> tuple[PixelKinds, RegionGrid]:
+    def analyse_grid(self, image: np.ndarray) -> tuple[PixelKinds, RegionGrid, WorkingImage]:
         """The descriptors' pixels and the region classes of the grid of :meth:`analyse`, not yet spread to pixels.
 
         Returns
@@ -82,19 +85,46 @@ class TextureModel:
         kinds : PixelKinds
             What each descriptor counts.
         grid : RegionGrid
-            The grid points' classes and the pixels each fills.
+            The grid points' classes and the pixels of the working image each fills.
+        work : WorkingImage
+            The working image, and how it maps to the frame.
         """
         settings = self.descriptors
-        kinds = pixel_kinds(image, settings)
+        work = prepare(image, settings)
+        kinds = working_kinds(work, settings)
         step = settings.grid_px
         offset = step // 2
-        height, width = image.shape
+        height, width = work.image.shape
         rows = np.arange(min(offset, height - 1), height, step)
         cols = np.arange(min(offset, width - 1), width, step)
         classes = self.regions.classify(densities_at(kinds, settings.window_px, rows, cols))
         nearest_row = np.clip(np.rint((np.arange(height) - rows[0]) / step).astype(int), 0, len(rows) - 1)
         nearest_col = np.clip(np.rint((np.arange(width) - cols[0]) / step).astype(int), 0, len(cols) - 1)
-        return kinds, RegionGrid(classes, nearest_row, nearest_col)
+        return kinds, RegionGrid(classes, nearest_row, nearest_col), work
+
+
+def working_kinds(work: WorkingImage, settings: DescriptorParams) -> PixelKinds:
+    """The pixels the descriptors count on a working image: the lines on the normalised image, the
+    specks and soft pixels on the normalised or the resampled one as ``settings.normalised_kinds`` says."""
+    noise = work.grey if settings.normalised_kinds == "lines" else None
+    return pixel_kinds(work.image, settings, noise)
+
+
+def prepare(image: np.ndarray, settings: DescriptorParams) -> WorkingImage:
+    """The working image of a ``uint8`` grey frame: resampled and normalised as ``settings`` say.
+
+    Raises
+    ------
+    ValueError
+        If ``image`` is not a non-empty 2-D ``uint8`` array.
+    """
+    return working_image(
+        image,
+        settings.working_height_px,
+        settings.normalisation,
+        settings.normalised_spread,
+        settings.normalisation_scale,
+    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -150,8 +180,11 @@ def _reservoir(sequence: Sequence, k: int, rng: np.random.Generator) -> list[_La
     return kept
 
 
-def _pixels(frame: _Labelled, descriptors: np.ndarray, count: int, rng: np.random.Generator):
-    on_cable = cable_mask(frame.cable, (frame.image.shape[1], frame.image.shape[0])).ravel()
+def _pixels(frame: _Labelled, settings: DescriptorParams, count: int, rng: np.random.Generator):
+    """``count`` pixels of a frame's working image, half on the cable, half off: their descriptors and labels."""
+    work = prepare(frame.image, settings)
+    descriptors = densities(working_kinds(work, settings), settings.window_px)
+    on_cable = work.frame_mask(cable_mask(frame.cable, work.frame_size)).ravel()
     chosen = []
     for side in (np.flatnonzero(on_cable), np.flatnonzero(~on_cable)):
         take = min(len(side), count // 2)
@@ -191,7 +224,7 @@ def train(training: SequenceOf[Sequence], params: TextureParams, rng: np.random.
     settings = params.descriptor_params()
     samples, on_cable = [], []
     for frame in learn:
-        x, y = _pixels(frame, texture_descriptors(frame.image, settings), params.pixels_per_frame, rng)
+        x, y = _pixels(frame, settings, params.pixels_per_frame, rng)
         samples.append(x)
         on_cable.append(y)
     regions = train_regions(

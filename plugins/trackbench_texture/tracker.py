@@ -7,7 +7,12 @@ classified into region classes learned from labelled images (cable, sand,
 stones and vegetation, undefined; :mod:`trackbench_texture.classes`,
 :mod:`trackbench_texture.model`).  The thesis leaves open how the cable's
 position follows from the classified image; here its two borders are
-fitted to the edges of the cable region (:mod:`trackbench_texture.borders`).
+fitted to the edges of the cable region (:mod:`trackbench_texture.borders`)
+and moved out to the feet of those edges on the frame itself
+(:mod:`trackbench_texture.feet`).  The descriptors are measured on a
+working image, the frame resampled to a fixed height with its grey levels
+normalised (:mod:`trackbench_texture.working`), so that a model learned on
+frames of one size and exposure applies to others.
 
 Each frame is classified on its own: the tracker keeps no state between
 frames but its random generator, never reads a frame's truth and ignores
@@ -36,6 +41,7 @@ from benchmark.tracker import Tracker
 from trackbench_texture.borders import cable_strip, fit_borders
 from trackbench_texture.classes import Region
 from trackbench_texture.descriptors import PixelKinds
+from trackbench_texture.feet import border_feet
 from trackbench_texture.model import TextureModel, train
 from trackbench_texture.params import TextureParams
 
@@ -53,7 +59,7 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
     """
 
     name = "texture"
-    version = "1.0"
+    version = "2.0"
     modality = "camera"
     deterministic = True
     Params = TextureParams
@@ -164,17 +170,22 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
         DataError
             If the observation is not an image, naming the frame.
         """
-        kinds, grid = self._require_model().analyse_grid(_grey(frame))
+        image = _grey(frame)
+        kinds, grid, work = self._require_model().analyse_grid(image)
         if self._rng is None:
             raise RuntimeError("texture: call reset(info, rng) before step")
         p = self.params
-        strip = cable_strip(grid.classes == Region.CABLE, p.min_region_px, grid.rows, grid.cols)
+        on_cable = grid.classes == Region.CABLE
+        strip = cable_strip(on_cable, p.min_region_px, grid.rows, grid.cols)
         if strip is None:
             return None
-        return fit_borders(
+        state = fit_borders(
             strip,
             kinds.straight,
             self._rng,
+            work,
+            on_cable[grid.rows][:, grid.cols] if p.border_search == "region" else None,
+            p.border_pairing,
             inlier_px=p.inlier_px,
             trials=p.ransac_trials,
             min_length_share=p.min_length_share,
@@ -183,6 +194,10 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
             max_width_px=p.max_width_px,
             max_skew=math.radians(p.max_skew_deg),
         )
+        if state is None or p.foot_reach_px == 0:
+            return state
+        scale = work.frame_size[1] / work.size[1]
+        return border_feet(image, state, p.foot_reach_px * scale, p.smoothing_sigma * scale, p.foot_share)
 
 
 def _grey(frame: CameraFrame) -> np.ndarray:

@@ -118,3 +118,33 @@ def test_implausible_widths_and_skews_give_no_detection():
         edges, region = _outline(truth)
         assert fit_borders(cable_strip(region, 400), edges, np.random.default_rng(0), **{**LIMITS, **limit}) is None
         assert fit_borders(cable_strip(region, 400), edges, np.random.default_rng(0), **LIMITS) is not None
+
+
+def test_parallel_pairing_finds_a_wide_cable_whose_region_holds_two_strips():
+    # A cable wider than the texture neighbourhood: the cable class marks a
+    # band along each border, not its inside.  The strip is one band; the
+    # side-by-side reading needs both borders in it, the parallel pair does not.
+    truth = CableState(4.0, math.radians(6.0), 70.0, math.radians(0.5))
+    edges, _ = _outline(truth, spill=0.0)
+    width, height = SIZE
+    x, y = np.meshgrid(np.arange(width) - (width - 1) / 2.0, (height - 1) / 2.0 - np.arange(height))
+    bands = np.zeros((height, width), bool)
+    for line in cable_borders(truth):
+        bands |= np.abs((x - line.x0) * line.dy - (y - line.y0) * line.dx) < 8.0
+    strip = cable_strip(bands, 400)
+    assert strip is not None and strip.mask.sum() < bands.sum()
+    rng = np.random.default_rng(0)
+    assert _outcome(fit_borders(strip, edges, rng, **LIMITS), truth) is not Outcome.CORRECT
+    for seed in range(5):
+        found = fit_borders(strip, edges, np.random.default_rng(seed), None, bands, "parallel", **LIMITS)
+        assert _outcome(found, truth) is Outcome.CORRECT, seed
+
+
+def test_parallel_pairing_keeps_to_the_width_limits():
+    truth = CableState(0.0, math.radians(-4.0), 40.0, 0.0)
+    edges, region = _outline(truth)
+    strip = cable_strip(region, 400)
+    found = fit_borders(strip, edges, np.random.default_rng(0), None, region, "parallel", **LIMITS)
+    assert _outcome(found, truth) is Outcome.CORRECT
+    narrow = {**LIMITS, "max_width_px": 30.0}
+    assert fit_borders(strip, edges, np.random.default_rng(0), None, region, "parallel", **narrow) is None

@@ -44,6 +44,20 @@ def test_finds_a_drawn_cable_after_fitting(trained, drawn, kind):
     assert Outcome.FALSE not in outcomes, outcomes
 
 
+def test_finds_the_same_scene_in_a_frame_of_twice_the_size(trained, drawn):
+    # Sizes are shares of the working height: a model learned on 160 x 120
+    # frames finds the cable in 320 x 240 frames of the same scenes.  (Blank
+    # ground: a seabed's grain is per pixel, and shrinking a frame smooths it.)
+    size = (320, 240)
+    states = drawn.random_states(np.random.default_rng(77), 6)
+    doubled = [CableState(2.0 * s.d, s.alpha, 2.0 * s.w, s.beta) for s in states]
+    images = [drawn.cable_image(s, "blank", size=size) for s in doubled]
+    trained.reset(SequenceInfo("drawn-large", "camera", frame_size=size), np.random.default_rng(0))
+    estimates = [trained.step(Frame(k, image)) for k, image in enumerate(images)]
+    outcomes = [_outcome(estimate, state, size) for estimate, state in zip(estimates, doubled)]
+    assert outcomes.count(Outcome.CORRECT) >= 5, outcomes
+
+
 def test_finds_a_bright_cable_and_a_colour_image(trained, drawn):
     state = drawn.random_states(np.random.default_rng(5), 1)[0]
     bright = drawn.cable_image(state, "sand", contrast=60.0, seed=4)
