@@ -132,7 +132,7 @@ class HoughParams:
     """Standard deviation in px of the LoG's Gaussian (seeds/000, Fig. 2.2 shows 3 and 5; see the notes)."""
 
     edge_rule: EdgeRule = "median"
-    """Edge threshold: a fixed ``edge_step`` ("step"), or ``edge_ratio`` times the frame's median crossing ("median")."""
+    """Edge threshold: a fixed ``edge_step`` ("step"), or ``edge_ratio`` times the frame's median crossing."""
 
     edge_step: NonNegative = 12.0
     """With ``edge_rule="step"``: smallest grey-level step a zero crossing must imply to survive."""
