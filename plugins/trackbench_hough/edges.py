@@ -21,6 +21,10 @@ grey levels that jump is ``h / (sqrt(2 pi) sigma^3)`` per pixel, so the
 threshold is stated as a step height in grey levels, independent of
 ``sigma``.  Each crossing marks one pixel (the one nearer to zero), which
 keeps the borders one pixel thin, as the Hough transform wants them.
+
+The same step heights, gathered over a frame (:func:`crossing_steps`), show
+how strong the frame's edges are as a whole; the threshold can be set
+relative to them (:mod:`trackbench_hough.thresholds`).
 """
 
 from __future__ import annotations
@@ -71,6 +75,44 @@ def step_height_scale(sigma: float) -> float:
     seeds/000, section 2.1 (LoG with standard deviation ``sigma``).
     """
     return math.sqrt(2.0 * math.pi) * sigma**3
+
+
+def crossing_steps(response: np.ndarray, sigma: float, stride: int = 2) -> np.ndarray:
+    """Step heights of a sample of the zero crossings of a LoG response.
+
+    The crossings between horizontal neighbours on every ``stride``-th row
+    and between vertical neighbours on every ``stride``-th column, each as
+    the grey-level step it implies (:func:`step_height_scale`): the
+    quantity :func:`zero_crossings` thresholds, for one crossing rather than
+    one pixel.
+
+    Parameters
+    ----------
+    response : numpy.ndarray
+        LoG response of shape ``(H, W)`` (:func:`log_response`).
+    sigma : float
+        The ``sigma`` the response was computed with, in px.
+    stride : int
+        Rows and columns between the sampled ones; 1 takes every crossing.
+
+    Returns
+    -------
+    numpy.ndarray
+        1-D ``float`` array of step heights in grey levels, in no particular order.
+
+    References
+    ----------
+    seeds/000, section 2.1 (zero crossings of the LoG indicate borders).
+    """
+    if stride < 1:
+        raise ValueError(f"stride must be at least 1, got {stride}")
+    samples = []
+    for first, second in (
+        (response[::stride, :-1], response[::stride, 1:]),
+        (response[:-1, ::stride], response[1:, ::stride]),
+    ):
+        samples.append(np.abs(first - second)[np.signbit(first) != np.signbit(second)])
+    return np.concatenate(samples).astype(np.float64) * step_height_scale(sigma)
 
 
 def zero_crossings(response: np.ndarray, sigma: float, min_step: float) -> np.ndarray:

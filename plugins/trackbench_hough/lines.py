@@ -25,6 +25,7 @@ so that the two borders of a pair are two different edges.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import cv2
@@ -176,20 +177,26 @@ def hough_lines(
     return found
 
 
-def suppress_duplicates(lines: list[HoughLine], r_tolerance: float, phi_tolerance: float) -> list[HoughLine]:
+def suppress_duplicates(
+    lines: Iterable[HoughLine], r_tolerance: float, phi_tolerance: float, limit: int | None = None
+) -> list[HoughLine]:
     """Non-maximum suppression in ``(r, phi)``.
 
     Walking from the strongest line down, a line is dropped when a kept one
-    lies within ``r_tolerance`` px and ``phi_tolerance`` rad of it.
+    lies within ``r_tolerance`` px and ``phi_tolerance`` rad of it.  The walk
+    stops once ``limit`` lines are kept, which gives the first ``limit``
+    lines of the whole walk.
 
     Parameters
     ----------
-    lines : list of HoughLine
-        Candidate lines, strongest first.
+    lines : iterable of HoughLine
+        Candidate lines, strongest first; read only as far as needed.
     r_tolerance : float
         Distance in px below which two lines are the same edge.
     phi_tolerance : float
         Angle in rad below which two lines are the same edge.
+    limit : int, optional
+        Most lines to keep; all when None.
 
     Returns
     -------
@@ -203,4 +210,6 @@ def suppress_duplicates(lines: list[HoughLine], r_tolerance: float, phi_toleranc
             for dr, dphi in (line.distance_to(other.r, other.phi) for other in kept)
         ):
             kept.append(line)
+            if limit is not None and len(kept) >= limit:
+                break
     return kept

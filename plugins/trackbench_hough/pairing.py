@@ -17,7 +17,14 @@ Here a pair is compatible (:func:`compatible_pairs`) when
   quantisation can tilt two parallel lines apart by one step);
 * they do not cross inside the image;
 * the width ``w`` lies in ``[min_width, max_width]`` (seeds/000, Table 5.2:
-  5 to 100 px).
+  5 to 100 px);
+* the stronger of the two lines has at least ``anchor_votes`` votes.  The
+  weaker one needs only the votes every line of the transform has: the
+  two borders of a cable are seldom equally clear (one lies in the lamp's
+  shadow, or along a bright sunlit band), and a weaker line is believable
+  as a border once a strong one beside it vouches for the pair.  A single
+  vote threshold for both (``anchor_votes`` no higher than the transform's
+  own) is the paper's detector.
 
 Its score (:func:`choose_pair`) is the sum of the two lines' votes; while
 tracking, only pairs inside the search window count and the score shrinks
@@ -75,6 +82,7 @@ def compatible_pairs(
     max_divergence: float,
     min_width: float,
     max_width: float,
+    anchor_votes: float = 0.0,
 ) -> list[BorderPair]:
     """All pairs of lines that could be the two borders of one cable.
 
@@ -90,6 +98,8 @@ def compatible_pairs(
         Largest skew (rad) of a pair that diverges towards the top.
     min_width, max_width : float
         Plausible cable widths in px.
+    anchor_votes : float
+        Votes the stronger line of a pair needs.
 
     Returns
     -------
@@ -107,6 +117,8 @@ def compatible_pairs(
     for i, first in enumerate(lines):
         for j in range(i + 1, len(lines)):
             second = lines[j]
+            if max(first.votes, second.votes) < anchor_votes:
+                continue
             if first.distance_to(second.r, second.phi)[1] > angle_limit:
                 continue
             a, b = models[i], models[j]

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from trackbench_hough.edges import edge_image, log_response, zero_crossings
+from trackbench_hough.edges import crossing_steps, edge_image, log_response, zero_crossings
 
 
 def step_image(height: float, column: int = 40, shape: tuple[int, int] = (60, 80)) -> np.ndarray:
@@ -51,3 +51,34 @@ def test_response_sign_follows_the_log_kernel():
 def test_sigma_must_be_positive():
     with pytest.raises(ValueError, match="sigma"):
         log_response(np.zeros((5, 5), np.uint8), 0.0)
+
+
+@settings(max_examples=30, deadline=None)
+@given(sigma=st.floats(1.5, 5.0), height=st.floats(10.0, 120.0), stride=st.integers(1, 3))
+def test_crossing_steps_measure_what_the_threshold_compares(sigma, height, stride):
+    image = step_image(height)
+    steps = crossing_steps(log_response(image, sigma), sigma, stride)
+    # One crossing of the step's height on each sampled row, none between vertical neighbours;
+    # what else changes sign is the LoG's faint far tail.
+    strong = steps[steps >= 0.5 * height]
+    assert strong.size == len(range(0, image.shape[0], stride))
+    assert np.all((strong >= 0.85 * height) & (strong < 1.05 * height))
+    assert np.all(steps[steps < 0.5 * height] < 0.05 * height)
+
+
+@settings(max_examples=20, deadline=None)
+@given(gain=st.floats(0.1, 10.0), seed=st.integers(0, 2**16))
+def test_crossing_steps_scale_with_the_grey_levels(gain, seed):
+    # Float rounding may flip the sign of a response within an ulp of zero, so compare the
+    # crossings of real steps and the median the threshold rule uses.
+    image = np.random.default_rng(seed).normal(100.0, 20.0, (30, 40)).astype(np.float32)
+    steps = crossing_steps(log_response(image, 2.0), 2.0)
+    scaled = crossing_steps(log_response(gain * image, 2.0), 2.0)
+    assert abs(scaled.size - steps.size) <= 2
+    assert np.isclose(np.median(scaled), gain * np.median(steps), rtol=1e-2)
+    assert np.isclose(scaled.max(), gain * steps.max(), rtol=1e-3)
+
+
+def test_crossing_steps_need_a_positive_stride():
+    with pytest.raises(ValueError, match="stride"):
+        crossing_steps(np.zeros((5, 5), np.float32), 2.0, 0)

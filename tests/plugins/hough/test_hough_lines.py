@@ -92,3 +92,17 @@ def test_suppression_keeps_the_strongest_of_a_cluster():
     ]
     kept = suppress_duplicates(lines, 3.0, math.radians(3.0))
     assert [line.votes for line in kept] == [90.0, 70.0, 60.0]
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    lines=st.lists(
+        st.tuples(st.floats(-100.0, 100.0), st.floats(0.0, math.pi, exclude_max=True), st.integers(1, 500)),
+        max_size=30,
+    ),
+    limit=st.integers(1, 12),
+)
+def test_a_limited_suppression_is_the_start_of_the_full_one(lines, limit):
+    candidates = sorted((HoughLine.from_opencv(r, t, v, SIZE) for r, t, v in lines), key=lambda line: -line.votes)
+    full = suppress_duplicates(candidates, 3.0, math.radians(3.0))
+    assert suppress_duplicates(candidates, 3.0, math.radians(3.0), limit) == full[:limit]

@@ -94,3 +94,12 @@ def test_a_window_keeps_out_far_pairs_and_favours_near_ones():
     assert chosen is not None and math.isclose(chosen.state.d, -55.0, abs_tol=1e-6)
     chosen = choose_pair(compatible_pairs(near + edge, SIZE, **LIMITS), window, closeness_weight=0.0)
     assert chosen is not None and math.isclose(chosen.state.d, -47.0, abs_tol=1e-6)
+
+
+def test_the_stronger_border_must_reach_the_anchor_votes():
+    cable = CableState(10.0, 0.0, 30.0, 0.0)
+    # One clear border vouches for a faint one ...
+    assert compatible_pairs(cable_lines(cable, (100.0, 30.0)), SIZE, **LIMITS, anchor_votes=100.0)
+    # ... two faint ones do not make a cable.
+    assert compatible_pairs(cable_lines(cable, (99.0, 99.0)), SIZE, **LIMITS, anchor_votes=100.0) == []
+    assert compatible_pairs(cable_lines(cable, (99.0, 99.0)), SIZE, **LIMITS) != []

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from trackbench_hough import VARIANTS
 from trackbench_hough.tracker import HoughTracker
 
 from benchmark.errors import DataError, ParameterError
@@ -17,10 +18,14 @@ SIZE = (320, 240)
 INFO = SequenceInfo("drawn", "camera", frame_size=SIZE)
 
 
-def fresh(**overrides) -> HoughTracker:
+def fresh(info: SequenceInfo = INFO, **overrides) -> HoughTracker:
     tracker = HoughTracker(HoughTracker.make_params(overrides))
-    tracker.reset(INFO, np.random.default_rng(0))
+    tracker.reset(info, np.random.default_rng(0))
     return tracker
+
+
+def paper(info: SequenceInfo = INFO) -> HoughTracker:
+    return fresh(info, **VARIANTS["hough-paper"])
 
 
 def tracking(tracker: HoughTracker) -> bool:
@@ -28,8 +33,8 @@ def tracking(tracker: HoughTracker) -> bool:
     return tracker._window is not None
 
 
-def outcome(estimate: CableState | None, truth: CableState) -> Outcome:
-    return score_line_pair(None if estimate is None else cable_borders(estimate), cable_borders(truth), SIZE)
+def outcome(estimate: CableState | None, truth: CableState, size: tuple[int, int] = SIZE) -> Outcome:
+    return score_line_pair(None if estimate is None else cable_borders(estimate), cable_borders(truth), size)
 
 
 @pytest.mark.parametrize("contrast", [60.0, -60.0], ids=["bright", "dark"])
@@ -137,8 +142,11 @@ def test_unknown_parameter_is_a_parameter_error():
         {"window_rho_px": 0.0},
         {"closeness_weight": 1.5},
         {"max_misses": 0},
-        {"min_width_px": 120.0},
+        {"min_width_px": 200.0},
         {"max_skew_deg": 90.0},
+        {"partner_fraction": 0.5},
+        {"edge_rule": "mean"},
+        {"reference_side_px": 0.0},
     ],
 )
 def test_values_outside_the_declared_domains_are_parameter_errors(bad):
@@ -161,3 +169,34 @@ def test_parameters_from_strings_are_converted():
 def test_colour_image_is_a_data_error():
     with pytest.raises(DataError, match="frame 3"):
         fresh().step(Frame(3, np.zeros((*SIZE[::-1], 3), np.uint8)))
+
+
+def test_a_wide_cable_in_a_large_frame_is_found_with_sizes_scaled_to_the_frame(drawing):
+    # 640 x 480 shows the scene of a 320 x 240 frame with twice the pixels: a cable 150 px wide
+    # is wider than the paper's 100 px, but within twice the reference frame's range.
+    size = (640, 480)
+    info = SequenceInfo("drawn-large", "camera", frame_size=size)
+    truth = CableState(20.0, math.radians(6.0), 150.0, math.radians(0.5))
+    image = drawing.draw_cable(truth, contrast=50.0, size=size)
+    assert outcome(fresh(info).step(Frame(0, image)), truth, size) is Outcome.CORRECT
+    assert paper(info).step(Frame(0, image)) is None
+
+
+def test_a_faint_cable_on_a_quiet_seabed_survives_the_relative_edge_threshold(drawing):
+    # Eight grey levels of contrast: below the paper's fixed 12-level step, far above the
+    # frame's own noise crossings.
+    truth = CableState(-25.0, math.radians(-4.0), 40.0, 0.0)
+    quiet = drawing.background(SIZE, 3, texture=1.0, noise=1.0)
+    image = drawing.to_uint8(drawing.paint_band(quiet, truth, 8.0))
+    assert outcome(fresh().step(Frame(0, image)), truth) is Outcome.CORRECT
+    assert paper().step(Frame(0, image)) is None
+
+
+def test_the_init_window_waits_for_the_first_frame_when_the_size_is_unknown(drawing):
+    cable = CableState(-70.0, math.radians(5.0), 30.0, 0.0)
+    distractor = CableState(75.0, math.radians(-12.0), 40.0, 0.0)
+    tracker = HoughTracker()
+    tracker.reset(SequenceInfo("no-size", "camera"), np.random.default_rng(0), init=CameraTruth(cable))
+    assert not tracking(tracker)
+    assert tracker.step(Frame(0, drawing.draw_cable(distractor))) is None
+    assert tracking(tracker)
