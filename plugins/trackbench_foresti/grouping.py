@@ -137,8 +137,8 @@ class GroupingParams:
     """Parameters of the grouping step, in the units the functions here take.
 
     Built from the flat, validated fields of
-    :class:`trackbench_foresti.features.FeatureParams` by its
-    :attr:`~trackbench_foresti.features.FeatureParams.grouping`; it does not
+    :class:`trackbench_foresti.params.FeatureParams` by its
+    :attr:`~trackbench_foresti.params.FeatureParams.grouping`; it does not
     check its values itself.
 
     Attributes
