@@ -23,10 +23,12 @@ Two rules, named by ``FeatureParams.canny_rule``:
     0.9 ms a frame against 4.4 ms.
 
 The rule only ever lowers the pair.  Raising it where a frame's gradients
-are stronger (a textured seabed, overgrowth) lost the borders of the
-overgrown sequences: on the camera suite and its clutter family, the
-percentile alone (no ceiling) made 80.4 % of the sampled frames correct
-against 86.7 % with the ceiling (:mod:`trackbench_foresti.params`).
+are stronger (a textured seabed, overgrowth) loses the borders of the
+overgrown sequences: with the percentile alone, no ceiling (``high = P``,
+``low = P / 3``), every fourth frame of the camera suite and its clutter
+family is 73.0 % correct against 86.7 % with the ceiling, camera-train
+75.5 against 77.4 % (camera-dev 77.2 against 76.5 %;
+:mod:`trackbench_foresti.params`).
 """
 
 from __future__ import annotations
