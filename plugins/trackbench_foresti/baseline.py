@@ -29,7 +29,7 @@ class ForestiLinesTracker(Tracker[CameraTruth, CableState]):
     """
 
     name = "foresti_lines"
-    version = "1.0"
+    version = "1.1"
     modality = "camera"
     deterministic = True
     Params = FeatureParams

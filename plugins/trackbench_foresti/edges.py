@@ -99,6 +99,51 @@ def gradient_phase(gu: np.ndarray, gv: np.ndarray) -> np.ndarray:
     return np.arctan2(-gv.astype(np.float32), gu.astype(np.float32))
 
 
+def smoothed_gradient(image: np.ndarray, sigma: float) -> tuple[np.ndarray, np.ndarray]:
+    """Sobel derivatives ``(gu, gv)`` of a grey image after Gaussian smoothing, ``int16`` of shape ``(H, W)``.
+
+    Parameters
+    ----------
+    image : numpy.ndarray
+        ``uint8`` grey image of shape ``(H, W)``.
+    sigma : float
+        Standard deviation in px of the Gaussian smoothing; 0 skips it.
+
+    References
+    ----------
+    seeds/004, section IV (the Canny filter [23] furnishes phase and modulus).
+    """
+    check_grey_image(image)
+    if not sigma >= 0:
+        raise ValueError(f"sigma must be >= 0, got {sigma}")
+    smooth = image if sigma == 0 else cv2.GaussianBlur(image, (0, 0), sigmaX=sigma, borderType=cv2.BORDER_REPLICATE)
+    gu = cv2.Sobel(smooth, cv2.CV_16S, 1, 0, ksize=3, borderType=cv2.BORDER_REPLICATE)
+    gv = cv2.Sobel(smooth, cv2.CV_16S, 0, 1, ksize=3, borderType=cv2.BORDER_REPLICATE)
+    return gu, gv
+
+
+def canny_from_gradient(gu: np.ndarray, gv: np.ndarray, low: float, high: float) -> EdgeMap:
+    """Canny's non-maximum suppression and hysteresis on given Sobel derivatives, with each edge's modulus and phase.
+
+    Parameters
+    ----------
+    gu, gv : numpy.ndarray
+        ``int16`` derivatives along the columns and down the rows (:func:`smoothed_gradient`).
+    low, high : float
+        Hysteresis thresholds on the L2 gradient magnitude, ``0 <= low <= high``.
+
+    References
+    ----------
+    seeds/004, section IV (edge extraction with the Canny filter [23]).
+    """
+    if not 0 <= low <= high:
+        raise ValueError(f"Canny thresholds must satisfy 0 <= low <= high, got low={low}, high={high}")
+    mask = cv2.Canny(gu, gv, float(low), float(high), L2gradient=True) > 0
+    pixels = np.flatnonzero(mask)
+    gu, gv = gu.ravel()[pixels], gv.ravel()[pixels]
+    return EdgeMap(mask, pixels, gradient_modulus(gu, gv), gradient_phase(gu, gv))
+
+
 def canny_edges(image: np.ndarray, sigma: float, low: float, high: float) -> EdgeMap:
     """Canny edges of a grey image, with the modulus and phase of each.
 
@@ -121,15 +166,6 @@ def canny_edges(image: np.ndarray, sigma: float, low: float, high: float) -> Edg
     ----------
     seeds/004, section IV (edge extraction with the Canny filter [23]).
     """
-    check_grey_image(image)
-    if not sigma >= 0:
-        raise ValueError(f"sigma must be >= 0, got {sigma}")
     if not 0 <= low <= high:
         raise ValueError(f"Canny thresholds must satisfy 0 <= low <= high, got low={low}, high={high}")
-    smooth = image if sigma == 0 else cv2.GaussianBlur(image, (0, 0), sigmaX=sigma, borderType=cv2.BORDER_REPLICATE)
-    gu = cv2.Sobel(smooth, cv2.CV_16S, 1, 0, ksize=3, borderType=cv2.BORDER_REPLICATE)
-    gv = cv2.Sobel(smooth, cv2.CV_16S, 0, 1, ksize=3, borderType=cv2.BORDER_REPLICATE)
-    mask = cv2.Canny(gu, gv, float(low), float(high), L2gradient=True) > 0
-    pixels = np.flatnonzero(mask)
-    gu, gv = gu.ravel()[pixels], gv.ravel()[pixels]
-    return EdgeMap(mask, pixels, gradient_modulus(gu, gv), gradient_phase(gu, gv))
+    return canny_from_gradient(*smoothed_gradient(image, sigma), low, high)

@@ -97,6 +97,24 @@ point of a chi-square with 4 degrees of freedom, 18.47): the gate widens as
 the filter grows uncertain over frames without a measure, so it finds the
 pipe again instead of rejecting it for ever.  Without ``S`` the distance
 is the root-mean-square abscissa difference and the gate ``gate_px``.
+
+Nested bands (addition)
+-----------------------
+Without a prediction, the pair with the highest ``Delta R`` may lie
+inside the pipe: a painted or shaded pipe draws bands along itself (a
+bright crown between darker flanks, a dark rim inside each border), and
+their lines are as straight and as long as the borders, often stronger.
+A pipe's borders are its outline, which encloses such bands.  So when a
+compatible pair encloses the best one (its left line left of the best's
+left line and its right line right of the best's right line, on the first
+and on the last row), runs parallel to it (each line within
+``nest_max_angle`` of the line it encloses) and reaches ``(1 -
+nest_slack)`` of its ``Delta R``, the widest such pair is taken instead.
+Parallel is what makes the rule safe: two unrelated lines beside a pair
+(a rock's edge, a ripple crossing at an angle) are not parallel to it;
+without that condition the rule took such pairs on camera/S2 and S7
+(:mod:`trackbench_foresti.params` gives the numbers).  ``nest_slack = 0``
+is the paper's choice, the highest ``Delta R``.
 """
 
 from __future__ import annotations
@@ -119,8 +137,8 @@ class GroupingParams:
     """Parameters of the grouping step, in the units the functions here take.
 
     Built from the flat, validated fields of
-    :class:`trackbench_foresti.features.FeatureParams` by its
-    :attr:`~trackbench_foresti.features.FeatureParams.grouping`; it does not
+    :class:`trackbench_foresti.params.FeatureParams` by its
+    :attr:`~trackbench_foresti.params.FeatureParams.grouping`; it does not
     check its values itself.
 
     Attributes
@@ -140,6 +158,15 @@ class GroupingParams:
     meet_ratio : float
         ``r = s_top / s_bottom`` below which the convergence term ``C``
         falls, for borders that nearly meet inside the image.
+    gate_chi2 : float
+        With the prediction's covariance, the Mahalanobis distance squared
+        beyond which the nearest pair is rejected.
+    nest_slack : float
+        Without a prediction, a parallel pair enclosing the best one is
+        taken when its ``Delta R`` reaches ``1 - nest_slack`` of the best's;
+        0: never (the paper).
+    nest_max_angle : float
+        Largest angle in rad between an enclosing line and the line it encloses.
     """
 
     max_divergence: float = math.radians(1.0)
@@ -147,6 +174,8 @@ class GroupingParams:
     gate_px: float = 40.0
     meet_ratio: float = 0.25
     gate_chi2: float = 18.47
+    nest_slack: float = 0.0
+    nest_max_angle: float = math.radians(2.0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -314,6 +343,64 @@ def compatible_pairs(
     return pairs
 
 
+def encloses(outer: LinePair, inner: LinePair, max_angle: float) -> bool:
+    """Whether ``outer`` encloses ``inner`` on the first and last rows and runs parallel to it.
+
+    ``outer``'s left line is at or left of ``inner``'s on both rows, its
+    right line at or right of ``inner``'s, and each of its lines is within
+    ``max_angle`` rad of the line it encloses.  A pair encloses itself.
+
+    References
+    ----------
+    seeds/004, section IV (grouping by the scene's geometry); the rule is ours, see the module docstring.
+    """
+    o, i = outer.abscissae, inner.abscissae
+    around = o[0] <= i[0] and o[2] <= i[2] and o[1] >= i[1] and o[3] >= i[3]
+    parallel = (
+        abs(outer.left.alpha - inner.left.alpha) <= max_angle
+        and abs(outer.right.alpha - inner.right.alpha) <= max_angle
+    )
+    return around and parallel
+
+
+def outline(pairs: Sequence[LinePair], best: LinePair, params: GroupingParams) -> LinePair:
+    """The widest pair that encloses ``best``, runs parallel to it and reaches ``1 - nest_slack`` of its ``Delta R``.
+
+    Parameters
+    ----------
+    pairs : sequence of LinePair
+        The compatible pairs, ``best`` among them.
+    best : LinePair
+        The pair with the highest ``Delta R``.
+    params : GroupingParams
+        ``nest_slack`` and ``nest_max_angle``; ``nest_slack = 0`` returns ``best``.
+
+    Returns
+    -------
+    LinePair
+        ``best`` unless a wider pair qualifies; width is the sum of the
+        separations on the first and last rows.
+
+    References
+    ----------
+    seeds/004, section IV (grouping); the rule is ours, see the module docstring.
+    """
+    if params.nest_slack <= 0:
+        return best
+    floor = (1.0 - params.nest_slack) * best.reliability
+    around = [
+        pair
+        for pair in pairs
+        if pair.reliability >= floor and encloses(pair, best, params.nest_max_angle)
+    ]
+    return max(around, key=lambda pair: _span(pair), default=best)
+
+
+def _span(pair: LinePair) -> float:
+    i1, i2, i3, i4 = pair.abscissae
+    return float((i2 - i1) + (i4 - i3))
+
+
 def check_prediction(predicted: Sequence[float] | np.ndarray) -> np.ndarray:
     """The predicted abscissae as a float array of 4; ValueError unless they are 4 finite numbers."""
     try:
@@ -355,7 +442,8 @@ def choose_pair(
     -------
     tuple of CandidateLine or None
         ``(left, right)``.  Without a prediction: the compatible pair with
-        the highest ``Delta R``.  With one: among the compatible pairs with
+        the highest ``Delta R``, or the widest parallel pair enclosing it
+        (:func:`outline`).  With one: among the compatible pairs with
         ``Delta R >= min_pair_reliability``, the one nearest the prediction
         (sum of squared abscissa differences, or Mahalanobis with
         ``spread``), unless it lies outside the gate (``gate_px`` on the RMS
@@ -372,7 +460,7 @@ def choose_pair(
     if target is None:
         if not pairs:
             return None
-        best = max(pairs, key=lambda pair: pair.reliability)
+        best = outline(pairs, max(pairs, key=lambda pair: pair.reliability), params)
         return best.left, best.right
     eligible = [pair for pair in pairs if pair.reliability >= params.min_pair_reliability]
     if not eligible:

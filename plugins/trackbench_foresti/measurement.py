@@ -14,8 +14,9 @@ image line ``l = (M P_0 + t) x (M e_Z)`` for ``T = [M | t]``; with
 ``t = -M C`` and the identity ``(M a) x (M b) = det(M) M^-T (a x b)`` this
 is, up to scale,
 
-    l = M^-T n,    n = (P_0 - C) x e_Z = (-C_y, C_x - X, 0),
+    l = M^-T n,    n = (P_0 - C) x e_Z = (Y - C_y, C_x - X, 0)
 
+for ``P_0 = (X, Y, 0)`` (``(-C_y, C_x - X, 0)`` on the plane ``Y = 0``),
 and the line crosses row ``v`` at ``u = -(l_2 v + l_3) / l_1``.  ``M = K
 [h; v; a]`` holds the intrinsics ``K`` (focal length in px, image centre)
 and the camera versors of section II.  ``C_z`` drops out, as section V-A
@@ -23,6 +24,9 @@ says it must for lines along the pipe.  Written this way the Jacobian ``G``
 follows by the chain rule: ``dl = M^-T dn`` for ``C_x``, ``C_y``, and
 ``dl = -M^-T (K dR)^T l`` for an angle (``dR`` from
 :func:`~benchmark.modalities.camera.scenes.projection.camera_axes_derivatives`).
+Which ``(X, Y)`` each border passes through, the paper's plane lines or
+the pipe's occluding contours, is the camera's border model
+(:mod:`trackbench_foresti.borders`), which also gives ``dn``.
 
 The paper's rows and columns: its eqs. (2) put ``i`` on the axis of ``h``
 and Fig. 4 draws ``i_1 .. i_4`` along the image's horizontal borders, so
@@ -40,6 +44,7 @@ import numpy as np
 
 from benchmark.modalities.camera.geometry import Line
 from benchmark.modalities.camera.scenes.projection import camera_axes, camera_axes_derivatives, principal_point
+from trackbench_foresti.borders import BORDER_MODELS, BorderModelName
 
 
 @dataclass(frozen=True)
@@ -58,6 +63,9 @@ class PipeCamera:
         ``phi_0`` of eq. (7), rad: the tilt the camera is mounted at.
     frame_interval_s : float
         ``tau`` of eq. (7).
+    border_model : str
+        Which lines of the pipe are its borders (:data:`trackbench_foresti.borders.BORDER_MODELS`):
+        ``"plane"``, the paper's ``X = +-d/2`` at ``Y = 0``, or ``"tangent"``, the occluding contours.
     """
 
     focal_px: float
@@ -65,6 +73,7 @@ class PipeCamera:
     diameter_m: float
     nominal_tilt: float
     frame_interval_s: float
+    border_model: BorderModelName = "plane"
 
     def intrinsics(self) -> np.ndarray:
         """``K``: focal length on the diagonal, the image centre in the last column."""
@@ -83,18 +92,16 @@ def pose_angles(state: np.ndarray) -> tuple[float, float, float]:
     return float(state[2]), float(state[3]), xi
 
 
-def _border_normals(state: np.ndarray, camera: PipeCamera) -> np.ndarray:
-    """``n = (-C_y, C_x - X, 0)`` of the left (``X = -d/2``) and right (``X = +d/2``) border, rows."""
-    half = camera.diameter_m / 2.0
-    cx, cy = float(state[0]), float(state[1])
-    return np.array(((-cy, cx + half, 0.0), (-cy, cx - half, 0.0)))
+def _image_lines(state: np.ndarray, camera: PipeCamera) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The homogeneous image lines of both borders (rows), ``M^-T``, ``K`` and ``d n / d(C_x, C_y)``.
 
-
-def _image_lines(state: np.ndarray, camera: PipeCamera) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The homogeneous image lines of both borders (rows), ``M^-T`` and ``K``."""
+    ``n`` of the left and right border comes from the camera's border model
+    (:mod:`trackbench_foresti.borders`).
+    """
     intrinsics = camera.intrinsics()
     inverse_t = np.linalg.inv(intrinsics @ camera_axes(*pose_angles(state))).T
-    return _border_normals(state, camera) @ inverse_t.T, inverse_t, intrinsics
+    normals, by_centre = BORDER_MODELS[camera.border_model](float(state[0]), float(state[1]), camera.diameter_m / 2)
+    return normals @ inverse_t.T, inverse_t, intrinsics, by_centre
 
 
 def _crossings(lines: np.ndarray, rows: np.ndarray) -> np.ndarray:
@@ -123,7 +130,7 @@ def border_abscissae(state: np.ndarray, camera: PipeCamera) -> np.ndarray:
     ----------
     seeds/004, section V-B, eq. (11), Fig. 4 and the Appendix, eqs. (18)-(22).
     """
-    lines, _, _ = _image_lines(np.asarray(state, dtype=float), camera)
+    lines, *_ = _image_lines(np.asarray(state, dtype=float), camera)
     return _crossings(lines, camera.rows).T.reshape(4)
 
 
@@ -156,24 +163,29 @@ def border_measurement(state: np.ndarray, camera: PipeCamera) -> tuple[np.ndarra
     seeds/004, eqs. (11), (14b) and (16a).
     """
     state = np.asarray(state, dtype=float)
-    lines, inverse_t, intrinsics = _image_lines(state, camera)
+    lines, inverse_t, intrinsics, by_centre = _image_lines(state, camera)
     abscissae = _crossings(lines, camera.rows).T.reshape(4)
     if not np.all(np.isfinite(abscissae)):
         return abscissae, None
-    return abscissae, _jacobian(state, camera, lines, inverse_t, intrinsics)
+    return abscissae, _jacobian(state, camera, lines, inverse_t, intrinsics, by_centre)
 
 
 def _jacobian(
-    state: np.ndarray, camera: PipeCamera, lines: np.ndarray, inverse_t: np.ndarray, intrinsics: np.ndarray
+    state: np.ndarray,
+    camera: PipeCamera,
+    lines: np.ndarray,
+    inverse_t: np.ndarray,
+    intrinsics: np.ndarray,
+    by_centre: np.ndarray,
 ) -> np.ndarray:
-    """``G`` from the image lines of :func:`_image_lines` at ``state``."""
+    """``G`` from the image lines of :func:`_image_lines` at ``state`` and ``d n / d(C_x, C_y)`` of each border."""
     rows = camera.rows
-    by_centre = (inverse_t @ np.array(((0.0, -1.0), (1.0, 0.0), (0.0, 0.0)))).T  # d l / d(C_x, C_y) per unit n
     axes = camera_axes_derivatives(*pose_angles(state))[: len(state) - 2]
     jacobian = np.empty((4, len(state)))
     for border, line in enumerate(lines):
-        # Row c of dl is d l / d x_c.
-        dl = np.array([by_centre[0], by_centre[1], *(-inverse_t @ (intrinsics @ d_axes).T @ line for d_axes in axes)])
+        # Row c of dl is d l / d x_c; for C_x and C_y, dl = M^-T dn.
+        by_position = by_centre[border] @ inverse_t.T
+        dl = np.array([*by_position, *(-inverse_t @ (intrinsics @ d_axes).T @ line for d_axes in axes)])
         along = line[1] * rows + line[2]
         by_state = -(dl[:, 1:2] * rows + dl[:, 2:3]) / line[0] + along * dl[:, 0:1] / line[0] ** 2
         jacobian[[border, border + 2]] = by_state.T

@@ -81,11 +81,7 @@ the feature extractor alone (``foresti_lines``) 64.5 / 0.4 %.
 
 from __future__ import annotations
 
-from typing import Annotated
-
 import numpy as np
-import pydantic
-from annotated_types import Ge
 
 from benchmark.errors import DataError
 from benchmark.filters.kalman import Gaussian, GaussianBeliefView, compile_kernels, predict, update
@@ -101,9 +97,9 @@ from benchmark.modalities.camera.model import (
     VehicleSpeeds,
 )
 from benchmark.model import SequenceInfo
-from benchmark.parameters import Positive
 from benchmark.tracker import Tracker
-from trackbench_foresti.features import FeatureExtractor, FeatureParams
+from trackbench_foresti.borders import BorderModelName
+from trackbench_foresti.features import FeatureExtractor
 from trackbench_foresti.features import compile_kernels as compile_feature_kernels
 from trackbench_foresti.measurement import (
     PipeCamera,
@@ -113,53 +109,7 @@ from trackbench_foresti.measurement import (
     border_measurement,
 )
 from trackbench_foresti.motion import advance, advance_jacobian, speed_vector
-
-Variances = tuple[Positive, Positive, Positive, Positive]
-"""Variances of ``(C_x, C_y, theta, phi)``: m^2, m^2, rad^2, rad^2."""
-
-
-@pydantic.dataclasses.dataclass(frozen=True)
-class ForestiParams(FeatureParams):
-    """Parameters of the Foresti EKF: the feature extractor's (section IV) and the filter's (section VI-A)."""
-
-    measurement_var_px2: Positive = 16.0
-    """Variance of each abscissa ``i_1 .. i_4``, px^2: ``R = 16 I`` (section VI-A)."""
-
-    process_var: Variances = (0.01, 0.01, 0.0012, 0.087)
-    """Diagonal of ``Q`` for ``(C_x, C_y, theta, phi)`` over ``process_var_interval_s`` (section VI-A)."""
-
-    process_var_interval_s: Annotated[pydantic.FiniteFloat, Ge(0)] = 0.25
-    """The time step ``process_var`` is given for, s: the paper's filter ran at 4 frames/s (section VII); each
-    frame adds ``Q tau / process_var_interval_s``.  0: ``Q`` per frame, whatever the frame interval."""
-
-    initial_state: tuple[pydantic.FiniteFloat, pydantic.FiniteFloat, pydantic.FiniteFloat, pydantic.FiniteFloat] = (
-        0.0,
-        2.0,
-        0.0,
-        0.78,
-    )
-    """``x_0 = (C_x, C_y, theta, phi)`` without the truth's pose, m and rad (section VI-A)."""
-
-    initial_var: Variances = (1.0, 1.0, 0.3, 0.3)
-    """Diagonal of ``P_0`` (section VI-A)."""
-
-    estimate_roll: bool = False
-    """Add the roll ``xi`` to the state, as section VI-B does under down-streams."""
-
-    roll_initial_var: Positive = 0.0076
-    """Variance of the initial roll, rad^2: 5 deg (section VI-B)."""
-
-    roll_process_var: Annotated[pydantic.FiniteFloat, Ge(0)] = 0.0012
-    """Variance of the roll's drift a frame, rad^2 (not given; the value of the other small angle)."""
-
-    refit_chi2: Annotated[pydantic.FiniteFloat, Ge(0)] = 18.47
-    """Take a pair only if the corrected state's borders reproduce it: ``r^T R^-1 r`` at most this, with ``r`` the
-    pair's abscissae minus the corrected state's; 0: take every gated pair (the paper)."""
-
-    max_border_std_px: Annotated[pydantic.FiniteFloat, Ge(0)] = 0.0
-    """Report no cable when the standard deviation of a border abscissa the state predicts exceeds this, px;
-    0: always report (the paper)."""
-
+from trackbench_foresti.params import ForestiParams
 
 class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
     """Camera pose ``(C_x, C_y, theta, phi[, xi])`` by an EKF on the pipe's borders and the inertial speeds.
@@ -174,7 +124,7 @@ class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
     """
 
     name = "foresti_ekf"
-    version = "1.0"
+    version = "1.1"
     modality = "camera"
     deterministic = True
     Params = ForestiParams
@@ -208,8 +158,8 @@ class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
         """
         compile_kernels()
         compile_feature_kernels()
-        self.camera = pipe_camera(info)
         p = self.params
+        self.camera = pipe_camera(info, p.border_model)
         per_frame = self.camera.frame_interval_s / p.process_var_interval_s if p.process_var_interval_s > 0 else 1.0
         self._q = per_frame * np.diag(np.r_[p.process_var, p.roll_process_var][: self._dims])
         if init is not None and init.pose is not None:
@@ -302,8 +252,11 @@ class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
         return PosedCableState(cable.d, cable.alpha, cable.w, cable.beta, pose=pose, pose_variance=spread)
 
 
-def pipe_camera(info: SequenceInfo) -> PipeCamera:
+def pipe_camera(info: SequenceInfo, border_model: BorderModelName = "plane") -> PipeCamera:
     """The filter's :class:`PipeCamera` from a sequence's calibration, frame size and frame interval.
+
+    ``border_model`` names the lines the filter takes for the pipe's borders
+    (:mod:`trackbench_foresti.borders`).
 
     Raises
     ------
@@ -323,6 +276,7 @@ def pipe_camera(info: SequenceInfo) -> PipeCamera:
         diameter_m=calibration.pipe_diameter_m,
         nominal_tilt=calibration.nominal_tilt,
         frame_interval_s=info.frame_interval_s,
+        border_model=border_model,
     )
 
 

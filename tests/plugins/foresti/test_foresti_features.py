@@ -143,6 +143,11 @@ def test_bad_predictions_are_refused(draw, extractor):
         ({"min_pair_reliability": 1.5}, "min_pair_reliability"),
         ({"gate_px": 0.0}, "gate_px"),
         ({"meet_ratio": 0.0}, "meet_ratio"),
+        ({"canny_rule": "otsu"}, "canny_rule"),
+        ({"canny_percentile": 100.5}, "canny_percentile"),
+        ({"reference_rows": -240.0}, "reference_rows"),
+        ({"nest_slack": 1.5}, "nest_slack"),
+        ({"nest_max_angle_deg": -1.0}, "nest_max_angle_deg"),
     ],
 )
 def test_bad_parameters_are_refused(overrides, name):
@@ -153,12 +158,12 @@ def test_bad_parameters_are_refused(overrides, name):
 def test_the_flat_parameters_give_the_submodules_theirs_in_rad():
     params = FeatureParams(alpha_step_deg=2.0, phase_tolerance_deg=8.0, max_divergence_deg=3.0, gate_px=25.0)
     assert params.weights == (0.5, 0.35, 0.15)
-    assert params.grouping == GroupingParams(max_divergence=math.radians(3.0), gate_px=25.0)
-    assert FeatureParams().grouping == GroupingParams()
+    assert params.grouping == GroupingParams(max_divergence=math.radians(3.0), gate_px=25.0, nest_slack=0.2)
+    assert FeatureParams(nest_slack=0.0, nest_max_angle_deg=2.0).grouping == GroupingParams()
     hough = params.hough
     assert math.isclose(hough["alpha_step"], math.radians(2.0))
     assert math.isclose(hough["phase_tolerance"], math.radians(8.0))
-    assert (hough["rho_step"], hough["tolerance"], hough["min_votes"]) == (1.0, 1.5, 60)
+    assert (hough["rho_step"], hough["tolerance"], hough["min_votes"]) == (1.0, 2.0, 60)
 
 
 def test_parameters_reach_the_grouping(draw):

@@ -15,6 +15,8 @@ from trackbench_foresti.grouping import (
     compatible,
     compatible_pairs,
     convergence,
+    encloses,
+    outline,
     pair_reliability,
     symmetry,
 )
@@ -108,6 +110,43 @@ def test_without_a_prediction_the_most_reliable_pair_wins(draw):
     weak = pair_at(draw, (40.0, 70.0), (30.0, 80.0), (0.6, 0.6))
     strong = pair_at(draw, (230.0, 260.0), (220.0, 270.0), (0.9, 0.9))
     assert choose_pair(weak + strong, SIZE) == tuple(strong)
+
+
+NESTED = GroupingParams(nest_slack=0.2)
+
+
+def banded(draw, columns, reliabilities, polarities):
+    """Parallel vertical candidates at pixel ``columns`` with their reliabilities and polarities."""
+    return [
+        dataclasses.replace(draw.candidate(draw.through_rows(u, u), r), polarity=sign)
+        for u, r, sign in zip(columns, reliabilities, polarities, strict=True)
+    ]
+
+
+def test_the_outline_of_a_painted_pipe_encloses_its_bands(draw):
+    """Dark flanks around a bright crown: the crown's pair is the most reliable, the outline is the pipe."""
+    lines = banded(draw, (100.0, 110.0, 130.0, 140.0), (0.8, 0.95, 0.95, 0.8), (-1, 1, -1, 1))
+    crown = (lines[1], lines[2])
+    assert choose_pair(lines, SIZE) == crown  # the paper's choice: the highest Delta R
+    assert choose_pair(lines, SIZE, params=NESTED) == (lines[0], lines[3])
+    # Below the slack the outline is too weak to be taken.
+    weak = banded(draw, (100.0, 110.0, 130.0, 140.0), (0.5, 0.95, 0.95, 0.5), (-1, 1, -1, 1))
+    assert choose_pair(weak, SIZE, params=NESTED) == (weak[1], weak[2])
+
+
+def test_an_enclosing_pair_must_run_parallel_to_the_best_one(draw):
+    lines = banded(draw, (100.0, 110.0, 130.0, 140.0), (0.8, 0.95, 0.95, 0.8), (-1, 1, -1, 1))
+    tilted = dataclasses.replace(draw.candidate(draw.through_rows(140.0, 150.0), 0.8), polarity=1)  # 2.4 deg off
+    pairs = compatible_pairs([*lines[:3], tilted], SIZE)
+    best = max(pairs, key=lambda pair: pair.reliability)
+    assert (best.left, best.right) == (lines[1], lines[2])
+    assert choose_pair([*lines[:3], tilted], SIZE, params=NESTED) == (lines[1], lines[2])
+    assert choose_pair([*lines[:3], tilted], SIZE, params=GroupingParams(nest_slack=0.2, nest_max_angle=0.05)) == (
+        lines[0],
+        tilted,
+    )
+    assert all(encloses(pair, pair, 0.0) for pair in pairs)
+    assert outline(pairs, best, GroupingParams()) is best
 
 
 def test_a_prediction_picks_the_nearby_weaker_pair_over_a_stronger_far_one(draw):

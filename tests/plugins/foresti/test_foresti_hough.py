@@ -15,7 +15,8 @@ from benchmark.modalities.camera.model import CableState
 
 ODD = (101, 81)  # an odd size puts the model origin on a pixel centre
 STEP = math.radians(1.0)
-DEFAULTS = FeatureParams()
+DEFAULTS = FeatureParams(blur_sigma_px=1.5, phase_tolerance_deg=5.0)
+"""The settings the drawn images below were made for (the ``-paper`` variants' edges)."""
 
 
 def edge_map(u, v, phase, size=ODD, modulus=100.0) -> EdgeMap:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -18,8 +19,9 @@ from trackbench_foresti.measurement import (
     pose_angles,
 )
 
-from benchmark.modalities.camera.geometry import cable_from_borders, chord_midpoint
+from benchmark.modalities.camera.geometry import cable_borders, cable_from_borders, chord_midpoint
 from benchmark.modalities.camera.model import CameraPose
+from benchmark.modalities.camera.scenes.silhouette import cable_truth
 from benchmark.modalities.camera.scenes.projection import (
     camera_axes_derivatives,
     project_points,
@@ -29,6 +31,7 @@ from benchmark.modalities.camera.scenes.projection import (
 CAMERA = PipeCamera(
     focal_px=380.0, size=(320, 240), diameter_m=0.2, nominal_tilt=math.radians(60.0), frame_interval_s=0.04
 )
+OUTLINE = dataclasses.replace(CAMERA, border_model="tangent")
 
 states = st.tuples(
     st.floats(-0.4, 0.4),
@@ -78,31 +81,30 @@ def test_the_borders_g_gives_hold_the_images_of_the_pipe_lines(state, z):
 
 
 @settings(max_examples=60, deadline=None)
-@given(states, st.booleans())
-def test_the_jacobian_matches_central_differences(state, with_roll):
+@given(states, st.booleans(), st.sampled_from([CAMERA, OUTLINE]))
+def test_the_jacobian_matches_central_differences(state, with_roll, camera):
     x = state if with_roll else state[:4]
     step = 1e-6
     numeric = np.stack(
         [
-            (border_abscissae(x + step * e, CAMERA) - border_abscissae(x - step * e, CAMERA)) / (2 * step)
+            (border_abscissae(x + step * e, camera) - border_abscissae(x - step * e, camera)) / (2 * step)
             for e in np.eye(len(x))
         ],
         axis=1,
     )
-    analytic = border_jacobian(x, CAMERA)
+    analytic = border_jacobian(x, camera)
     assert analytic.shape == (4, len(x))
     np.testing.assert_allclose(analytic, numeric, rtol=1e-5, atol=1e-4)
 
 
 def reference_jacobian(state: np.ndarray, camera: PipeCamera) -> np.ndarray:
     """:func:`border_jacobian` entry by entry."""
-    lines, inverse_t, intrinsics = _image_lines(state, camera)
+    lines, inverse_t, intrinsics, by_normal = _image_lines(state, camera)
     rows = camera.rows
-    by_centre = (inverse_t @ np.array(((0.0, -1.0), (1.0, 0.0), (0.0, 0.0)))).T
     axes = camera_axes_derivatives(*pose_angles(state))[: len(state) - 2]
     jacobian = np.empty((4, len(state)))
     for border, line in enumerate(lines):
-        derivatives = [by_centre[0], by_centre[1]]
+        derivatives = [inverse_t @ by_normal[border, 0], inverse_t @ by_normal[border, 1]]
         derivatives += [-inverse_t @ (intrinsics @ d_axes).T @ line for d_axes in axes]
         along = line[1] * rows + line[2]
         for column, dl in enumerate(derivatives):
@@ -111,13 +113,34 @@ def reference_jacobian(state: np.ndarray, camera: PipeCamera) -> np.ndarray:
 
 
 @settings(max_examples=100, deadline=None)
-@given(states, st.booleans())
-def test_the_jacobian_and_the_joint_measurement_equal_their_references(state, with_roll):
+@given(states, st.booleans(), st.sampled_from([CAMERA, OUTLINE]))
+def test_the_jacobian_and_the_joint_measurement_equal_their_references(state, with_roll, camera):
     x = state if with_roll else state[:4]
-    assert np.array_equal(border_jacobian(x, CAMERA), reference_jacobian(x, CAMERA))
-    abscissae, jacobian = border_measurement(x, CAMERA)
-    assert np.array_equal(abscissae, border_abscissae(x, CAMERA))
-    assert jacobian is not None and np.array_equal(jacobian, reference_jacobian(x, CAMERA))
+    np.testing.assert_allclose(border_jacobian(x, camera), reference_jacobian(x, camera), rtol=1e-12, atol=1e-9)
+    abscissae, jacobian = border_measurement(x, camera)
+    assert np.array_equal(abscissae, border_abscissae(x, camera))
+    assert jacobian is not None
+    np.testing.assert_allclose(jacobian, reference_jacobian(x, camera), rtol=1e-12, atol=1e-9)
+
+
+def crossings(line, size: tuple[int, int]) -> tuple[float, float]:
+    """Pixel columns where a model line crosses the first and last rows."""
+    half_w, half_h = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
+    return tuple(line.x0 + (y - line.y0) / line.dy * line.dx + half_w for y in (half_h, -half_h))
+
+
+@settings(max_examples=60, deadline=None)
+@given(states, st.floats(0.1, 0.45))
+def test_the_outline_model_gives_the_rendered_truth_and_the_plane_model_lies_inside_it(state, diameter):
+    """The "tangent" borders are the silhouette the scenes score against; the paper's lines lie within it."""
+    cx, cy, theta, phi, xi = state
+    camera = dataclasses.replace(CAMERA, diameter_m=diameter, border_model="tangent")
+    truth = cable_truth(CameraPose(cx, cy, 0.0, theta, phi, xi), diameter / 2, camera.focal_px, camera.size)
+    left, right = sorted(cable_borders(truth), key=lambda line: crossings(line, camera.size)[1])
+    (i1, i3), (i2, i4) = crossings(left, camera.size), crossings(right, camera.size)
+    np.testing.assert_allclose(border_abscissae(state, camera), (i1, i2, i3, i4), atol=1e-6)
+    plane = border_abscissae(state, dataclasses.replace(camera, border_model="plane"))
+    assert i1 - 1e-6 <= plane[0] and plane[1] <= i2 + 1e-6 and i3 - 1e-6 <= plane[2] and plane[3] <= i4 + 1e-6
 
 
 def test_the_joint_measurement_has_no_jacobian_without_abscissae():
