@@ -27,7 +27,7 @@ polarity and seabed, altitude, tilt and motion, frame size, sensor noise and
 JPEG quality, rendered through the image formation model of
 :mod:`benchmark.modalities.camera.scenes.water`.  ``camera-train``
 (``camera_train.toml``, not scored) holds S1-S7 with other seeds and 24
-sequences of the world (``w01``-``w24``); ``camera-dev`` holds 24 and
+sequences of the world (``w01``-``w24``); ``camera-dev`` holds 48 and
 ``camera-test`` 48 more, with seeds of their own, the test seeds written
 before any tracker ran on them.  Thresholds and models are fitted on
 ``camera-train``, defaults chosen on ``camera-dev``; ``camera-test`` is

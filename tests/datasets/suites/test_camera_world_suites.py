@@ -40,7 +40,7 @@ def _ranges(draws: Mapping[str, Any]) -> Iterator[tuple[str, Any]]:
 def test_the_splits_have_their_sizes_and_roles(suites, world_sequences) -> None:
     assert len(world_sequences["camera-train"]) == 24
     assert len(suites["camera-train"].sequences) == 31
-    assert len(world_sequences["camera-dev"]) == len(suites["camera-dev"].sequences) == 24
+    assert len(world_sequences["camera-dev"]) == len(suites["camera-dev"].sequences) == 48
     assert len(world_sequences["camera-test"]) == len(suites["camera-test"].sequences) == 48
     assert not suites["camera-train"].scored
     assert suites["camera-dev"].scored and suites["camera-test"].scored
@@ -53,7 +53,7 @@ def test_test_seeds_are_disjoint_from_every_other_sequence(suites) -> None:
     assert len(test) == 48 and not test & others
     dev = {seq.spec.seed for seq in suites["camera-dev"].sequences}
     train = {seq.spec.seed for seq in suites["camera-train"].sequences}
-    assert len(dev) == 24 and not dev & train
+    assert len(dev) == 48 and not dev & train
 
 
 def test_every_draw_lies_in_its_declared_range(world_sequences) -> None:
