@@ -141,13 +141,13 @@ class Sequence(ABC):
     def conditions(self) -> Mapping[str, Any]:
         """The conditions the sequence was made under, by name, for boards that split results by them.
 
-        This default gives ``info.extra["conditions"]`` (what a drawn scene
-        drew: :mod:`benchmark.scenes.draws`), or nothing.  A sequence may add
-        what it measures of itself (a camera scene its cable's contrast);
-        it is asked in the coordinating process, once per sequence a board
-        shows, so it may render a frame or two but should not read them all.
+        It is asked in the coordinating process, outside any cell's time
+        limit, so this default reads no data and knows nothing; a simulated
+        scene gives what it drew (:mod:`benchmark.scenes.draws`) and may add
+        what it measures of itself (a camera scene its cable's contrast),
+        rendering a frame or two but never reading a file.
         """
-        return dict(self.info.extra.get("conditions", {}))
+        return {}
 
     def __iter__(self) -> Iterator[Frame]:
         return self.frames()

@@ -88,6 +88,10 @@ class SimulatedScene(Sequence, Generic[SpecT, CacheT]):
         """The conditions the scene was drawn under, by name (a copy); empty when it was not drawn."""
         return dict(self._conditions)
 
+    def conditions(self) -> Conditions:
+        """The conditions the scene was drawn under (:attr:`drawn_conditions`)."""
+        return self.drawn_conditions
+
     @property
     def spec(self) -> SpecT:
         """The definition of this sequence."""
