@@ -34,6 +34,21 @@ definition::
 
 Its table is then the named sequence's merged table (its name dropped),
 under this file's ``[defaults]``, under the entry itself.
+
+Splits of one world (train, dev and test drawn from the same declared
+ranges) share those ranges through a *world*: a file
+``worlds/<name>.toml`` next to this module that holds one ``[defaults]``
+table (typically with a ``draw`` table, :mod:`benchmark.scenes.draws`) and
+nothing else a suite has.  A suite names it in its header::
+
+    [suite]
+    name = "sonar-dev"
+    kind = "sonar"
+    world = "sonar-wide"     # worlds/sonar-wide.toml [defaults] under this file's
+
+and the world's ``[defaults]`` lie under the file's own ``[defaults]``, so
+the three splits differ only in their sequences' names and seeds, and a
+range changed in the world changes all of them.
 """
 
 from __future__ import annotations
@@ -47,6 +62,9 @@ from typing import Any, NamedTuple
 from benchmark.errors import DataError
 from benchmark.modality import SceneFactory
 from benchmark.model import Sequence
+
+WORLD_FOLDER = "worlds"
+"""Folder next to this module holding the worlds suites may name (``[suite] world``)."""
 
 BASE_KEY = "based_on"
 """Key of a sequence table that names the sequence, ``"<suite>/<sequence>"``, it starts from."""
@@ -82,7 +100,49 @@ def _read(text: str, source: str) -> tuple[Mapping[str, Any], Mapping[str, Any],
     entries = document.get("sequence", [])
     if not isinstance(defaults, Mapping) or not isinstance(entries, list) or not entries:
         raise DataError(f"{source}: needs [defaults] as a table and at least one [[sequence]]")
+    world = header.get("world")
+    if world is not None:
+        defaults = merge_tables(world_defaults(world, source), defaults)
     return header, defaults, entries
+
+
+def world_files() -> dict[str, Traversable]:
+    """The worlds shipped in this package's :data:`WORLD_FOLDER`, by name (file name without ``.toml``)."""
+    folder = resources.files(__package__) / WORLD_FOLDER
+    if not folder.is_dir():
+        return {}
+    return {item.name.removesuffix(".toml"): item for item in folder.iterdir() if item.name.endswith(".toml")}
+
+
+def world_defaults(name: Any, where: str) -> dict[str, Any]:
+    """The ``[defaults]`` table of the world ``name`` (``worlds/<name>.toml``).
+
+    Parameters
+    ----------
+    name : Any
+        The value of a suite's ``[suite] world``.
+    where : str
+        The suite file naming it, for error messages.
+
+    Raises
+    ------
+    DataError
+        Naming ``where`` when ``name`` is not the name of a shipped world,
+        or the world's file when it is not valid TOML or holds anything but
+        one ``[defaults]`` table.
+    """
+    worlds = world_files()
+    if not isinstance(name, str) or name not in worlds:
+        raise DataError(f"{where}: [suite] world {name!r} is not one of the shipped worlds {sorted(worlds)}")
+    source = f"{WORLD_FOLDER}/{worlds[name].name}"
+    try:
+        document = tomllib.loads(worlds[name].read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise DataError(f"{source}: not valid TOML: {exc}") from exc
+    defaults = document.get("defaults")
+    if set(document) != {"defaults"} or not isinstance(defaults, Mapping):
+        raise DataError(f"{source}: a world holds one [defaults] table and nothing else, got {sorted(document)}")
+    return dict(defaults)
 
 
 def _tables(
@@ -205,7 +265,7 @@ def parse_suite(
     kind = header.get("kind")
     if kind not in kinds:
         raise DataError(f"{source}: [suite] kind {kind!r} is not one of the registered scene kinds {sorted(kinds)}")
-    extra = sorted(set(header) - {"name", "kind", "description", "training", "scored"})
+    extra = sorted(set(header) - {"name", "kind", "description", "training", "scored", "world"})
     if extra:
         raise DataError(f"{source}: unknown [suite] key(s) {extra}")
     training = header.get("training")

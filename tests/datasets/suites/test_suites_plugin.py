@@ -51,9 +51,20 @@ def test_hook_fills_a_fresh_plugin_manager() -> None:
     manager.hook.trackbench_register_modalities(registry=registry)
     manager.hook.trackbench_register_datasets(registry=registry)
     assert sum(len(suite.sequences) for suite in registry.suites.values()) >= 7
-    assert set(registry.suites) == {"camera", "camera-clutter", "camera-train", "sonar", "stereo", "stereo-images"}
-    assert [name for name, suite in registry.suites.items() if not suite.scored] == ["camera-train"]
+    assert set(registry.suites) == {
+        "camera",
+        "camera-clutter",
+        "camera-train",
+        "sonar",
+        "sonar-train",
+        "sonar-dev",
+        "sonar-test",
+        "stereo",
+        "stereo-images",
+    }
+    assert [name for name, suite in registry.suites.items() if not suite.scored] == ["camera-train", "sonar-train"]
     assert {registry.suites[name].training for name in ("camera", "camera-clutter")} == {"camera-train"}
+    assert {registry.suites[name].training for name in ("sonar-dev", "sonar-test")} == {"sonar-train"}
 
 
 def test_the_suites_need_the_scene_kinds_of_registered_modalities() -> None:

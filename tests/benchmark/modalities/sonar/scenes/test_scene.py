@@ -85,7 +85,7 @@ def test_info_describes_the_sequence() -> None:
     assert isinstance(scene, Sequence)
     assert (info.name, info.modality, info.n_frames, info.frame_size) == ("sonar/busy", "sonar", 30, None)
     assert info.frame_interval_s == 0.3
-    assert info.calibration == SonarCalibration(111, math.radians(120.0), 0.04, 0.9)
+    assert info.calibration == SonarCalibration(111, math.radians(120.0), 0.04, 0.9, math.radians(1.5))
     assert info.extra["description"] == "busy" and info.extra["second_pipe"] is True
     assert info.extra["ping_spacing_m"] == pytest.approx(0.45)
 
