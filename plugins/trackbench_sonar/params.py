@@ -128,7 +128,7 @@ with smaller errors than a wrong peak, but fewer pings correct everywhere).
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, Literal
 
 import pydantic
 from annotated_types import Ge, Interval
@@ -145,13 +145,16 @@ class DetectorParams:
     :class:`pydantic.ValidationError`.
     """
 
+    likelihood: Literal["footprint", "ellipse"] = "footprint"
+    """Form of eq. (1): the cross-section as the beams see it, as evidence, or the ellipse through two points."""
+
     grid_m: Positive = 0.05
-    """Spacing of the across-track grid the swath is resampled on, m (section 2)."""
+    """Spacing of the across-track grid the swath is resampled on, m (section 2); at most M_a / 10."""
 
     spike_window: Annotated[int, Ge(0)] = 5
     """Returns in the running median of the spike test, odd; below 3: no spike test."""
 
-    spike_heights: NonNegative = 0.5
+    spike_heights: NonNegative = 1.0
     """A return whose range is off the running median by more than this many pipe heights M_i is a spike; 0: no test."""
 
     min_beams: Annotated[int, Ge(0)] = 5
@@ -176,7 +179,22 @@ class DetectorParams:
     """The constant weight on L2 in eq. (1)."""
 
     flank_widths: Positive = 1.0
-    """Width of each flank read as local seafloor in L2, in major axes M_a."""
+    """Width of each flank read as local seafloor in L2, in major axes M_a (ellipse)."""
+
+    beam_width_deg: NonNegative = 0.0
+    """Across-track width of a beam, deg (footprint); 0: the calibration's, else the angle between beams."""
+
+    seabed_widths: Positive = 2.0
+    """Seafloor fitted either side of the pipe's span, in major axes M_a (footprint)."""
+
+    relief_widths: Positive = 2.0
+    """Width of the seafloor's mound or hollow, in half-widths of the pipe as the beams see it (footprint)."""
+
+    robust_sigmas: Positive = 10.0
+    """Scale of the fits' Cauchy loss, in the residual scale (footprint)."""
+
+    refine_peak: bool = True
+    """The detector reports the scan's maximum refined between grid points by a parabola; False: the grid point."""
 
 
 @pydantic.dataclasses.dataclass(frozen=True)
@@ -192,8 +210,17 @@ class ParticleFilterParams(DetectorParams):
     walk_sigma_m: NonNegative = 0.0
     """Standard deviation of the random walk per ping, m, when set; 0: ``walk_speed_mps`` times the ping interval."""
 
-    inject_fraction: Annotated[float, Interval(ge=0, le=1)] = 0.05
-    """J: share of the particles re-drawn uniformly over the swath at each update (section 3.4)."""
+    drift_gain: Annotated[float, Interval(ge=0, le=1)] = 0.7
+    """Gain of the smoothed across-track rate of the estimates that shifts the walk of eq. (3); 0: no drift."""
+
+    max_drift_mps: NonNegative = 2.0
+    """Largest across-track drift the walk is shifted by, m/s."""
+
+    inject_fraction: Annotated[float, Interval(ge=0, le=1)] = 0.1
+    """J: share of the particles re-drawn uniformly over the swath at an update of a lost filter (section 3.4)."""
+
+    lost_ratio: NonNegative = 0.3
+    """Fewer samples are injected as the scan's best at the particles nears this share of its best; 0: always J."""
 
     init_sigma_m: NonNegative = 0.1
     """Spread of the initial particles about a known start position, m."""

@@ -100,8 +100,10 @@ def test_weights_stay_normalised_under_eq_4(swaths, pipe_at, noise, missing, n_p
 
 
 def _frozen(**changes) -> ParticleFilterParams:
-    """Parameters without a walk (nor, unless changed, a spread at the start), and a sharp scan."""
+    """Parameters without a walk or drift (nor, unless changed, a spread at the start), injecting at the fixed
+    rate J, with the sharp scan of the ellipse."""
     still = {"walk_sigma_m": 0.0, "walk_speed_mps": 0.0, "init_sigma_m": 0.0, "weight_exponent": 50.0}
+    still |= {"drift_gain": 0.0, "lost_ratio": 0.0, "likelihood": "ellipse"}
     return dataclasses.replace(ParticleFilterParams(), **(still | changes))
 
 
