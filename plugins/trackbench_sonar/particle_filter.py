@@ -146,11 +146,11 @@ def injection_rate(fraction: float, lost_ratio: float, scan: LikelihoodScan, pos
     ----------
     seeds/003, section 3.4 ("generating some rate J of new random samples").
     """
-    if lost_ratio <= 0.0:
+    threshold = lost_ratio * float(scan.values.max())
+    if not threshold > 0.0:
         return fraction
-    best = float(scan.values.max())
     here = float(scan.at(positions).max(initial=0.0))
-    return fraction * max(0.0, 1.0 - here / (lost_ratio * best))
+    return fraction * max(0.0, 1.0 - here / threshold)
 
 
 def walk_sigma(params: ParticleFilterParams, info: SequenceInfo, tracker: str) -> float:

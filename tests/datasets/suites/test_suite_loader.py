@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+from trackbench_suites import loader
 from trackbench_suites.loader import merge_tables, parse_suite
 
 from benchmark.errors import DataError
@@ -97,3 +98,53 @@ def test_a_suite_names_its_training_split_and_a_split_is_not_scored(kinds) -> No
     assert (trained.training, trained.scored) == ("demo-train", True)
     split = parse_suite(GOOD.replace('kind = "camera"', 'kind = "camera"\nscored = false'), "d.toml", kinds)
     assert (split.training, split.scored) == (None, False)
+
+
+WORLD = """
+[defaults]
+focal_px = 250.0
+[defaults.optics]
+blur_px = 1.0
+noise_grey = 3.0
+"""
+
+
+@pytest.fixture
+def a_world(monkeypatch, tmp_path):
+    """A world ``demo-world`` (``worlds/demo-world.toml``) with WORLD's ranges, and nothing else shipped."""
+    path = tmp_path / "demo-world.toml"
+    path.write_text(WORLD)
+    monkeypatch.setattr(loader, "world_files", lambda: {"demo-world": path})
+    return path
+
+
+def test_a_suite_s_world_lies_under_its_own_defaults(kinds, a_world) -> None:
+    text = GOOD.replace('kind = "camera"', 'kind = "camera"\nworld = "demo-world"')
+    a, b = (seq.spec for seq in parse_suite(text, "demo.toml", kinds).sequences)
+    assert (a.focal_px, b.focal_px) == (300.0, 500.0)  # the file's defaults and entries win
+    assert (a.optics.blur_px, a.optics.noise_grey, b.optics.noise_grey) == (0.0, 2.0, 1.0)
+    bare = "[suite]\nname = 'w'\nkind = 'camera'\nworld = 'demo-world'\n\n[[sequence]]\nname = 'A'\nn_frames = 2\n"
+    (only,) = (seq.spec for seq in parse_suite(bare, "w.toml", kinds).sequences)
+    assert (only.focal_px, only.optics.blur_px, only.optics.noise_grey) == (250.0, 1.0, 3.0)
+
+
+@pytest.mark.parametrize(
+    ("world_text", "world", "message"),
+    [
+        (WORLD, "elsewhere", r"demo\.toml: \[suite\] world 'elsewhere' is not one of the shipped worlds \['demo-world'\]"),
+        (WORLD, 3, r"demo\.toml: \[suite\] world 3 is not one of the shipped worlds"),
+        ("[defaults\n", "demo-world", r"worlds/demo-world\.toml: not valid TOML"),
+        (WORLD + "\n[[sequence]]\nname = 'x'\n", "demo-world", r"worlds/demo-world\.toml: a world holds one \[defaults\]"),
+        ("focal_px = 3.0\n", "demo-world", r"worlds/demo-world\.toml: a world holds one \[defaults\] table"),
+    ],
+)
+def test_a_bad_world_names_the_file_at_fault(kinds, a_world, world_text, world, message) -> None:
+    a_world.write_text(world_text)
+    text = GOOD.replace('kind = "camera"', f'kind = "camera"\nworld = {world!r}'.replace("'", '"'))
+    with pytest.raises(DataError, match=message):
+        parse_suite(text, "demo.toml", kinds)
+
+
+def test_the_shipped_worlds_are_the_files_of_the_worlds_folder() -> None:
+    assert "sonar-wide" in loader.world_files()
+    assert "draw" in loader.world_defaults("sonar-wide", "here")
