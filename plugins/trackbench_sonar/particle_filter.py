@@ -98,8 +98,12 @@ class AcrossTrackRate:
     """The pipe's across-track rate, m per ping, smoothed from the filter's own estimates.
 
     After each estimate ``x_k`` the rate becomes ``(1 - g) rate + g (x_k -
-    x_(k-1))``, clipped to ``+-limit_m``; it shifts the random walk of the
-    next ping (:class:`trackbench_sonar.importance.RandomWalkInjection`).
+    x_(k-1))``; it shifts the random walk of the next ping
+    (:class:`trackbench_sonar.importance.RandomWalkInjection`).  A move
+    beyond ``limit_m``, faster than the pipe can drift across the swath, is
+    a jump (the filter leaving one peak of the scan for another), and so
+    is every move while the filter has lost the pipe (:func:`injection_rate`
+    is injecting): the rate is set back to 0 rather than learnt from them.
     The estimates are functions of the pings so far, so the importance
     density stays one of eq. (3)'s, ``q(. | x_(0:k-1), z_(1:k))``.
 
@@ -108,7 +112,7 @@ class AcrossTrackRate:
     gain : float
         ``g`` in ``[0, 1]``; 0 keeps the rate at 0 (the paper's walk).
     limit_m : float
-        Largest drift per ping, m.
+        Largest move per ping taken for a drift, m.
     """
 
     gain: float
@@ -116,11 +120,12 @@ class AcrossTrackRate:
     rate_m: float = 0.0
     last_m: float | None = None
 
-    def update(self, estimate_m: float) -> None:
-        """Take in the estimate of the ping just filtered."""
+    def update(self, estimate_m: float, trusted: bool = True) -> None:
+        """Take in the estimate of the ping just filtered; an estimate not ``trusted`` zeroes the rate."""
         if self.last_m is not None and self.gain > 0.0:
-            smoothed = (1.0 - self.gain) * self.rate_m + self.gain * (estimate_m - self.last_m)
-            self.rate_m = float(np.clip(smoothed, -self.limit_m, self.limit_m))
+            move = estimate_m - self.last_m
+            jump = not trusted or abs(move) > self.limit_m
+            self.rate_m = 0.0 if jump else (1.0 - self.gain) * self.rate_m + self.gain * move
         self.last_m = estimate_m
 
 
@@ -272,12 +277,14 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
                 return None
             self.particle_set = ParticleSet.equally_weighted(uniform_positions(int(p.n_particles), extent, self._rng))
         drift = self._rate.rate_m
+        lost = False
         if scan.is_empty:
             movement = RandomWalkInjection(self._walk_sigma, 0.0, None, drift)
             walked = movement.walk(self.particle_set.states, self._rng)
             self.particle_set = ParticleSet(walked, self.particle_set.weights)
         else:
             rate = injection_rate(p.inject_fraction, p.lost_ratio, scan, self.particle_set.states[:, 0] + drift)
+            lost = p.lost_ratio > 0.0 and rate > 0.0
             update = Condensation(
                 movement=RandomWalkInjection(self._walk_sigma, rate, extent, drift),
                 observation=self._observation,
@@ -288,5 +295,5 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
             self.particle_set = update.step(self.particle_set, scan, self._rng)
         halfwidth = p.peak_halfwidth * self.detector.likelihood.section.major_m
         estimate = peak_mean(self.particle_set.states[:, 0], self.particle_set.weights, halfwidth)
-        self._rate.update(estimate)
+        self._rate.update(estimate, trusted=not lost)
         return PipeEstimate(estimate)

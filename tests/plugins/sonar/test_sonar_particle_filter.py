@@ -238,17 +238,21 @@ def test_keeps_up_with_a_pipe_drifting_three_times_faster_than_its_walk(swaths):
     assert np.mean(np.abs(behind - positions) <= tolerance) < 0.5
 
 
-def test_the_rate_is_smoothed_from_the_estimates_and_clipped():
+def test_the_rate_is_smoothed_from_the_estimates_and_forgets_jumps():
     rate = AcrossTrackRate(0.5, limit_m=0.3, last_m=0.0)
     rate.update(0.2)
     assert rate.rate_m == pytest.approx(0.1)
     rate.update(0.4)
     assert rate.rate_m == pytest.approx(0.15)
-    rate.update(10.0)
-    assert rate.rate_m == pytest.approx(0.3)
+    rate.update(10.0)  # faster than any drift: a jump to another peak
+    assert rate.rate_m == 0.0 and rate.last_m == 10.0
+    rate.update(10.2)
+    assert rate.rate_m == pytest.approx(0.1)
+    rate.update(10.4, trusted=False)  # the filter is lost
+    assert rate.rate_m == 0.0
     still = AcrossTrackRate(0.0, last_m=0.0)
-    still.update(5.0)
-    assert still.rate_m == 0.0 and still.last_m == 5.0
+    still.update(0.1)
+    assert still.rate_m == 0.0 and still.last_m == 0.1
 
 
 @settings(max_examples=60, deadline=None)
