@@ -219,11 +219,9 @@ def test_the_filter_ignores_decoys_that_fool_the_detector(swaths):
     assert np.sqrt(np.mean(tracker**2)) < np.sqrt(np.mean(detector**2))
 
 
-def drift_track(speed_mps: float, interval_s: float = 0.3, n: int = 60) -> np.ndarray:
-    """Across-track positions of a pipe that drifts from -6 m to +6 m and back at ``speed_mps``."""
-    step = speed_mps * interval_s
-    out = -6.0 + step * np.arange(n)
-    return np.where(out > 6.0, 12.0 - out, out)
+def drift_track(speed_mps: float, interval_s: float = 0.3, n: int = 80, amplitude_m: float = 5.0) -> np.ndarray:
+    """Across-track positions of a pipe swinging 5 m either side of nadir, at ``speed_mps`` at its fastest."""
+    return amplitude_m * np.sin(speed_mps * interval_s * np.arange(n) / amplitude_m)
 
 
 def test_keeps_up_with_a_pipe_drifting_three_times_faster_than_its_walk(swaths):
@@ -231,7 +229,7 @@ def test_keeps_up_with_a_pipe_drifting_three_times_faster_than_its_walk(swaths):
     frames = swaths.track(positions, noise=0.01, missing=0.02)
     estimates = np.array([e.across_m for e in run(SonarParticleFilter(), swaths.info(), frames)])
     tolerance = np.array([f.truth.resolution_m for f in frames])
-    assert np.mean(np.abs(estimates - positions) <= tolerance) >= 0.8
+    assert np.mean(np.abs(estimates - positions) <= tolerance) >= 0.9
     # The walk alone, tuned for 0.4 m/s, falls behind.
     lagging = SonarParticleFilter(SonarParticleFilter.make_params({"drift_gain": 0.0}))
     behind = np.array([e.across_m for e in run(lagging, swaths.info(), frames)])
