@@ -34,7 +34,7 @@ from benchmark.modalities.sonar.model import PipeEstimate, SonarCalibration, Son
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
 from trackbench_sonar.cross_section import CrossSection
-from trackbench_sonar.evidence import FootprintLikelihood
+from trackbench_sonar.evidence import FootprintLikelihood, WidestEvidence
 from trackbench_sonar.likelihood import LikelihoodScan, PipeLikelihood
 from trackbench_sonar.params import DetectorParams
 from trackbench_sonar.profile import Profile, resample_swath
@@ -67,13 +67,19 @@ class SensorFacts:
         Angle between neighbouring beams, rad (0: unknown).
     beam_width : float
         The beams' across-track width, rad: the parameter ``beam_width_deg``
-        when set, else the calibration's, else the beam spacing.
+        when set, else the calibration's; 0 when neither says.
     """
 
     section: CrossSection
     sigma_m: float
     beam_spacing: float
     beam_width: float
+
+    def candidate_widths(self, spacings: tuple[float, ...]) -> tuple[float, ...]:
+        """The beam width if known; else those multiples of the beam spacing (or none: rays)."""
+        if self.beam_width > 0.0:
+            return (self.beam_width,)
+        return tuple(factor * self.beam_spacing for factor in spacings) if self.beam_spacing > 0.0 else (0.0,)
 
 
 def ellipse_model(params: DetectorParams, facts: SensorFacts) -> PipeLikelihood:
@@ -89,16 +95,25 @@ def ellipse_model(params: DetectorParams, facts: SensorFacts) -> PipeLikelihood:
     )
 
 
-def footprint_model(params: DetectorParams, facts: SensorFacts) -> FootprintLikelihood:
-    """Eq. (1) with the cross-section as the beams see it, as evidence (:mod:`trackbench_sonar.evidence`)."""
-    return FootprintLikelihood(
-        facts.section,
-        facts.sigma_m,
-        facts.beam_width,
-        float(params.seabed_widths),
-        float(params.relief_widths),
-        float(params.robust_sigmas),
+def footprint_model(params: DetectorParams, facts: SensorFacts) -> FootprintLikelihood | WidestEvidence:
+    """Eq. (1) with the cross-section as the beams see it, as evidence (:mod:`trackbench_sonar.evidence`).
+
+    When neither the parameters nor the calibration give the beam width, one
+    model per width of ``unknown_width_spacings`` (in beam spacings), of
+    which each ping keeps the best (:class:`~trackbench_sonar.evidence.WidestEvidence`).
+    """
+    models = tuple(
+        FootprintLikelihood(
+            facts.section,
+            facts.sigma_m,
+            width,
+            float(params.seabed_widths),
+            float(params.relief_widths),
+            float(params.robust_sigmas),
+        )
+        for width in facts.candidate_widths(tuple(params.unknown_width_spacings))
     )
+    return models[0] if len(models) == 1 else WidestEvidence(models)
 
 
 LIKELIHOODS: dict[str, Callable[[DetectorParams, SensorFacts], ScanModel]] = {
@@ -183,7 +198,7 @@ class SwathDetector:
         width = math.radians(params.beam_width_deg)
         if width <= 0.0 and calibration is not None and 0.0 < calibration.beam_width < math.pi:
             width = float(calibration.beam_width)
-        facts = SensorFacts(section, sigma, spacing, width if width > 0.0 else spacing)
+        facts = SensorFacts(section, sigma, spacing, width)
         likelihood = LIKELIHOODS[params.likelihood](params, facts)
         spike_m = params.spike_heights * minor if params.spike_heights > 0 else math.inf
         grid = min(float(params.grid_m), major / GRID_PER_PIPE)

@@ -233,3 +233,39 @@ class FootprintLikelihood:
         if profile.is_empty:
             return LikelihoodScan.empty()
         return LikelihoodScan(profile.across_m, self.candidates(profile).evidence)
+
+
+@dataclass(frozen=True)
+class WidestEvidence:
+    """Eq. (1) for a sonar whose beam width nobody gave: the best of a few widths, ping by ping.
+
+    Each ping is scored by every model and the scan whose best candidate
+    holds the most evidence is kept: assumed too narrow, the footprint
+    leaves a smoothed pipe unexplained; assumed too wide, it blurs the
+    pipe's arc away, and either way the true pipe's evidence falls.
+
+    Parameters
+    ----------
+    models : tuple of FootprintLikelihood
+        The same pipe and sonar under different beam widths, at least one.
+
+    References
+    ----------
+    seeds/003, section 2, eq. (1).
+    """
+
+    models: tuple[FootprintLikelihood, ...]
+
+    def __post_init__(self) -> None:
+        if not self.models:
+            raise ValueError("WidestEvidence needs at least one model")
+
+    @property
+    def section(self) -> CrossSection:
+        """The pipe's axes (the same in every model)."""
+        return self.models[0].section
+
+    def scan(self, profile: Profile) -> LikelihoodScan:
+        """The scan, among the models', whose maximum is largest (the first of equals)."""
+        scans = [model.scan(profile) for model in self.models]
+        return max(scans, key=lambda scan: float(scan.values.max(initial=0.0)))

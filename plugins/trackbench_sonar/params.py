@@ -131,7 +131,7 @@ from __future__ import annotations
 from typing import Annotated, Literal
 
 import pydantic
-from annotated_types import Ge, Interval
+from annotated_types import Ge, Interval, MinLen
 
 from benchmark.filters import ResamplerName
 from benchmark.parameters import NonNegative, Positive
@@ -182,7 +182,10 @@ class DetectorParams:
     """Width of each flank read as local seafloor in L2, in major axes M_a (ellipse)."""
 
     beam_width_deg: NonNegative = 0.0
-    """Across-track width of a beam, deg (footprint); 0: the calibration's, else the angle between beams."""
+    """Across-track width of a beam, deg (footprint); 0: the calibration's, else see ``unknown_width_spacings``."""
+
+    unknown_width_spacings: Annotated[tuple[Positive, ...], MinLen(1)] = (1.0, 2.0, 4.0)
+    """Beam widths tried on each ping when none is known, in angles between beams; the best is kept (footprint)."""
 
     seabed_widths: Positive = 2.0
     """Seafloor fitted either side of the pipe's span, in major axes M_a (footprint)."""
@@ -210,13 +213,13 @@ class ParticleFilterParams(DetectorParams):
     walk_sigma_m: NonNegative = 0.0
     """Standard deviation of the random walk per ping, m, when set; 0: ``walk_speed_mps`` times the ping interval."""
 
-    drift_gain: Annotated[float, Interval(ge=0, le=1)] = 0.7
+    drift_gain: Annotated[float, Interval(ge=0, le=1)] = 0.9
     """Gain of the smoothed across-track rate of the estimates that shifts the walk of eq. (3); 0: no drift."""
 
     max_drift_mps: NonNegative = 2.0
     """Largest across-track drift the walk is shifted by, m/s."""
 
-    inject_fraction: Annotated[float, Interval(ge=0, le=1)] = 0.1
+    inject_fraction: Annotated[float, Interval(ge=0, le=1)] = 0.05
     """J: share of the particles re-drawn uniformly over the swath at an update of a lost filter (section 3.4)."""
 
     lost_ratio: NonNegative = 0.3

@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from trackbench_sonar import SonarDetector
 from trackbench_sonar.detection import SwathDetector
-from trackbench_sonar.evidence import FootprintLikelihood
+from trackbench_sonar.evidence import FootprintLikelihood, WidestEvidence
 from trackbench_sonar.likelihood import PipeLikelihood
 from trackbench_sonar.params import DetectorParams
 
@@ -95,11 +95,12 @@ def test_any_swath_gives_an_estimate_none_or_a_data_error(swaths, across, depth)
 def test_the_calibration_supplies_the_pipe_and_the_parameters_may_override_it(swaths):
     info = swaths.info(diameter=0.9, noise=0.05)
     default = SwathDetector.for_sequence(DetectorParams(), info, "t")
-    assert isinstance(default.likelihood, FootprintLikelihood)
+    assert isinstance(default.likelihood, WidestEvidence)
     assert default.likelihood.section.major_m == 0.9 and default.likelihood.section.minor_m == 0.9
-    assert default.likelihood.sigma_m == pytest.approx(math.hypot(0.05, 0.01))
-    # No beam width in the calibration: the beams are taken as wide as they are apart.
-    assert default.likelihood.beam_width == pytest.approx(info.calibration.beam_spacing)
+    # No beam width in the calibration: each ping tries beams 1, 2 and 4 spacings wide.
+    spacing = info.calibration.beam_spacing
+    assert [model.beam_width for model in default.likelihood.models] == pytest.approx([spacing, 2 * spacing, 4 * spacing])
+    assert [model.sigma_m for model in default.likelihood.models] == pytest.approx([math.hypot(0.05, 0.01)] * 3)
     assert default.spike_m == pytest.approx(0.9)
     assert default.grid_m == pytest.approx(0.05)
     oblique = SwathDetector.for_sequence(DetectorParams(major_axis_m=1.3, likelihood="ellipse"), info, "t")
@@ -117,6 +118,8 @@ def test_the_beam_width_comes_from_the_parameter_else_the_calibration_else_the_s
     )
     given = SwathDetector.for_sequence(DetectorParams(beam_width_deg=0.7), info, "t")
     assert given.likelihood.beam_width == pytest.approx(math.radians(0.7))
+    unknown = SwathDetector.for_sequence(DetectorParams(unknown_width_spacings=(3.0,)), swaths.info(), "t")
+    assert unknown.likelihood.beam_width == pytest.approx(3.0 * swaths.info().calibration.beam_spacing)
 
 
 def test_the_grid_is_at_most_a_tenth_of_the_pipe(swaths):
@@ -151,6 +154,7 @@ def test_a_sequence_without_a_pipe_diameter_is_a_data_error_unless_the_axes_are_
         ("seabed_widths", 0.0),
         ("relief_widths", math.nan),
         ("robust_sigmas", -2.0),
+        ("unknown_width_spacings", ()),
     ],
 )
 def test_bad_parameters_name_the_tracker_and_the_parameter(name, value):
@@ -158,6 +162,11 @@ def test_bad_parameters_name_the_tracker_and_the_parameter(name, value):
         SonarDetector.make_params({name: value})
     with pytest.raises(pydantic.ValidationError, match=name):
         dataclasses.replace(DetectorParams(), **{name: value})
+
+
+def test_a_negative_width_to_try_is_refused_naming_it():
+    with pytest.raises(ParameterError, match=r"'unknown_width_spacings.1': Input should be greater than 0"):
+        SonarDetector.make_params({"unknown_width_spacings": (1.0, -2.0)})
 
 
 def test_step_before_reset_is_an_error(swaths):

@@ -12,7 +12,7 @@ from hypothesis.extra.numpy import arrays
 from scipy.ndimage import gaussian_filter1d
 from trackbench_sonar.cross_section import CrossSection
 from trackbench_sonar.detection import SwathDetector
-from trackbench_sonar.evidence import MIN_RETURNS, FootprintLikelihood
+from trackbench_sonar.evidence import MIN_RETURNS, FootprintLikelihood, WidestEvidence
 from trackbench_sonar.params import DetectorParams
 from trackbench_sonar.profile import resample_swath
 
@@ -76,6 +76,20 @@ def test_taken_as_rays_the_beams_leave_the_pipe_to_rough_seabed(swaths):
         found = peak(swaths, swath, *sonar, beam_width_deg=1e-6)
         misses += found is None or abs(found - 2.0) > 1.0
     assert misses >= 2
+
+
+def test_without_a_beam_width_each_ping_keeps_the_width_that_explains_it_best(swaths):
+    # The scenes above, their beam width unknown to the detector: tried at 1, 2 and 4 beam spacings
+    # (0.72, 1.45 and 2.9 deg), the pipe wins in every one.
+    for seed in range(6):
+        swath = swaths.cast(rough_edges(seed), [(2.0, 0.5, 0.0)], n_beams=180, swath_deg=130.0, altitude=15.0,
+                            beam_width_deg=2.5, noise=0.02, seed=seed)  # fmt: skip
+        found = detector(swaths, 180, 130.0, 0.02, 0.5, 0.0)
+        assert isinstance(found.likelihood, WidestEvidence)
+        scan = found.likelihood.scan(found.profile(swath, 0))
+        assert abs(scan.peak(refine=True) - 2.0) <= swaths.spacing_at(2.0, 15.0, 180, 130.0)
+        best = max(model.scan(found.profile(swath, 0)).values.max() for model in found.likelihood.models)
+        assert scan.values.max() == best
 
 
 @pytest.mark.parametrize("seed", range(3))
@@ -155,3 +169,5 @@ def test_bad_settings_are_rejected(field, value):
         FootprintLikelihood(CrossSection(0.6, 0.6), 0.02, beam_width=-0.1)
     with pytest.raises(ValueError, match="iterations"):
         FootprintLikelihood(CrossSection(0.6, 0.6), 0.02, iterations=0)
+    with pytest.raises(ValueError, match="at least one model"):
+        WidestEvidence(())
