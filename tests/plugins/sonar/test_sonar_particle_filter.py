@@ -219,7 +219,7 @@ def test_the_filter_ignores_decoys_that_fool_the_detector(swaths):
     assert np.sqrt(np.mean(tracker**2)) < np.sqrt(np.mean(detector**2))
 
 
-def drift_track(speed_mps: float, interval_s: float = 0.3, n: int = 80, amplitude_m: float = 5.0) -> np.ndarray:
+def drift_track(speed_mps: float, interval_s: float = 0.3, n: int = 50, amplitude_m: float = 5.0) -> np.ndarray:
     """Across-track positions of a pipe swinging 5 m either side of nadir, at ``speed_mps`` at its fastest."""
     return amplitude_m * np.sin(speed_mps * interval_s * np.arange(n) / amplitude_m)
 
