@@ -57,10 +57,20 @@ and a concrete-coated section), and ``sonar/second-pipe``, with a second
 pipe laid nearby to tempt a tracker away.  A frame holds one swath
 (:class:`benchmark.modalities.sonar.scenes.scene.SonarScene`).
 
+The splits ``sonar-train`` (never scored by default), ``sonar-dev`` and
+``sonar-test`` (``sonar_train.toml`` ...) hold sequences of a few hundred
+pings drawn from one world, ``worlds/sonar-wide.toml``: 128-400 beams over
+90-150 deg, beams 0.5-3 deg wide, 5-30 m altitude, pipes whose diameter a
+beam's footprint often reaches half of or exceeds, rough bare seabed,
+trenches with spoil berms, sand waves whose troughs the pipe spans, and a
+smooth cross-track drift of up to 1.2 m/s.  Each split lists only names and
+seeds; the test split's seeds were fixed before any tracker ran on it.
+
 Each suite file names its scene kind, one of those the registered
 modalities declare (``camera``, ``sonar``, ``stereo``, ``stereo-images``),
-and a sequence may start from a sequence of another shipped suite
-(``based_on``); see :mod:`trackbench_suites.loader`.
+a sequence may start from a sequence of another shipped suite
+(``based_on``), and splits may share a world's declared ranges
+(``world = "<name>"``); see :mod:`trackbench_suites.loader`.
 """
 
 from benchmark import Registry, hookimpl

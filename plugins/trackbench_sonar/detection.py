@@ -2,10 +2,15 @@
 
 A :class:`SwathDetector` is set up once per sequence from the trackers'
 parameters and the sequence's :class:`~benchmark.modalities.sonar.model.SonarCalibration`
-(the pipe's diameter, the sonar's range noise), and then turns each frame's
-:class:`~benchmark.modalities.sonar.model.Swath` into a resampled profile
-(:mod:`trackbench_sonar.profile`) and the likelihood of eq. (1) over it
-(:mod:`trackbench_sonar.likelihood`).  Both trackers of the plugin share it,
+(the pipe's diameter, the sonar's range noise and beam width), and then
+turns each frame's :class:`~benchmark.modalities.sonar.model.Swath` into a
+resampled profile (:mod:`trackbench_sonar.profile`) and the likelihood of
+eq. (1) over it.  Eq. (1) has two forms, registered in
+:data:`LIKELIHOODS` and chosen by the parameter ``likelihood``: the
+ellipse through two consecutive points as the paper draws it
+(``"ellipse"``, :mod:`trackbench_sonar.likelihood`) and the cross-section
+as the beams' footprints see it, scored as evidence over the seafloor
+(``"footprint"``, :mod:`trackbench_sonar.evidence`).  Both trackers of the plugin share it,
 so that ``sonar_pf`` observes exactly what ``sonar_detector`` reports;
 :class:`ScanTracker` is the part of a tracker both build on.
 
@@ -18,7 +23,9 @@ enough returns is not an error but an empty scan.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
@@ -27,9 +34,93 @@ from benchmark.modalities.sonar.model import PipeEstimate, SonarCalibration, Son
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
 from trackbench_sonar.cross_section import CrossSection
+from trackbench_sonar.evidence import FootprintLikelihood, WidestEvidence
 from trackbench_sonar.likelihood import LikelihoodScan, PipeLikelihood
 from trackbench_sonar.params import DetectorParams
 from trackbench_sonar.profile import Profile, resample_swath
+
+GRID_PER_PIPE = 10
+"""The profile's grid is at most a tenth of the pipe's width ``M_a``, whatever ``grid_m`` says."""
+
+
+class ScanModel(Protocol):
+    """A form of eq. (1): the pipe's cross-section and the likelihood scan of a profile."""
+
+    section: CrossSection
+
+    def scan(self, profile: Profile) -> LikelihoodScan:
+        """The likelihood over the profile's grid."""
+        ...
+
+
+@dataclass(frozen=True)
+class SensorFacts:
+    """What the sequence tells the detector about its pipe and sonar.
+
+    Attributes
+    ----------
+    section : CrossSection
+        The pipe's axes.
+    sigma_m : float
+        The range noise and ``model_sigma_m`` in quadrature, m.
+    beam_spacing : float
+        Angle between neighbouring beams, rad (0: unknown).
+    beam_width : float
+        The beams' across-track width, rad: the parameter ``beam_width_deg``
+        when set, else the calibration's; 0 when neither says.
+    """
+
+    section: CrossSection
+    sigma_m: float
+    beam_spacing: float
+    beam_width: float
+
+    def candidate_widths(self, spacings: tuple[float, ...]) -> tuple[float, ...]:
+        """The beam width if known; else those multiples of the beam spacing (or none: rays)."""
+        if self.beam_width > 0.0:
+            return (self.beam_width,)
+        return tuple(factor * self.beam_spacing for factor in spacings) if self.beam_spacing > 0.0 else (0.0,)
+
+
+def ellipse_model(params: DetectorParams, facts: SensorFacts) -> PipeLikelihood:
+    """Eq. (1) with the ellipse through two consecutive points (:mod:`trackbench_sonar.likelihood`)."""
+    return PipeLikelihood(
+        facts.section,
+        facts.sigma_m,
+        float(params.proud_weight),
+        params.flank_widths * facts.section.major_m,
+        float(params.fit_span),
+        facts.beam_spacing,
+        float(params.min_pipe_returns),
+    )
+
+
+def footprint_model(params: DetectorParams, facts: SensorFacts) -> FootprintLikelihood | WidestEvidence:
+    """Eq. (1) with the cross-section as the beams see it, as evidence (:mod:`trackbench_sonar.evidence`).
+
+    When neither the parameters nor the calibration give the beam width, one
+    model per width of ``unknown_width_spacings`` (in beam spacings), of
+    which each ping keeps the best (:class:`~trackbench_sonar.evidence.WidestEvidence`).
+    """
+    models = tuple(
+        FootprintLikelihood(
+            facts.section,
+            facts.sigma_m,
+            width,
+            float(params.seabed_widths),
+            float(params.relief_widths),
+            float(params.robust_sigmas),
+        )
+        for width in facts.candidate_widths(tuple(params.unknown_width_spacings))
+    )
+    return models[0] if len(models) == 1 else WidestEvidence(models)
+
+
+LIKELIHOODS: dict[str, Callable[[DetectorParams, SensorFacts], ScanModel]] = {
+    "ellipse": ellipse_model,
+    "footprint": footprint_model,
+}
+"""The forms of eq. (1) by the name the parameter ``likelihood`` gives."""
 
 
 @dataclass(frozen=True)
@@ -38,7 +129,7 @@ class SwathDetector:
 
     Attributes
     ----------
-    likelihood : PipeLikelihood
+    likelihood : ScanModel
         Eq. (1) for the sequence's pipe.
     grid_m : float
         Spacing of the resampled profile.
@@ -56,7 +147,7 @@ class SwathDetector:
     seeds/003, section 2, eq. (1) and Fig. 2.
     """
 
-    likelihood: PipeLikelihood
+    likelihood: ScanModel
     grid_m: float
     spike_window: int
     spike_m: float
@@ -102,18 +193,16 @@ class SwathDetector:
                 f"{tracker}: sequence {info.name!r}: range_sigma_m and model_sigma_m are both 0; L1 needs a scale"
             )
         section = CrossSection(major, minor)
-        beam_angle = float(calibration.beam_spacing) if calibration is not None else 0.0
-        likelihood = PipeLikelihood(
-            section,
-            sigma,
-            float(params.proud_weight),
-            params.flank_widths * major,
-            float(params.fit_span),
-            beam_angle if 0.0 < beam_angle < math.pi else 0.0,
-            float(params.min_pipe_returns),
-        )
+        spacing = float(calibration.beam_spacing) if calibration is not None else 0.0
+        spacing = spacing if 0.0 < spacing < math.pi else 0.0
+        width = math.radians(params.beam_width_deg)
+        if width <= 0.0 and calibration is not None and 0.0 < calibration.beam_width < math.pi:
+            width = float(calibration.beam_width)
+        facts = SensorFacts(section, sigma, spacing, width)
+        likelihood = LIKELIHOODS[params.likelihood](params, facts)
         spike_m = params.spike_heights * minor if params.spike_heights > 0 else math.inf
-        return cls(likelihood, float(params.grid_m), params.spike_window, spike_m, params.min_beams, tracker)
+        grid = min(float(params.grid_m), major / GRID_PER_PIPE)
+        return cls(likelihood, grid, params.spike_window, spike_m, params.min_beams, tracker)
 
     def read(self, frame: SonarFrame) -> Swath:
         """The frame's swath.

@@ -4,8 +4,9 @@ seeds/003 measures its detector scan by scan: "the detector matched the
 actual position of the pipe with the most likely pipe position in over 75%
 of scans" (section 4.1; over 90 % on the concrete section, section 4.2).
 This tracker reports exactly that, the position of the largest value of the
-likelihood scan of eq. (1) (:mod:`trackbench_sonar.detection`), with no
-memory from ping to ping, so that the leaderboard shows what the particle
+likelihood scan of eq. (1) (:mod:`trackbench_sonar.detection`; between grid
+points by a parabola through the maximum and its neighbours unless
+``refine_peak`` is off), with no memory from ping to ping, so that the leaderboard shows what the particle
 filter ``sonar_pf`` adds.  A ping whose scan is empty (too few returns) or
 zero everywhere (no cross-section fits anywhere) reports no detection.  The
 detector uses no randomness and ignores ``init``.
@@ -27,7 +28,7 @@ class SonarDetector(ScanTracker):
     """
 
     name = "sonar_detector"
-    version = "1.0"
+    version = "2.0"
     deterministic = True
     Params = DetectorParams
 
@@ -42,5 +43,5 @@ class SonarDetector(ScanTracker):
             If called before :meth:`reset`.
         """
         _, scan = self.scan(frame)
-        peak = scan.peak()
+        peak = scan.peak(refine=bool(self.params.refine_peak))
         return None if peak is None else PipeEstimate(peak)

@@ -1,14 +1,19 @@
-"""The importance density of the pipe filter: a random walk with injected samples.
+"""The importance density of the pipe filter: a random walk, drifting, with injected samples.
 
 seeds/003 draws each particle from an importance density
-``q(. | x_(k-1), z_k)`` (eq. 3) without saying which.  The one used here is
-the transition prior, ``q = p(x_k | x_(k-1))``, the choice of the SIR filter
-the paper names (section 3.4, Gordon et al.): the pipe's across-track
-position follows a Gaussian random walk of standard deviation
-``walk_sigma_m`` per ping (by default ``walk_speed_mps`` times the ping
-interval).  With
-this choice the weight update of eq. (4) is the previous weight times the
-likelihood, exactly as the paper writes it.
+``q(. | x_(0:k-1), z_(1:k))`` (eq. 3) without saying which.  The one used
+here is the transition prior, the choice of the SIR filter the paper names
+(section 3.4, Gordon et al.): the pipe's across-track position follows a
+Gaussian random walk of standard deviation ``walk_sigma_m`` per ping (by
+default ``walk_speed_mps`` times the ping interval), shifted by a drift
+``drift_m`` per ping.  The drift is the filter's own estimate of how fast
+the pipe moves across the swath (from its past estimates, so from
+``z_(1:k-1)``, which eq. 3's general form allows;
+:class:`trackbench_sonar.particle_filter.SonarParticleFilter`): a walk
+alone, tuned for a pipe that wanders, lags a pipe that drifts steadily
+faster than the walk's speed.  With a drift of 0 it is the walk of the
+paper's filter.  With this choice the weight update of eq. (4) is the
+previous weight times the likelihood, exactly as the paper writes it.
 
 Section 3.4 keeps "some noise in the system by generating some rate J of
 new random samples as done in the initialization step": after the walk,
@@ -58,6 +63,8 @@ class RandomWalkInjection:
     extent : tuple of float or None
         Across-track ``(low, high)`` of the swath to inject over; None
         injects nothing.
+    drift_m : float
+        Shift of every walked particle this ping, m (finite).
 
     References
     ----------
@@ -67,12 +74,15 @@ class RandomWalkInjection:
     walk_sigma_m: float
     inject_fraction: float
     extent: tuple[float, float] | None = None
+    drift_m: float = 0.0
 
     _walk: LinearDriftDiffusion = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if not 0.0 <= self.inject_fraction <= 1.0:
             raise ValueError(f"inject_fraction must be in [0, 1], got {self.inject_fraction!r}")
+        if not np.isfinite(self.drift_m):
+            raise ValueError(f"drift_m must be finite, got {self.drift_m!r}")
         object.__setattr__(self, "_walk", LinearDriftDiffusion(np.eye(1), np.array([self.walk_sigma_m])))
 
     def injected_count(self, n: int) -> int:
@@ -82,14 +92,14 @@ class RandomWalkInjection:
         return min(n, max(1, round(self.inject_fraction * n)))
 
     def walk(self, states: np.ndarray, rng: np.random.Generator) -> np.ndarray:
-        """Move every particle by the random walk alone (the transition prior).
+        """Move every particle by the drift and the random walk (the transition prior).
 
         Raises
         ------
         ValueError
             If ``states`` is not ``(N, 1)``.
         """
-        return self._walk.propagate(states, rng)
+        return self._walk.propagate(states, rng) + self.drift_m
 
     def propagate(self, states: np.ndarray, rng: np.random.Generator) -> np.ndarray:
         """Draw ``x_k^i ~ q(. | x_(k-1)^i)`` (eq. 3) and inject ``J N`` new samples (section 3.4).

@@ -133,11 +133,28 @@ class LikelihoodScan:
         values = np.interp(np.where(finite, across, self.positions[0] - 1.0), self.positions, self.values, 0.0, 0.0)
         return np.where(finite, values, 0.0)
 
-    def peak(self) -> float | None:
-        """The most likely position, or None for an empty scan (first of equal maxima)."""
+    def peak(self, refine: bool = False) -> float | None:
+        """The most likely position, or None for an empty scan (first of equal maxima).
+
+        Parameters
+        ----------
+        refine : bool
+            Move the grid position of the maximum to the vertex of the
+            parabola through it and its two neighbours (by at most half a
+            grid step), where the scan is higher there than on both sides.
+        """
         if self.is_empty:
             return None
-        return float(self.positions[int(np.argmax(self.values))])
+        best = int(np.argmax(self.values))
+        position = float(self.positions[best])
+        if not refine or not 0 < best < self.values.size - 1:
+            return position
+        left, top, right = self.values[best - 1 : best + 2]
+        curvature = left - 2.0 * top + right
+        if not curvature < 0.0:
+            return position
+        step = float(self.positions[best + 1] - self.positions[best])
+        return position + float(np.clip(0.5 * (left - right) / curvature, -0.5, 0.5)) * step
 
 
 @dataclass(frozen=True, eq=False)

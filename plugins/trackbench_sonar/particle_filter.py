@@ -8,8 +8,11 @@ The state is one number, the pipe's across-track position in the swath
   start of a step, which is the same as resampling at the end of the
   previous one, and does so whatever the effective sample size;
 * the importance density of :mod:`trackbench_sonar.importance` (eq. 3): a
-  random walk (:func:`walk_sigma`), then a fraction ``J`` of the particles
-  re-drawn uniformly over the swath (section 3.4);
+  random walk (:func:`walk_sigma`) shifted by the drift the filter has
+  seen (:class:`AcrossTrackRate`), then a share of the particles re-drawn
+  uniformly over the swath (section 3.4), ``J`` when the filter has lost
+  the pipe and less as the scan at its particles nears the scan's best
+  (:func:`injection_rate`);
 * weights by eq. (4), ``w_k^i ~ w_(k-1)^i L_k^i``, where ``L_k^i`` is the
   likelihood scan of eq. (1) (:mod:`trackbench_sonar.detection`, the scan
   ``sonar_detector`` reports the maximum of) at the particle's position,
@@ -18,10 +21,13 @@ The state is one number, the pipe's across-track position in the swath
 * the estimate of eq. (5), the weighted mean of the particles of the
   heaviest peak (:mod:`trackbench_sonar.estimate`, section 3.3).
 
-Three departures from the letter of eqs. (4)-(5), each explained with the
+Five departures from the letter of section 3, each explained with the
 evidence in :mod:`trackbench_sonar.params`: the scan is raised to a power
 before it weighs the particles, every weight keeps a small share of the
-best one, and eq. (5) averages the heaviest peak rather than all particles.
+best one, eq. (5) averages the heaviest peak rather than all particles,
+the walk drifts with the pipe's across-track rate, and the rate of
+injected samples follows how lost the filter is.  ``sonar_pf-paper`` sets
+all of them back.
 
 Start: with ``init`` (the first ping's
 :class:`~benchmark.modalities.sonar.model.SonarTruth`) the particles are
@@ -87,6 +93,71 @@ class ScanWeights:
         return np.maximum(values, self.floor * values.max(initial=0.0))
 
 
+@dataclass
+class AcrossTrackRate:
+    """The pipe's across-track rate, m per ping, smoothed from the filter's own estimates.
+
+    After each estimate ``x_k`` the rate becomes ``(1 - g) rate + g (x_k -
+    x_(k-1))``; it shifts the random walk of the next ping
+    (:class:`trackbench_sonar.importance.RandomWalkInjection`).  A move
+    beyond ``limit_m``, faster than the pipe can drift across the swath, is
+    a jump (the filter leaving one peak of the scan for another), and so
+    is every move while the filter has lost the pipe (:func:`injection_rate`
+    is injecting): the rate is set back to 0 rather than learnt from them.
+    The estimates are functions of the pings so far, so the importance
+    density stays one of eq. (3)'s, ``q(. | x_(0:k-1), z_(1:k))``.
+
+    Parameters
+    ----------
+    gain : float
+        ``g`` in ``[0, 1]``; 0 keeps the rate at 0 (the paper's walk).
+    limit_m : float
+        Largest move per ping taken for a drift, m.
+    """
+
+    gain: float
+    limit_m: float = math.inf
+    rate_m: float = 0.0
+    last_m: float | None = None
+
+    def update(self, estimate_m: float, trusted: bool = True) -> None:
+        """Take in the estimate of the ping just filtered; an estimate not ``trusted`` zeroes the rate."""
+        if self.last_m is not None and self.gain > 0.0:
+            move = estimate_m - self.last_m
+            jump = not trusted or abs(move) > self.limit_m
+            self.rate_m = 0.0 if jump else (1.0 - self.gain) * self.rate_m + self.gain * move
+        self.last_m = estimate_m
+
+
+def injection_rate(fraction: float, lost_ratio: float, scan: LikelihoodScan, positions: np.ndarray) -> float:
+    """The share of particles re-drawn this ping: ``J max(0, 1 - r / lost_ratio)``.
+
+    ``r`` is the scan's best value at ``positions`` (the particles where the
+    drift takes them) over its best value anywhere: near 1 while the
+    particles sit on the most likely pipe, near 0 when they have lost it.
+
+    Parameters
+    ----------
+    fraction : float
+        ``J``, the rate of a lost filter (section 3.4).
+    lost_ratio : float
+        ``r`` at and above which nothing is injected; 0 injects ``J`` always.
+    scan : LikelihoodScan
+        This ping's scan, not empty.
+    positions : numpy.ndarray
+        The particles' positions.
+
+    References
+    ----------
+    seeds/003, section 3.4 ("generating some rate J of new random samples").
+    """
+    threshold = lost_ratio * float(scan.values.max())
+    if not threshold > 0.0:
+        return fraction
+    here = float(scan.at(positions).max(initial=0.0))
+    return fraction * max(0.0, 1.0 - here / threshold)
+
+
 def walk_sigma(params: ParticleFilterParams, info: SequenceInfo, tracker: str) -> float:
     """The random walk's standard deviation per ping, m.
 
@@ -129,13 +200,14 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
     """
 
     name = "sonar_pf"
-    version = "1.0"
+    version = "2.0"
     Params = ParticleFilterParams
 
     def __init__(self, params: ParticleFilterParams | None = None) -> None:
         super().__init__(params)
         self._observation = ScanWeights(float(self.params.weight_floor), float(self.params.weight_exponent))
         self._walk_sigma = 0.0
+        self._rate = AcrossTrackRate(float(self.params.drift_gain))
         self._rng: np.random.Generator | None = None
         self.particle_set: ParticleSet | None = None
 
@@ -163,9 +235,13 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
         """
         super().reset(info, rng, init)
         self._walk_sigma = walk_sigma(self.params, info, self.name)
+        interval = info.frame_interval_s
+        known = interval is not None and 0.0 < interval < math.inf
+        limit = float(self.params.max_drift_mps) * float(interval) if known else math.inf
         self._rng = rng
         self.particle_set = None
         start = init.across_m if init is not None else math.nan
+        self._rate = AcrossTrackRate(float(self.params.drift_gain), limit, 0.0, start if math.isfinite(start) else None)
         if math.isfinite(start):
             n = int(self.params.n_particles)
             states = start + self.params.init_sigma_m * rng.standard_normal((n, 1))
@@ -200,13 +276,17 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
             if extent is None:
                 return None
             self.particle_set = ParticleSet.equally_weighted(uniform_positions(int(p.n_particles), extent, self._rng))
-        movement = RandomWalkInjection(self._walk_sigma, p.inject_fraction, extent)
+        drift = self._rate.rate_m
+        lost = False
         if scan.is_empty:
+            movement = RandomWalkInjection(self._walk_sigma, 0.0, None, drift)
             walked = movement.walk(self.particle_set.states, self._rng)
             self.particle_set = ParticleSet(walked, self.particle_set.weights)
         else:
+            rate = injection_rate(p.inject_fraction, p.lost_ratio, scan, self.particle_set.states[:, 0] + drift)
+            lost = p.lost_ratio > 0.0 and rate > 0.0
             update = Condensation(
-                movement=movement,
+                movement=RandomWalkInjection(self._walk_sigma, rate, extent, drift),
                 observation=self._observation,
                 resample=RESAMPLERS[p.resampler],
                 ess_fraction=math.inf,
@@ -214,4 +294,6 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
             )
             self.particle_set = update.step(self.particle_set, scan, self._rng)
         halfwidth = p.peak_halfwidth * self.detector.likelihood.section.major_m
-        return PipeEstimate(peak_mean(self.particle_set.states[:, 0], self.particle_set.weights, halfwidth))
+        estimate = peak_mean(self.particle_set.states[:, 0], self.particle_set.weights, halfwidth)
+        self._rate.update(estimate, trusted=not lost)
+        return PipeEstimate(estimate)

@@ -37,7 +37,7 @@ Too few returns leave an *empty* profile and an empty likelihood scan:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
@@ -66,12 +66,19 @@ class Profile:
         Across-track distance between the two returns each depth is
         interpolated from, shape ``(n,)``: how well the data sample the
         bottom there (lost beams and shadows widen it).
+    returns_across_m, returns_depth_m : numpy.ndarray
+        The cleaned returns the profile was drawn through, sorted by
+        across-track position (ties in beam order), shape ``(m,)``: the
+        measurements themselves, one per beam, for a fit that counts each
+        beam once wherever the beams are dense or sparse.
     """
 
     across_m: np.ndarray
     depth_m: np.ndarray
     spacing_m: float
     gap_m: np.ndarray
+    returns_across_m: np.ndarray = field(default_factory=lambda: np.empty(0))
+    returns_depth_m: np.ndarray = field(default_factory=lambda: np.empty(0))
 
     @property
     def size(self) -> int:
@@ -190,7 +197,15 @@ def resample_swath(
     if last - first < 2:
         return Profile.empty(grid_m)
     envelope, segment = upper_envelope(across, depth, grid_m, first, last)
-    return Profile(np.arange(first, last + 1) * grid_m, envelope, grid_m, np.abs(np.diff(across))[segment])
+    order = np.argsort(across, kind="stable")
+    return Profile(
+        np.arange(first, last + 1) * grid_m,
+        envelope,
+        grid_m,
+        np.abs(np.diff(across))[segment],
+        across[order],
+        depth[order],
+    )
 
 
 def upper_envelope(

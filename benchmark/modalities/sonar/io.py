@@ -10,6 +10,7 @@ then holds one data row per ping::
     # swath_angle_deg = 120
     # range_sigma_m = 0.05
     # pipe_diameter_m = 0.9
+    # beam_width_deg = 1.5
     # ping_interval_s = 0.25
     # time_s pipe_across_m pipe_depth_m burial resolution_m across_m[n_beams] depth_m[n_beams]
     0.00 1.20 14.55 0.0 0.27 -25.9 -4.1 4.0 25.8 15.1 15.0 14.9 15.2
@@ -29,8 +30,9 @@ error, not a missing value.
 The header is the ``# key = value`` lines before the first ping, each key at
 most once.  ``n_beams`` (a whole number >= 1), ``swath_angle_deg`` and
 ``pipe_diameter_m`` (finite, > 0) are required; ``range_sigma_m`` (finite,
->= 0) defaults to 0 and ``ping_interval_s`` (finite, > 0) to the
-difference of the first two times where that is positive.  Other comment
+>= 0) defaults to 0, ``beam_width_deg`` (the across-track width of one
+beam, finite, >= 0) to 0 for "not known", and ``ping_interval_s`` (finite,
+> 0) to the difference of the first two times where that is positive.  Other comment
 lines and blank lines are skipped.
 
 The file must be UTF-8 text and hold at least one ping.  The whole file is
@@ -65,7 +67,7 @@ COLUMNS = "# time_s pipe_across_m pipe_depth_m burial resolution_m across_m[n_be
 """Comment line naming the columns of a data row."""
 
 REQUIRED_KEYS = ("n_beams", "swath_angle_deg", "pipe_diameter_m")
-OPTIONAL_KEYS = ("range_sigma_m", "ping_interval_s")
+OPTIONAL_KEYS = ("range_sigma_m", "beam_width_deg", "ping_interval_s")
 TRUTH_FIELDS = 4
 
 _HEADER_RULES: dict[str, tuple[Callable[[float], bool], str]] = {
@@ -73,6 +75,7 @@ _HEADER_RULES: dict[str, tuple[Callable[[float], bool], str]] = {
     "swath_angle_deg": (lambda value: value > 0, "a finite number > 0"),
     "pipe_diameter_m": (lambda value: value > 0, "a finite number > 0"),
     "range_sigma_m": (lambda value: value >= 0, "a finite number >= 0"),
+    "beam_width_deg": (lambda value: value >= 0, "a finite number >= 0"),
     "ping_interval_s": (lambda value: value > 0, "a finite number > 0"),
 }
 """Per header key: the condition its (finite) value meets, and how messages state it."""
@@ -135,6 +138,7 @@ def _read_header(path: Path, stream: Iterable[bytes]) -> tuple[SonarCalibration,
         swath_angle=math.radians(values["swath_angle_deg"]),
         range_sigma_m=values.get("range_sigma_m", 0.0),
         pipe_diameter_m=values["pipe_diameter_m"],
+        beam_width=math.radians(values.get("beam_width_deg", 0.0)),
     )
     return calibration, values.get("ping_interval_s")
 
@@ -311,6 +315,8 @@ def write_swath_file(sequence: Sequence, path: str | os.PathLike[str]) -> Path:
         f"# range_sigma_m = {calibration.range_sigma_m:.10g}",
         f"# pipe_diameter_m = {calibration.pipe_diameter_m:.10g}",
     ]
+    if calibration.beam_width > 0:
+        header.append(f"# beam_width_deg = {math.degrees(calibration.beam_width):.10g}")
     if info.frame_interval_s is not None:
         header.append(f"# ping_interval_s = {info.frame_interval_s:.10g}")
     header.append(COLUMNS)

@@ -32,12 +32,17 @@ class SonarCalibration:
         Standard deviation of a beam's range measurement.
     pipe_diameter_m : float
         Outer diameter of the pipe the sequence follows (its coating included).
+    beam_width : float
+        Across-track width of one beam (-3 dB), rad; 0 when not known.
+        Where it exceeds the angle between beams, neighbouring beams
+        overlap and each return averages the bottom over its footprint.
     """
 
     n_beams: int
     swath_angle: float
     range_sigma_m: float
     pipe_diameter_m: float
+    beam_width: float = 0.0
 
     @property
     def beam_spacing(self) -> float:

@@ -53,6 +53,7 @@ FILTERS = [
     "condensation-8d",
     "condensation-centre",
     "sonar_pf",
+    "sonar_pf-paper",
     "stereo_ekf",
     "stereo_ekf-paper",
     "stereo_ekf-eq18",

@@ -58,12 +58,16 @@ def test_hook_fills_a_fresh_plugin_manager() -> None:
         "camera-test",
         "camera-train",
         "sonar",
+        "sonar-dev",
+        "sonar-test",
+        "sonar-train",
         "stereo",
         "stereo-images",
     }
-    assert [name for name, suite in registry.suites.items() if not suite.scored] == ["camera-train"]
+    assert [name for name, suite in registry.suites.items() if not suite.scored] == ["camera-train", "sonar-train"]
     trained = ("camera", "camera-clutter", "camera-dev", "camera-test")
     assert {registry.suites[name].training for name in trained} == {"camera-train"}
+    assert {registry.suites[name].training for name in ("sonar-dev", "sonar-test")} == {"sonar-train"}
 
 
 def test_the_suites_need_the_scene_kinds_of_registered_modalities() -> None:

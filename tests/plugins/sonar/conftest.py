@@ -7,6 +7,11 @@ starboard), with a circular pipe of ``diameter`` resting on it at
 pipe.  The beams are equiangular over ``swath_deg``; each meets the nearest
 of the surfaces; range noise, missing beams (``nan``) and spikes are
 optional.  Tests use the helpers through the ``swaths`` fixture.
+
+:func:`cast_scene` casts beams of a given width on any seabed profile with
+pipes on it, through the sonar scenes' own caster
+(:func:`benchmark.modalities.sonar.scenes.swath.beam_ranges`): wide beams
+that smooth a pipe, rough seabed, trenches with spoil berms.
 """
 
 from __future__ import annotations
@@ -18,6 +23,8 @@ import numpy as np
 import pytest
 
 from benchmark.modalities.sonar.model import SonarCalibration, SonarTruth, Swath
+from benchmark.modalities.sonar.scenes.seabed import across_grid
+from benchmark.modalities.sonar.scenes.swath import Ellipse, beam_angles, beam_ranges, swath_from_ranges
 from benchmark.model import Frame, SequenceInfo
 
 
@@ -76,6 +83,34 @@ def make_swath(
     return Swath(across, depth)
 
 
+def cast_scene(
+    relief,
+    pipes=(),
+    *,
+    n_beams: int = 240,
+    swath_deg: float = 120.0,
+    altitude: float = 10.0,
+    beam_width_deg: float = 0.0,
+    noise: float = 0.0,
+    seed: int = 0,
+) -> Swath:
+    """One ping of beams ``beam_width_deg`` wide over the seabed ``altitude + relief(x)`` (``relief`` positive down).
+
+    ``pipes`` holds ``(across, diameter, gap)``: a circular pipe whose lowest point is ``gap`` m above the
+    seabed under its axis (0: resting on it; negative: sunk).
+    """
+    across = across_grid(altitude * 4.0, 0.01)
+    depth = altitude + relief(across)
+    ellipses = []
+    for x, diameter, gap in pipes:
+        bottom = altitude + float(relief(np.array([x]))[0]) - gap
+        ellipses.append(Ellipse(x, bottom - 0.5 * diameter, 0.5 * diameter, 0.5 * diameter))
+    axes = beam_angles(n_beams, math.radians(swath_deg))
+    ranges, _ = beam_ranges(across, depth, axes, ellipses, math.radians(beam_width_deg), 1e3)
+    ranges = ranges + noise * np.random.default_rng(seed).standard_normal(n_beams)
+    return swath_from_ranges(ranges, axes)
+
+
 def beam_spacing_at(x: float, altitude: float, n_beams: int = 240, swath_deg: float = 120.0) -> float:
     """Across-track distance between neighbouring beams near ``x`` on a flat seabed at ``altitude``."""
     step = math.radians(swath_deg) / (n_beams - 1)
@@ -83,9 +118,11 @@ def beam_spacing_at(x: float, altitude: float, n_beams: int = 240, swath_deg: fl
     return altitude * step / math.cos(angle) ** 2
 
 
-def calibration(n_beams: int = 240, swath_deg: float = 120.0, noise: float = 0.02, diameter: float = 0.6):
-    """A SonarCalibration matching :func:`make_swath`."""
-    return SonarCalibration(n_beams, math.radians(swath_deg), noise, diameter)
+def calibration(
+    n_beams: int = 240, swath_deg: float = 120.0, noise: float = 0.02, diameter: float = 0.6, beam_width_deg: float = 0.0
+):
+    """A SonarCalibration matching :func:`make_swath` (or :func:`cast_scene`)."""
+    return SonarCalibration(n_beams, math.radians(swath_deg), noise, diameter, math.radians(beam_width_deg))
 
 
 def info(name: str = "sonar/analytic", n_frames: int | None = None, **calibration_args) -> SequenceInfo:
@@ -110,6 +147,7 @@ def swaths() -> types.SimpleNamespace:
     """The analytic swath helpers of this module."""
     return types.SimpleNamespace(
         make=make_swath,
+        cast=cast_scene,
         centre=pipe_centre,
         spacing_at=beam_spacing_at,
         calibration=calibration,

@@ -12,6 +12,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from trackbench_sonar import SonarDetector
 from trackbench_sonar.detection import SwathDetector
+from trackbench_sonar.evidence import FootprintLikelihood, WidestEvidence
+from trackbench_sonar.likelihood import PipeLikelihood
 from trackbench_sonar.params import DetectorParams
 
 from benchmark.errors import DataError, ParameterError
@@ -31,7 +33,15 @@ def test_reports_the_pipe_of_each_ping(swaths, x):
     estimate = tracker.step(Frame(0, swaths.make(x, noise=0.01, slope=0.05, missing=0.02, spikes=2, seed=7)))
     assert isinstance(estimate, PipeEstimate)
     assert abs(estimate.across_m - x) <= swaths.spacing_at(x, 10.0)
-    assert tracker.last_scan.peak() == estimate.across_m
+    assert estimate.across_m == tracker.last_scan.peak(refine=True)
+    assert abs(estimate.across_m - tracker.last_scan.peak()) <= 0.5 * tracker.detector.grid_m
+
+
+def test_as_printed_it_reports_the_grid_point_of_the_maximum(swaths):
+    tracker = detector(swaths, likelihood="ellipse", refine_peak=False)
+    estimate = tracker.step(Frame(0, swaths.make(1.3, noise=0.01, seed=7)))
+    assert estimate.across_m == tracker.last_scan.peak()
+    assert abs(estimate.across_m - 1.3) <= swaths.spacing_at(1.3, 10.0)
 
 
 def test_each_ping_on_its_own(swaths):
@@ -85,13 +95,36 @@ def test_any_swath_gives_an_estimate_none_or_a_data_error(swaths, across, depth)
 def test_the_calibration_supplies_the_pipe_and_the_parameters_may_override_it(swaths):
     info = swaths.info(diameter=0.9, noise=0.05)
     default = SwathDetector.for_sequence(DetectorParams(), info, "t")
+    assert isinstance(default.likelihood, WidestEvidence)
     assert default.likelihood.section.major_m == 0.9 and default.likelihood.section.minor_m == 0.9
-    assert default.likelihood.sigma_m == pytest.approx(math.hypot(0.05, 0.01))
-    assert default.likelihood.beam_angle == pytest.approx(info.calibration.beam_spacing)
-    assert default.spike_m == pytest.approx(0.45)
-    oblique = SwathDetector.for_sequence(DetectorParams(major_axis_m=1.3), info, "t")
+    # No beam width in the calibration: each ping tries beams 1, 2 and 4 spacings wide.
+    spacing = info.calibration.beam_spacing
+    assert [model.beam_width for model in default.likelihood.models] == pytest.approx([spacing, 2 * spacing, 4 * spacing])
+    assert [model.sigma_m for model in default.likelihood.models] == pytest.approx([math.hypot(0.05, 0.01)] * 3)
+    assert default.spike_m == pytest.approx(0.9)
+    assert default.grid_m == pytest.approx(0.05)
+    oblique = SwathDetector.for_sequence(DetectorParams(major_axis_m=1.3, likelihood="ellipse"), info, "t")
+    assert isinstance(oblique.likelihood, PipeLikelihood)
     assert oblique.likelihood.section.major_m == 1.3 and oblique.likelihood.section.minor_m == 0.9
     assert oblique.likelihood.flank_m == pytest.approx(1.3)
+    assert oblique.likelihood.beam_angle == pytest.approx(info.calibration.beam_spacing)
+
+
+def test_the_beam_width_comes_from_the_parameter_else_the_calibration_else_the_spacing(swaths):
+    wide = dataclasses.replace(swaths.calibration(), beam_width=math.radians(2.0))
+    info = SequenceInfo("sonar/wide", "sonar", None, None, 0.3, wide)
+    assert SwathDetector.for_sequence(DetectorParams(), info, "t").likelihood.beam_width == pytest.approx(
+        math.radians(2.0)
+    )
+    given = SwathDetector.for_sequence(DetectorParams(beam_width_deg=0.7), info, "t")
+    assert given.likelihood.beam_width == pytest.approx(math.radians(0.7))
+    unknown = SwathDetector.for_sequence(DetectorParams(unknown_width_spacings=(3.0,)), swaths.info(), "t")
+    assert unknown.likelihood.beam_width == pytest.approx(3.0 * swaths.info().calibration.beam_spacing)
+
+
+def test_the_grid_is_at_most_a_tenth_of_the_pipe(swaths):
+    small = SwathDetector.for_sequence(DetectorParams(), swaths.info(diameter=0.3), "t")
+    assert small.grid_m == pytest.approx(0.03)
 
 
 def test_a_sequence_without_a_pipe_diameter_is_a_data_error_unless_the_axes_are_given():
@@ -100,7 +133,10 @@ def test_a_sequence_without_a_pipe_diameter_is_a_data_error_unless_the_axes_are_
         SonarDetector().reset(info, np.random.default_rng(0))
     tracker = SonarDetector(SonarDetector.make_params({"major_axis_m": "0.6", "minor_axis_m": "0.6"}))
     tracker.reset(info, np.random.default_rng(0))
-    assert tracker._detector.likelihood.min_pipe_returns == 2.0 and tracker._detector.likelihood.beam_angle == 0.0
+    assert tracker.detector.likelihood.beam_width == 0.0
+    paper = SonarDetector(SonarDetector.make_params({"major_axis_m": 0.6, "minor_axis_m": 0.6, "likelihood": "ellipse"}))
+    paper.reset(info, np.random.default_rng(0))
+    assert paper.detector.likelihood.min_pipe_returns == 2.0 and paper.detector.likelihood.beam_angle == 0.0
 
 
 @pytest.mark.parametrize(
@@ -113,6 +149,12 @@ def test_a_sequence_without_a_pipe_diameter_is_a_data_error_unless_the_axes_are_
         ("min_beams", -1),
         ("spike_window", 2.5),
         ("flank_widths", math.inf),
+        ("likelihood", "circle"),
+        ("beam_width_deg", -1.0),
+        ("seabed_widths", 0.0),
+        ("relief_widths", math.nan),
+        ("robust_sigmas", -2.0),
+        ("unknown_width_spacings", ()),
     ],
 )
 def test_bad_parameters_name_the_tracker_and_the_parameter(name, value):
@@ -120,6 +162,11 @@ def test_bad_parameters_name_the_tracker_and_the_parameter(name, value):
         SonarDetector.make_params({name: value})
     with pytest.raises(pydantic.ValidationError, match=name):
         dataclasses.replace(DetectorParams(), **{name: value})
+
+
+def test_a_negative_width_to_try_is_refused_naming_it():
+    with pytest.raises(ParameterError, match=r"'unknown_width_spacings.1': Input should be greater than 0"):
+        SonarDetector.make_params({"unknown_width_spacings": (1.0, -2.0)})
 
 
 def test_step_before_reset_is_an_error(swaths):

@@ -29,6 +29,15 @@ def test_injected_samples_are_uniform_over_the_extent_and_counted(n, fraction, s
     assert np.all((moved[injected] >= -3.0) & (moved[injected] < 5.0))
 
 
+@settings(max_examples=30, deadline=None)
+@given(st.floats(-2.0, 2.0), st.floats(0.0, 0.5), st.integers(0, 2**16))
+def test_the_drift_shifts_every_walked_particle(drift, sigma, seed):
+    start = np.linspace(-3.0, 3.0, 500)[:, None]
+    still = RandomWalkInjection(sigma, 0.0, (-10.0, 10.0)).propagate(start, np.random.default_rng(seed))
+    moved = RandomWalkInjection(sigma, 0.0, (-10.0, 10.0), drift).propagate(start, np.random.default_rng(seed))
+    assert np.allclose(moved - still, drift)
+
+
 def test_nothing_is_injected_without_a_fraction_or_an_extent():
     start = np.full((50, 1), 2.0)
     assert np.all(RandomWalkInjection(0.0, 0.0, (-1.0, 1.0)).propagate(start, np.random.default_rng(0)) == 2.0)
@@ -46,3 +55,5 @@ def test_uniform_positions_cover_the_extent():
 def test_bad_settings_are_rejected(sigma, fraction):
     with pytest.raises(ValueError):
         RandomWalkInjection(sigma, fraction)
+    with pytest.raises(ValueError, match="drift_m"):
+        RandomWalkInjection(0.1, 0.1, None, np.nan)

@@ -11,10 +11,11 @@ import pydantic
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
 from trackbench_sonar import SonarDetector, SonarParticleFilter
 from trackbench_sonar.likelihood import LikelihoodScan
 from trackbench_sonar.params import ParticleFilterParams, ResamplerName
-from trackbench_sonar.particle_filter import ScanWeights, walk_sigma
+from trackbench_sonar.particle_filter import AcrossTrackRate, ScanWeights, injection_rate, walk_sigma
 
 from benchmark.errors import DataError, ParameterError
 from benchmark.filters import RESAMPLERS
@@ -100,8 +101,10 @@ def test_weights_stay_normalised_under_eq_4(swaths, pipe_at, noise, missing, n_p
 
 
 def _frozen(**changes) -> ParticleFilterParams:
-    """Parameters without a walk (nor, unless changed, a spread at the start), and a sharp scan."""
+    """Parameters without a walk or drift (nor, unless changed, a spread at the start), injecting at the fixed
+    rate J, with the sharp scan of the ellipse."""
     still = {"walk_sigma_m": 0.0, "walk_speed_mps": 0.0, "init_sigma_m": 0.0, "weight_exponent": 50.0}
+    still |= {"drift_gain": 0.0, "lost_ratio": 0.0, "likelihood": "ellipse"}
     return dataclasses.replace(ParticleFilterParams(), **(still | changes))
 
 
@@ -214,6 +217,62 @@ def test_the_filter_ignores_decoys_that_fool_the_detector(swaths):
     assert np.all(detector[4::5] > 5.0)
     assert np.all(tracker <= 0.2)
     assert np.sqrt(np.mean(tracker**2)) < np.sqrt(np.mean(detector**2))
+
+
+def drift_track(speed_mps: float, interval_s: float = 0.3, n: int = 50, amplitude_m: float = 5.0) -> np.ndarray:
+    """Across-track positions of a pipe swinging 5 m either side of nadir, at ``speed_mps`` at its fastest."""
+    return amplitude_m * np.sin(speed_mps * interval_s * np.arange(n) / amplitude_m)
+
+
+def test_keeps_up_with_a_pipe_drifting_three_times_faster_than_its_walk(swaths):
+    positions = drift_track(1.2)
+    frames = swaths.track(positions, noise=0.01, missing=0.02)
+    estimates = np.array([e.across_m for e in run(SonarParticleFilter(), swaths.info(), frames)])
+    tolerance = np.array([f.truth.resolution_m for f in frames])
+    assert np.mean(np.abs(estimates - positions) <= tolerance) >= 0.9
+    # The walk alone, tuned for 0.4 m/s, falls behind.
+    lagging = SonarParticleFilter(SonarParticleFilter.make_params({"drift_gain": 0.0}))
+    behind = np.array([e.across_m for e in run(lagging, swaths.info(), frames)])
+    assert np.mean(np.abs(behind - positions) <= tolerance) < 0.5
+
+
+def test_the_rate_is_smoothed_from_the_estimates_and_forgets_jumps():
+    rate = AcrossTrackRate(0.5, limit_m=0.3, last_m=0.0)
+    rate.update(0.2)
+    assert rate.rate_m == pytest.approx(0.1)
+    rate.update(0.4)
+    assert rate.rate_m == pytest.approx(0.15)
+    rate.update(10.0)  # faster than any drift: a jump to another peak
+    assert rate.rate_m == 0.0 and rate.last_m == 10.0
+    rate.update(10.2)
+    assert rate.rate_m == pytest.approx(0.1)
+    rate.update(10.4, trusted=False)  # the filter is lost
+    assert rate.rate_m == 0.0
+    still = AcrossTrackRate(0.0, last_m=0.0)
+    still.update(0.1)
+    assert still.rate_m == 0.0 and still.last_m == 0.1
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    values=arrays(float, st.integers(2, 40), elements=st.floats(0.0, 1e4)),
+    positions=arrays(float, st.integers(1, 30), elements=st.floats(-5.0, 50.0)),
+    fraction=st.floats(0.0, 1.0),
+    lost_ratio=st.just(0.0) | st.floats(1e-3, 1.0),
+)
+def test_the_injection_rate_lies_between_none_and_j(values, positions, fraction, lost_ratio):
+    scan = LikelihoodScan(np.arange(values.size, dtype=float), values)
+    if scan.is_empty:
+        return
+    rate = injection_rate(fraction, lost_ratio, scan, positions)
+    assert 0.0 <= rate <= fraction
+    if lost_ratio == 0.0:
+        assert rate == fraction
+    best = float(scan.positions[int(np.argmax(scan.values))])
+    assert injection_rate(fraction, lost_ratio, scan, np.append(positions, best)) == (
+        fraction if lost_ratio == 0.0 else 0.0
+    )
+    assert injection_rate(fraction, lost_ratio, scan, np.array([1e6])) == fraction
 
 
 def test_step_before_reset_is_an_error(swaths):

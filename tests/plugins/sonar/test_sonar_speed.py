@@ -27,7 +27,7 @@ def test_ping_speed(benchmark, swaths, tracker_class):
     for frame in frames:
         tracker.step(frame)
     stream = itertools.cycle(frames[::-1] + frames)
-    benchmark.pedantic(lambda: tracker.step(next(stream)), rounds=300, iterations=1, warmup_rounds=10)
+    benchmark.pedantic(lambda: tracker.step(next(stream)), rounds=60, iterations=1, warmup_rounds=5)
     assert tracker.step(frames[0]) is not None
     if benchmark.stats is not None:
         mean, median = benchmark.stats.stats.mean, benchmark.stats.stats.median

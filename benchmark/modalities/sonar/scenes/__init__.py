@@ -6,8 +6,9 @@ sonar measures one swath of equiangular beams across the track per ping.
 Each frame holds the swath (across-track positions and depths of the
 returns, with range noise, spikes and missing beams) and the first pipe's
 axis position, depth, burial and the beam spacing there.  The seabed has
-slope, roughness correlated from ping to ping, ripples, trenches with spoil
-heaps and boulders; a second pipe may lie nearby.  Modules:
+slope, roughness correlated from ping to ping, ripples, sand waves whose
+troughs a stiff pipe spans, trenches with spoil heaps and boulders; the
+pipe may drift smoothly across the swath, and a second pipe may lie nearby.  Modules:
 
 * :mod:`~benchmark.modalities.sonar.scenes.spec`: sequence definitions as data (the
   sonar, the vehicle, the seabed, the pipes);

@@ -11,7 +11,10 @@ from how fast the pipe's across-track position changes from ping to ping.
 A proud pipe rests on the highest points under it: its axis is as deep as
 it can be without the ellipse entering the seabed (:func:`resting_depth`).
 A buried pipe has sunk by ``burial * D`` below that, so that ``burial`` is
-the share of its diameter below the seabed: 0 proud, 1 covered.  A covered
+the share of its diameter below the seabed: 0 proud, 1 covered.  A stiff
+pipe does not follow a trough narrower than it can bend into: over sand
+waves it rests on the crests and hangs between them, a free span with the
+seabed visible below it (:func:`span_depth`).  A covered
 pipe shows nothing (sand fills over it); a partly buried one shows only
 what stands above the seabed, because the sonar sees the first surface a
 beam meets (:mod:`benchmark.modalities.sonar.scenes.swath`).
@@ -125,6 +128,48 @@ def resting_depth(
     return np.minimum(depth.min(axis=1), under_axis)
 
 
+def span_depth(axis_depth_m: np.ndarray, ping_spacing_m: float, bend_radius_m: float) -> np.ndarray:
+    """Depth of a pipe's axis that bends no tighter than ``bend_radius_m`` between its supports.
+
+    The pipe may not sink below where it would rest (``axis_depth_m``), and
+    where the bottom falls away faster than the pipe can bend it hangs in
+    parabolic arcs of radius ``bend_radius_m`` between the points it rests
+    on: the morphological closing of the axis' height along the track by a
+    parabola of that radius (a dilation by ``-t^2 / 2R`` followed by an
+    erosion by the same), which fills every trough a pipe of that
+    stiffness cannot reach and leaves the rest of the profile as it is.
+
+    Parameters
+    ----------
+    axis_depth_m : numpy.ndarray
+        Depth of the axis where the pipe rests on the bottom, at each ping.
+    ping_spacing_m : float
+        Along-track distance between pings.
+    bend_radius_m : float
+        Smallest bend radius along the track, m; 0 leaves the depths as they are.
+
+    Returns
+    -------
+    numpy.ndarray
+        The axis' depth at each ping, never deeper than ``axis_depth_m``.
+
+    References
+    ----------
+    seeds/003, section 2: the model's burial ``B`` of the pipe below the
+    local seafloor, negative over a free span.
+    """
+    depth = np.asarray(axis_depth_m, dtype=float)
+    if bend_radius_m <= 0.0 or depth.size < 2:
+        return depth.copy()
+    along = np.arange(depth.size) * ping_spacing_m
+    bowl = (along[:, None] - along[None, :]) ** 2 / (2.0 * bend_radius_m)
+    height = -depth
+    # Dilation by the cap -t^2/2R, then erosion: the lower envelope of hanging parabolas.
+    capped = np.max(height[None, :] - bowl, axis=1)
+    hung = np.min(capped[None, :] + bowl, axis=1)
+    return np.minimum(depth, -hung)
+
+
 def pipe_track(
     across_m: np.ndarray,
     burial: np.ndarray,
@@ -132,8 +177,9 @@ def pipe_track(
     ping_spacing_m: float,
     base_m: np.ndarray,
     across: np.ndarray,
+    bend_radius_m: float = 0.0,
 ) -> PipeTrack:
-    """A pipe lying on the seabed along the given positions, buried as given.
+    """A pipe lying on the seabed along the given positions, buried as given, spanning troughs if stiff.
 
     Parameters
     ----------
@@ -149,10 +195,14 @@ def pipe_track(
         The seabed it lies on, shape ``(n_pings, len(across))``.
     across : numpy.ndarray
         Grid columns.
+    bend_radius_m : float
+        Smallest bend radius along the track (:func:`span_depth`); 0: the
+        pipe rests on the seabed in every ping.
 
     Returns
     -------
     PipeTrack
+        Over a free span the pipe's burial is 0.
 
     References
     ----------
@@ -161,9 +211,13 @@ def pipe_track(
     burial = np.clip(burial, 0.0, 1.0)
     half_width = crossing_half_width(across_m, radius_m, ping_spacing_m)
     proud = resting_depth(base_m, across, across_m, half_width, radius_m)
+    axis = proud + 2.0 * radius_m * burial
+    if bend_radius_m > 0.0:
+        axis = span_depth(axis, ping_spacing_m, bend_radius_m)
+        burial = np.clip((axis - proud) / (2.0 * radius_m), 0.0, 1.0)
     return PipeTrack(
         across_m=np.asarray(across_m, dtype=float),
-        axis_depth_m=proud + 2.0 * radius_m * burial,
+        axis_depth_m=axis,
         burial=burial,
         half_width_m=half_width,
         radius_m=radius_m,

@@ -40,7 +40,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
+from collections.abc import Mapping
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -94,6 +95,7 @@ class _PipeLayout(NamedTuple):
     burial: np.ndarray
     trench: TrenchSpec
     trench_depth_m: np.ndarray
+    bend_radius_m: float = 0.0
 
 
 @dataclass
@@ -148,6 +150,43 @@ class SonarScene(SimulatedScene[SonarSceneSpec, _Cache]):
             },
         )
 
+    def conditions(self) -> Mapping[str, Any]:
+        """What the sequence was drawn under, and what it makes of the tracked pipe.
+
+        Besides the drawn conditions (:attr:`drawn_conditions`), two that
+        follow from several drawn values, computed from the signals alone
+        (no ping is cast):
+
+        * ``footprint_ratio``: the across-track footprint of one beam at
+          nadir at the mean altitude, ``2 h tan(beam_width / 2)``, over
+          the pipe's diameter; at 0.5 and above the beams smooth the
+          pipe's arc into a bump (seeds/003, section 2: the model is the
+          pipe's cross-section, which the sonar sees through its beams);
+        * ``pipe_speed_mps``: the fastest across-track speed of the pipe in
+          the swath from ping to ping, m/s (its meander, noise and drift
+          together).
+
+        Returns
+        -------
+        Mapping
+            Drawn conditions first; a drawn condition of the same name wins.
+        """
+        spec = self._spec
+        altitude = float(np.mean(self._signal(spec.vehicle.altitude_m, _ALTITUDE)))
+        footprint = 2.0 * altitude * math.tan(math.radians(spec.sonar.beam_width_deg) / 2.0)
+        speed = float(np.max(np.abs(np.diff(self._across())), initial=0.0)) / spec.frame_interval_s
+        derived = {"footprint_ratio": footprint / spec.pipe.diameter_m, "pipe_speed_mps": speed}
+        drawn = self.drawn_conditions
+        return {**drawn, **{name: value for name, value in derived.items() if name not in drawn}}
+
+    def _across(self) -> np.ndarray:
+        """The tracked pipe's across-track position at every ping: its signal plus its drift."""
+        pipe, spec = self._spec.pipe, self._spec
+        across = self._signal(pipe.across_m, _ACROSS)
+        if pipe.drift.amplitude_m > 0 and pipe.drift.speed_mps > 0:
+            across = across + pipe.drift.offsets(spec.n_frames, spec.frame_interval_s)
+        return across
+
     def _signal(self, signal: Signal, key: int) -> np.ndarray:
         return evaluate_signal(signal, self._spec.n_frames, self._stream(key))
 
@@ -155,7 +194,7 @@ class SonarScene(SimulatedScene[SonarSceneSpec, _Cache]):
         """The pipes' signals, the tracked pipe first."""
         spec = self._spec
         first = spec.pipe
-        across = self._signal(first.across_m, _ACROSS)
+        across = self._across()
         layout = [
             _PipeLayout(
                 first.diameter_m / 2.0,
@@ -163,6 +202,7 @@ class SonarScene(SimulatedScene[SonarSceneSpec, _Cache]):
                 self._signal(first.burial, _BURIAL),
                 first.trench,
                 self._signal(first.trench.depth_m, _TRENCH),
+                first.bend_radius_m,
             )
         ]
         second = spec.second_pipe
@@ -196,13 +236,17 @@ class SonarScene(SimulatedScene[SonarSceneSpec, _Cache]):
         for i, roughness in enumerate(spec.seabed.roughness):
             base += roughness_relief(self._stream(_ROUGHNESS, i), roughness, n, spacing, across)
         base += ripple_relief(spec.seabed.ripples, along, across)
+        if spec.seabed.sand_waves.height_m > 0:
+            base += ripple_relief(spec.seabed.sand_waves, along, across)
 
         layout = self._layout()
         for number, pipe in enumerate(layout, start=1):
             reach_m = float(across[-1]) - 1.0 - 2.0 * pipe.radius_m
             self._check_range(f"pipe {number} across-track position", pipe.across_m, -reach_m, reach_m, "m")
             base += trench_relief(pipe.trench, pipe.trench_depth_m, pipe.across_m, across)
-        pipes = tuple(pipe_track(p.across_m, p.burial, p.radius_m, spacing, base, across) for p in layout)
+        pipes = tuple(
+            pipe_track(p.across_m, p.burial, p.radius_m, spacing, base, across, p.bend_radius_m) for p in layout
+        )
         for number, pipe in enumerate(pipes, start=1):
             top = pipe.axis_depth_m - pipe.radius_m
             self._check_range(f"pipe {number} top depth below the sonar", top, 0.5, math.inf, "m")

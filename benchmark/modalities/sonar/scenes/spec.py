@@ -17,9 +17,13 @@ The tree:
   angle, so towards the outer beams; outlier spikes);
 * :class:`VehicleSpec`: altitude and roll over time, forward speed;
 * :class:`SeabedSpec`: across-track slope, :class:`Roughness` (a 2-D field
-  correlated between pings), :class:`Ripples`, :class:`BoulderField`;
+  correlated between pings), :class:`Ripples` and sand waves (the same
+  parallel crests, metres high and tens of metres apart),
+  :class:`BoulderField`;
 * :class:`PipeSpec`: the tracked pipe, its across-track position (the
-  meander), its burial, a :class:`TrenchSpec` along it;
+  meander, plus an optional smooth :class:`Drift` across the swath), its
+  burial, a :class:`TrenchSpec` along it, and the stiffness that makes it
+  span the troughs of sand waves instead of following them;
 * :class:`SecondPipeSpec`: an optional second pipe, placed relative to the
   first (the pipe-laying scenario of seeds/003, abstract and section 5).
 
@@ -33,6 +37,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+
+import numpy as np
 
 from benchmark.modalities.sonar.model import SonarCalibration
 from benchmark.scenes.signal import Signal
@@ -252,6 +258,11 @@ class SeabedSpec:
     roughness : tuple of Roughness
         Scales of random relief, summed.
     ripples : Ripples
+    sand_waves : Ripples
+        Sand waves: crests 0.5-several metres high and tens of metres apart,
+        usually across a pipe laid along the current, so that the pipe
+        spans their troughs (:attr:`PipeSpec.bend_radius_m`).  None by
+        default.
     boulders : tuple of BoulderField
     cell_m : float
         Across-track spacing of the grid the seabed is sampled on (the
@@ -263,6 +274,7 @@ class SeabedSpec:
     ripples: Ripples = Ripples()
     boulders: tuple[BoulderField, ...] = ()
     cell_m: float = 0.05
+    sand_waves: Ripples = Ripples()
 
     def __post_init__(self) -> None:
         if not 0.005 <= self.cell_m <= 0.5:
@@ -308,6 +320,43 @@ class TrenchSpec:
             raise ValueError("need berm_ratio >= 0 and berm_width_m > 0")
 
 
+@dataclass(frozen=True)
+class Drift:
+    """A smooth cross-track drift: the pipe swings across the swath and back at up to a given speed.
+
+    The pipe's across-track position gains ``amplitude_m sin(speed_mps t /
+    amplitude_m + phase)`` at time ``t`` (s): a sinusoid whose fastest
+    across-track speed is ``speed_mps``, as when a vehicle weaves about the
+    pipe it follows, faster than a tracker's random walk may allow for.
+
+    Attributes
+    ----------
+    amplitude_m : float
+        Largest excursion from the mean position, m; 0 for none.
+    speed_mps : float
+        Fastest across-track speed, m/s; 0 for none.
+    phase_deg : float
+        Phase at the first ping.
+    """
+
+    amplitude_m: float = 0.0
+    speed_mps: float = 0.0
+    phase_deg: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not (_finite(self.amplitude_m, self.speed_mps, self.phase_deg) and self.amplitude_m >= 0):
+            raise ValueError("drift values must be finite and amplitude_m >= 0")
+        if self.speed_mps < 0:
+            raise ValueError(f"speed_mps must be >= 0, got {self.speed_mps}")
+
+    def offsets(self, n_frames: int, frame_interval_s: float) -> np.ndarray:
+        """The drift's across-track offset at pings ``0 .. n_frames - 1``, m."""
+        if self.amplitude_m == 0 or self.speed_mps == 0:
+            return np.zeros(n_frames)
+        t = np.arange(n_frames) * frame_interval_s
+        return self.amplitude_m * np.sin(self.speed_mps * t / self.amplitude_m + math.radians(self.phase_deg))
+
+
 def _check_diameter(diameter_m: float) -> None:
     """ValueError unless a pipe diameter is between 5 cm and 5 m."""
     if not (math.isfinite(diameter_m) and 0.05 <= diameter_m <= 5):
@@ -330,15 +379,27 @@ class PipeSpec:
         Share of the diameter below the seabed it lies on, clipped to
         [0, 1]: 0 proud, 1 covered.
     trench : TrenchSpec
+    drift : Drift
+        A smooth weave added to ``across_m``; none by default.
+    bend_radius_m : float
+        Smallest radius the pipe bends to along the track under its own
+        weight, m: over a trough narrower than that allows, it hangs
+        between the crests instead of resting on the bottom (a free span,
+        :func:`benchmark.modalities.sonar.scenes.pipes.span_depth`).  0 (the
+        default): the pipe rests on the seabed in every ping.
     """
 
     diameter_m: float = 0.5
     across_m: Signal = Signal()
     burial: Signal = Signal()
     trench: TrenchSpec = TrenchSpec()
+    bend_radius_m: float = 0.0
+    drift: Drift = Drift()
 
     def __post_init__(self) -> None:
         _check_diameter(self.diameter_m)
+        if not (math.isfinite(self.bend_radius_m) and self.bend_radius_m >= 0):
+            raise ValueError(f"bend_radius_m must be finite and >= 0, got {self.bend_radius_m}")
 
 
 @dataclass(frozen=True)
@@ -419,4 +480,5 @@ class SonarSceneSpec(TableSpec):
             swath_angle=math.radians(self.sonar.swath_deg),
             range_sigma_m=self.sonar.range_sigma_m,
             pipe_diameter_m=self.pipe.diameter_m,
+            beam_width=math.radians(self.sonar.beam_width_deg),
         )

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import pickle
 import re
@@ -112,6 +113,26 @@ def write(tmp_path, body: str | bytes, header: str | bytes = HEADER) -> SwathFil
     return SwathFile(path)
 
 
+def test_the_beam_width_is_optional_and_read_in_degrees(tmp_path):
+    assert write(tmp_path, ROW).info.calibration.beam_width == 0.0
+    wide = write(tmp_path, ROW, header=HEADER + "# beam_width_deg = 1.5\n")
+    assert wide.info.calibration.beam_width == pytest.approx(math.radians(1.5))
+
+
+def test_a_known_beam_width_is_written_and_read_back(tmp_path):
+    class WideBeams(PingSequence):
+        @property
+        def info(self):
+            info = super().info
+            return dataclasses.replace(info, calibration=dataclasses.replace(CALIBRATION, beam_width=0.02))
+
+    path = write_swath_file(WideBeams(random_pings(2)), tmp_path / "wide.swaths")
+    assert "# beam_width_deg = " in path.read_text()
+    assert SwathFile(path).info.calibration.beam_width == pytest.approx(0.02)
+    plain = write_swath_file(PingSequence(random_pings(2)), tmp_path / "plain.swaths")
+    assert "beam_width_deg" not in plain.read_text()
+
+
 def test_the_ping_interval_defaults_to_the_first_time_step(tmp_path):
     sequence = write(tmp_path, "0.0 nan nan nan nan -1 1 10 10\n0.5 1 10 0 0.1 -1 nan 10 nan\n")
     assert sequence.info.frame_interval_s == pytest.approx(0.5)
@@ -171,6 +192,7 @@ def test_a_byte_that_is_not_utf8_anywhere_is_named_by_file_and_line(tmp_path, he
         ("# n_beams = 2\n# swath_angle_deg = inf\n", r"data.swaths:2: header value swath_angle_deg must be a finite"),
         (HEADER + "# range_sigma_m = nan\n", r"data.swaths:4: header value range_sigma_m must be a finite .* >= 0"),
         (HEADER + "# ping_interval_s = 0\n", r"data.swaths:4: header value ping_interval_s must be a finite .* > 0"),
+        (HEADER + "# beam_width_deg = -1\n", r"data.swaths:4: header value beam_width_deg must be a finite .* >= 0"),
         (HEADER + "# n_beams = 2\n", r"data.swaths:4: header value n_beams is given twice \(also on line 1\)"),
     ],
 )

@@ -85,7 +85,7 @@ def test_info_describes_the_sequence() -> None:
     assert isinstance(scene, Sequence)
     assert (info.name, info.modality, info.n_frames, info.frame_size) == ("sonar/busy", "sonar", 30, None)
     assert info.frame_interval_s == 0.3
-    assert info.calibration == SonarCalibration(111, math.radians(120.0), 0.04, 0.9)
+    assert info.calibration == SonarCalibration(111, math.radians(120.0), 0.04, 0.9, math.radians(1.5))
     assert info.extra["description"] == "busy" and info.extra["second_pipe"] is True
     assert info.extra["ping_spacing_m"] == pytest.approx(0.45)
 
@@ -251,3 +251,59 @@ def test_random_specs_give_finite_truth_and_full_swaths(spec: SonarSceneSpec) ->
 def test_impossible_geometry_is_a_data_error_naming_sequence_and_frame(changes, message) -> None:
     with pytest.raises(DataError, match=message):
         _busy(**changes).frame(0)
+
+
+SPANNING: dict[str, Any] = {
+    "name": "sonar/spans",
+    "n_frames": 120,
+    "seed": 5,
+    "frame_interval_s": 0.25,
+    "sonar": {"n_beams": 200, "beam_width_deg": 1.0, "range_sigma_m": 0.0},
+    "vehicle": {"altitude_m": {"mean": 12.0}, "speed_mps": 1.6},
+    "seabed": {"sand_waves": {"height_m": 1.5, "wavelength_m": 20.0, "crest_deg": 90.0}},
+    "pipe": {"diameter_m": 0.5, "bend_radius_m": 300.0, "drift": {"amplitude_m": 2.0, "speed_mps": 1.0}},
+}
+"""Sand waves across the track, a stiff pipe spanning their troughs, drifting across the swath at 1 m/s."""
+
+
+def test_a_stiff_pipe_spans_the_troughs_of_sand_waves_and_the_swath_shows_the_gap() -> None:
+    scene = SonarScene.from_dict(SPANNING)
+    pipe = scene.pipes()[0]
+    across, depth = scene.seabed()
+    under = np.array([np.interp(x, across, row) for x, row in zip(pipe.across_m, depth)])
+    gap = under - (pipe.axis_depth_m + pipe.radius_m)
+    assert gap.max() > 0.5 and gap.min() > -1e-6
+    assert np.all(pipe.burial == 0.0)
+    hanging = int(np.argmax(gap))
+    swath, truth = scene.observation(hanging), scene.truth(hanging)
+    assert truth.depth_m == pytest.approx(pipe.axis_depth_m[hanging])
+    beside = np.abs(swath.across_m - truth.across_m) < 1.0
+    assert np.nanmax(swath.depth_m[beside]) > truth.depth_m + pipe.radius_m + 0.4  # the seabed below the span
+    assert np.nanmin(swath.depth_m[beside]) < truth.depth_m  # the pipe's top
+    follows = SonarScene.from_dict(merge_tables(SPANNING, {"pipe": {"bend_radius_m": 0.0}}))
+    assert np.all(follows.pipes()[0].axis_depth_m[hanging] > pipe.axis_depth_m[hanging] + 0.5)
+
+
+def test_the_drift_moves_the_pipe_across_the_swath_at_its_speed() -> None:
+    scene = SonarScene.from_dict(SPANNING)
+    across = scene.pipes()[0].across_m
+    assert np.max(np.abs(np.diff(across))) / 0.25 == pytest.approx(1.0, rel=0.02)
+    assert np.ptp(across) == pytest.approx(4.0, rel=0.02)
+    still = SonarScene.from_dict(merge_tables(SPANNING, {"pipe": {"drift": {"speed_mps": 0.0}}}))
+    assert np.all(still.pipes()[0].across_m == 0.0)
+
+
+def test_conditions_add_the_footprint_ratio_and_the_pipe_s_speed_to_what_was_drawn() -> None:
+    scene = SonarScene.from_dict(SPANNING)
+    conditions = scene.conditions()
+    assert conditions["footprint_ratio"] == pytest.approx(2 * 12.0 * math.tan(math.radians(0.5)) / 0.5)
+    assert conditions["pipe_speed_mps"] == pytest.approx(1.0, rel=0.02)
+    # A drawn condition of the same name wins (here an unrelated value drawn under that name).
+    draws = {
+        "beams": {"integers": [128, 400], "into": "sonar.n_beams"},
+        "pipe_speed_mps": {"choice": [0.05], "into": "seabed.cell_m"},
+    }
+    drawn = SonarScene.from_dict(SPANNING | {"draw": draws})
+    conditions = drawn.conditions()
+    assert list(conditions)[:2] == ["beams", "pipe_speed_mps"] and conditions["pipe_speed_mps"] == 0.05
+    assert conditions["beams"] == drawn.info.calibration.n_beams and "footprint_ratio" in conditions

@@ -5,10 +5,19 @@ from __future__ import annotations
 import copy
 import math
 
+import numpy as np
 import pytest
 
 from benchmark.errors import DataError
-from benchmark.modalities.sonar.scenes.spec import BoulderField, Roughness, SecondPipeSpec, SonarSceneSpec, TrenchSpec
+from benchmark.modalities.sonar.scenes.spec import (
+    BoulderField,
+    Drift,
+    Ripples,
+    Roughness,
+    SecondPipeSpec,
+    SonarSceneSpec,
+    TrenchSpec,
+)
 from benchmark.scenes.signal import Event, Signal
 
 DATA = {
@@ -46,6 +55,27 @@ def test_calibration_is_the_sonar_and_the_first_pipe() -> None:
     calibration = SonarSceneSpec.from_dict(DATA).calibration()
     assert (calibration.n_beams, calibration.pipe_diameter_m) == (111, 0.9)
     assert calibration.beam_spacing == pytest.approx(math.radians(120.0) / 110)
+    assert calibration.beam_width == pytest.approx(math.radians(1.5))
+
+
+def test_sand_waves_spans_and_drift_are_optional_and_off_by_default() -> None:
+    plain = SonarSceneSpec.from_dict(DATA)
+    assert plain.seabed.sand_waves == Ripples() and plain.pipe.bend_radius_m == 0.0 and plain.pipe.drift == Drift()
+    wide = SonarSceneSpec.from_dict(
+        _with(("seabed", "sand_waves"), {"height_m": 1.5, "wavelength_m": 30.0, "crest_deg": 80.0})
+        | {"pipe": {"diameter_m": 0.9, "bend_radius_m": 300.0, "drift": {"amplitude_m": 2.0, "speed_mps": 1.0}}}
+    )
+    assert wide.seabed.sand_waves == Ripples(1.5, 30.0, 80.0)
+    assert wide.pipe.bend_radius_m == 300.0 and wide.pipe.drift == Drift(2.0, 1.0)
+
+
+def test_a_drift_reaches_its_speed_and_its_amplitude() -> None:
+    drift = Drift(amplitude_m=2.5, speed_mps=0.8, phase_deg=30.0)
+    offsets = drift.offsets(4000, 0.05)
+    assert np.max(np.abs(offsets)) == pytest.approx(2.5, rel=1e-4)
+    assert np.max(np.abs(np.diff(offsets))) / 0.05 == pytest.approx(0.8, rel=1e-3)
+    assert offsets[0] == pytest.approx(2.5 * math.sin(math.radians(30.0)))
+    assert np.all(Drift(0.0, 1.0).offsets(5, 0.3) == 0.0) and np.all(Drift(2.0, 0.0).offsets(5, 0.3) == 0.0)
 
 
 def test_round_trip_through_plain_data() -> None:
@@ -83,6 +113,10 @@ def _with(path: tuple[str | int, ...], value) -> dict:
         (("pipe", "diameter_m"), "big", r"here\.pipe\.diameter_m: expected a number"),
         (("pipe", "trench", "top_width_m"), 0.5, r"here\.pipe\.trench: need 0 <= bottom_width_m < top_width_m"),
         (("second_pipe", "offset"), 3.0, r"here\.second_pipe: unknown key\(s\) 'offset'"),
+        (("pipe", "bend_radius_m"), -1.0, r"here\.pipe: bend_radius_m must be finite and >= 0"),
+        (("pipe", "drift"), {"amplitude_m": -1.0}, r"here\.pipe\.drift: drift values must be finite"),
+        (("pipe", "drift"), {"speed_mps": -0.5}, r"here\.pipe\.drift: speed_mps must be >= 0"),
+        (("seabed", "sand_waves"), {"wavelength_m": 0.0}, r"here\.seabed\.sand_waves: wavelength_m must be > 0"),
         (("n_frames",), 0, r"here: n_frames must be >= 1"),
     ],
 )

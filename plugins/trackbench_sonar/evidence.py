@@ -1,0 +1,271 @@
+"""Eq. (1) of seeds/003 as evidence: how much better the pipe, as the beams see it, explains the returns.
+
+The paper scores a candidate cross-section by ``L = L1 + w L2`` (eq. 1):
+``L1`` from the squared differences between the scan and the ellipse,
+``L2`` from the distance between the ellipse's centre and the local
+seafloor returns.  On the sonars of the paper (beams a fraction of the
+pipe wide, section 4) that works (:mod:`trackbench_sonar.likelihood`).  On
+a wider world of sonars it fails in three ways, each measured in
+:mod:`trackbench_sonar.params`:
+
+* wide beams show no arc.  Once a beam's footprint is half the pipe's
+  diameter or more the scan shows a smooth bump, and the ellipse through
+  two of its points fits it worse than a bump of rough seabed;
+* sparse beams show no disagreement.  Far from nadir a mean of squared
+  differences over a few returns is small for any ellipse, so rough
+  seabed at the swath's edge scores like a pipe (the old model only
+  stopped scoring where the beams were too sparse, by a threshold);
+* spoil berms beside a trench are pipe-sized bumps whose flanks are lower
+  than their crest, so ``L2`` calls them proud.
+
+Here the same two questions, the fit of the pipe's cross-section and its
+place on the local seafloor, are asked of the returns themselves (one per
+beam, :attr:`trackbench_sonar.profile.Profile.returns_across_m`) in a
+window of ``seabed_widths`` pipe widths either side of each candidate
+centre ``c`` on the profile's grid, by two models fitted by least squares:
+
+* the *seafloor*: ``z = f0 + f1 u + f2 g(u)``, ``u = x - c``: a sloping
+  seabed with a mound or a hollow ``g(u) = exp(-u^2 / 2 l^2)`` centred on the
+  candidate, ``l`` being ``relief_widths`` times the pipe's half-width as
+  the beams see it (:meth:`~trackbench_sonar.footprint.SeenCrossSection.seen_half_width`).
+  Relief that broad (a spoil berm, a sand wave, a trench's floor) is
+  seabed, not pipe;
+* the *pipe on that seafloor*: ``z = f0 + f1 u + f2 g(u) - s P(u) - A(u)``,
+  where ``A`` is the upper half of the cross-section and ``P`` its span,
+  both convolved with the beam footprint at ``c``
+  (:class:`~trackbench_sonar.footprint.SeenCrossSection`), and ``s >= 0``
+  the height of the pipe's centre above the seafloor: ``L2``'s distance,
+  fitted (``s = M_i / 2`` for a pipe resting on the seabed, more over a
+  free span, 0 for a pipe buried to its centre).
+
+Each is fitted with a Cauchy loss of scale ``robust_sigmas`` times the
+noise ``sigma_m`` (iteratively reweighted least squares, ``iterations``
+rounds), so that a spike, a boulder or a trench wall in the window does
+not decide the fit.  The candidate's score is the evidence
+
+    E = C(seafloor) - C(pipe on seafloor),     C = sum_i k^2 log(1 + r_i^2 / k^2) / sigma^2
+
+(for a Gaussian loss, the log-likelihood ratio of the two models times
+two), floored at 0.  It grows with the number of returns that the pipe
+explains better than the seabed does, so a fit over the few returns of
+the swath's sparse edge cannot win because few of them disagree; a bump of
+rough seabed scores only as far as it has the pipe's shape as the beams
+see it; a spoil berm is explained by the seafloor's mound.  A candidate
+whose window holds fewer than :data:`MIN_RETURNS` returns, or none beyond
+the pipe's span on one side, scores 0.
+
+The scan (Fig. 2 of the paper) holds ``E`` at every grid position.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from trackbench_sonar.cross_section import CrossSection
+from trackbench_sonar.footprint import SeenCrossSection, footprint_sigma
+from trackbench_sonar.likelihood import LikelihoodScan
+from trackbench_sonar.profile import Profile
+
+MIN_RETURNS = 6
+"""Fewest returns in a candidate's window for it to be scored (the pipe model has four unknowns)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Evidence:
+    """The candidates of one profile and what the two models made of them.
+
+    Attributes
+    ----------
+    across_m : numpy.ndarray
+        Candidate centres ``C_x`` (the profile's grid positions).
+    evidence : numpy.ndarray
+        ``E``, floored at 0; 0 where a candidate is not scored.
+    pedestal_m : numpy.ndarray
+        Fitted height ``s`` of the pipe's centre above the seafloor
+        (``nan`` where not scored).
+    returns : numpy.ndarray
+        Returns in each candidate's window.
+    scored : numpy.ndarray
+        Where the candidate was scored.
+    """
+
+    across_m: np.ndarray
+    evidence: np.ndarray
+    pedestal_m: np.ndarray
+    returns: np.ndarray
+    scored: np.ndarray
+
+
+def _solve(design: np.ndarray, weights: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """Weighted least squares of each row: ``design (K, P, W)``, ``weights`` and ``target (K, W)``; ``(K, P)``."""
+    weighted = design * weights[:, None, :]
+    normal = weighted @ np.swapaxes(design, 1, 2)
+    normal += np.eye(design.shape[1])[None] * 1e-12 * np.maximum(np.trace(normal, axis1=1, axis2=2), 1.0)[:, None, None]
+    right = weighted @ target[:, :, None]
+    return np.linalg.solve(normal, right)[:, :, 0]
+
+
+@dataclass(frozen=True)
+class FootprintLikelihood:
+    """Eq. (1) of seeds/003 for a pipe seen through the beams' footprints, as evidence over the seafloor.
+
+    Parameters
+    ----------
+    section : CrossSection
+        The pipe's axes ``[M_a, M_i]``.
+    sigma_m : float
+        Noise of a return about the model, m (the sonar's range noise and
+        what the model leaves out).
+    beam_width : float
+        The beams' across-track width, rad (0: rays).
+    seabed_widths : float
+        The window reaches this many widths ``M_a`` beyond the pipe's span
+        on either side.
+    relief_widths : float
+        Width ``l`` of the seafloor's mound or hollow, in half-widths of the
+        pipe as seen.
+    robust_sigmas : float
+        Scale of the Cauchy loss, in ``sigma_m``.
+    iterations : int
+        Rounds of reweighting.
+
+    References
+    ----------
+    seeds/003, section 2, eq. (1) and Fig. 2.
+    """
+
+    section: CrossSection
+    sigma_m: float
+    beam_width: float = 0.0
+    seabed_widths: float = 2.0
+    relief_widths: float = 2.0
+    robust_sigmas: float = 10.0
+    iterations: int = 3
+    _seen: SeenCrossSection = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        for label in ("sigma_m", "seabed_widths", "relief_widths", "robust_sigmas"):
+            value = getattr(self, label)
+            if not 0.0 < value < math.inf:
+                raise ValueError(f"{label} must be a positive finite number, got {value!r}")
+        if not 0.0 <= self.beam_width < math.pi:
+            raise ValueError(f"beam_width must be in [0, pi), got {self.beam_width!r}")
+        if self.iterations < 1:
+            raise ValueError(f"iterations must be >= 1, got {self.iterations!r}")
+        object.__setattr__(self, "_seen", SeenCrossSection(self.section))
+
+    def candidates(self, profile: Profile) -> Evidence:
+        """Fit both models about every grid position of the profile and score each.
+
+        Parameters
+        ----------
+        profile : Profile
+            A resampled scan with its returns.
+
+        Returns
+        -------
+        Evidence
+            One candidate per grid position.
+
+        References
+        ----------
+        seeds/003, section 2, eq. (1).
+        """
+        centre = profile.across_m
+        x, z = profile.returns_across_m, profile.returns_depth_m
+        count = centre.size
+        if count == 0 or x.size < MIN_RETURNS:
+            nothing = np.zeros(count)
+            return Evidence(centre, nothing, np.full(count, np.nan), nothing.astype(np.int64), nothing.astype(bool))
+        a = self.section.half_width_m
+        reach = a + self.seabed_widths * self.section.major_m
+        low = np.searchsorted(x, centre - reach, side="left")
+        high = np.searchsorted(x, centre + reach, side="right")
+        returns = high - low
+        width = max(int(returns.max()), 1)
+        index = low[:, None] + np.arange(width)[None, :]
+        inside = index < high[:, None]
+        index = np.minimum(index, x.size - 1)
+        u = x[index] - centre[:, None]
+        depth = z[index]
+        sigma_f = footprint_sigma(centre, profile.depth_m, self.beam_width)[:, None]
+        relief = self.relief_widths * self._seen.seen_half_width(sigma_f)
+        seabed = np.stack([np.ones_like(u), u / reach, np.exp(-0.5 * (u / relief) ** 2)], axis=1)
+        span = self._seen.pedestal(u, sigma_f)
+        arc = self._seen.arc(u, sigma_f)
+        mask = inside.astype(float)
+
+        floor_cost = self._robust_cost(seabed, mask, depth)
+        pipe = np.concatenate([seabed, -span[:, None, :]], axis=1)
+        pipe_cost, pedestal = self._robust_cost(pipe, mask, depth + arc, pedestal=True)
+        negative = ~(pedestal >= 0.0)
+        if np.any(negative):
+            # s < 0 would put the pipe's centre below the seafloor: fit it resting at s = 0 instead.
+            rows = np.flatnonzero(negative)
+            pipe_cost[rows] = self._robust_cost(seabed[rows], mask[rows], depth[rows] + arc[rows])
+            pedestal[rows] = 0.0
+
+        beyond_port = np.any(inside & (u <= -a), axis=1)
+        beyond_starboard = np.any(inside & (u >= a), axis=1)
+        scored = (returns >= MIN_RETURNS) & beyond_port & beyond_starboard
+        evidence = np.where(scored, np.maximum(floor_cost - pipe_cost, 0.0), 0.0)
+        evidence = np.where(np.isfinite(evidence), evidence, 0.0)
+        return Evidence(centre, evidence, np.where(scored, pedestal, np.nan), returns, scored)
+
+    def _robust_cost(
+        self, design: np.ndarray, mask: np.ndarray, target: np.ndarray, *, pedestal: bool = False
+    ) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
+        """The Cauchy cost of the IRLS fit of ``target`` on ``design`` (and the last coefficient, if ``pedestal``)."""
+        k = self.robust_sigmas * self.sigma_m
+        weights = mask
+        for _ in range(self.iterations):
+            coefficients = _solve(design, weights, target)
+            residual = target - np.einsum("kp,kpw->kw", coefficients, design)
+            weights = mask / (1.0 + (residual / k) ** 2)
+        cost = np.sum(mask * k * k * np.log1p((residual / k) ** 2), axis=1) / self.sigma_m**2
+        return (cost, coefficients[:, -1]) if pedestal else cost
+
+    def scan(self, profile: Profile) -> LikelihoodScan:
+        """The evidence over the profile's grid (seeds/003, Fig. 2); empty for an empty profile."""
+        if profile.is_empty:
+            return LikelihoodScan.empty()
+        return LikelihoodScan(profile.across_m, self.candidates(profile).evidence)
+
+
+@dataclass(frozen=True)
+class WidestEvidence:
+    """Eq. (1) for a sonar whose beam width nobody gave: the best of a few widths, ping by ping.
+
+    Each ping is scored by every model and the scan whose best candidate
+    holds the most evidence is kept: assumed too narrow, the footprint
+    leaves a smoothed pipe unexplained; assumed too wide, it blurs the
+    pipe's arc away, and either way the true pipe's evidence falls.
+
+    Parameters
+    ----------
+    models : tuple of FootprintLikelihood
+        The same pipe and sonar under different beam widths, at least one.
+
+    References
+    ----------
+    seeds/003, section 2, eq. (1).
+    """
+
+    models: tuple[FootprintLikelihood, ...]
+
+    def __post_init__(self) -> None:
+        if not self.models:
+            raise ValueError("WidestEvidence needs at least one model")
+
+    @property
+    def section(self) -> CrossSection:
+        """The pipe's axes (the same in every model)."""
+        return self.models[0].section
+
+    def scan(self, profile: Profile) -> LikelihoodScan:
+        """The scan, among the models', whose maximum is largest (the first of equals)."""
+        scans = [model.scan(profile) for model in self.models]
+        return max(scans, key=lambda scan: float(scan.values.max(initial=0.0)))
