@@ -30,6 +30,17 @@ class SegmentationParams:
     :class:`pydantic.ValidationError`.
     """
 
+    reference_width_px: Positive | None = 320.0
+    """Width of the frame, px, for which the lengths of :data:`SCALED_LENGTHS` and the variances of
+    :data:`SCALED_VARIANCES` are stated; on a frame ``W`` px wide they are multiplied by ``W / reference_width_px``
+    (its square for variances, :func:`trackbench_segmentation.scaling.frame_params`).  None: they are pixels of
+    any frame (the paper variant)."""
+
+    grey_quantiles: tuple[Share, Share] | None = (0.05, 0.95)
+    """Quantiles of the smoothed frame's grey levels that are stretched to 0 and 255 before the histograms
+    (:func:`trackbench_segmentation.grey.normalised_grey`), so that ``projection_sigma``, ``gradient_bin`` and
+    ``min_gradient`` are shares of the frame's own range.  None: raw grey levels (the paper variant)."""
+
     smoothing_sigma: NonNegative = 1.0
     """Gaussian smoothing of the image before the histogram, px; 0: none (not in the thesis).  With ``smooth_share``
     0.7: 1.5 px gave a mean of 79.1 %, 1.0 px 81.6 % (clutter draws 73.0 / 70.6 against 85.5 / 82.3 %); with the
@@ -52,7 +63,7 @@ class SegmentationParams:
     1.5 px: 0.5 / 0.7 / 0.9 gave means of 82.4 / 79.1 / 76.6 %; with 1.0 px, 0.5 gives 86.3 % against 81.6 % for
     0.7 (S1 69.0 against 54.4 %, S5 90.6 against 74.9 %)."""
 
-    projection_sigma: NonNegative = 3.0
+    projection_sigma: NonNegative = 1.0
     """Gaussian smoothing of the grey-level projection before its valleys are sought, grey levels.  2 / 3 / 5 gave
     means of 81.1 / 79.1 / 61.1 % (smoothing 1.5 px, share 0.7); 2 with the shipped defaults 86.4 %, no better
     than 3 but with S7 falling from 59.3 to 42.7 % correct (50.0 % false)."""
@@ -69,7 +80,7 @@ class SegmentationParams:
     max_gap_rows: Annotated[int, Ge(0)] = 2
     """Rows without a contour pixel a chain may bridge along the predicted direction."""
 
-    snap_px: Annotated[int, Interval(ge=0, le=8)] = 3
+    snap_px: Annotated[int, Interval(ge=0, le=32)] = 3
     """Contour points move to the strongest gradient within this many columns; 0: they stay (not in the thesis).
     Without it the grey-level cut lies inside soft edges, the width comes out 6-12 px narrow on S5 and S5 is
     41.5 % correct (45.0 % false); 2 / 3 / 4 px gave means of 71.5 / 79.1 / 80.2 % (smoothing 1.5 px, share 0.7),
@@ -93,6 +104,11 @@ class SegmentationParams:
     min_gradient: NonNegative = 4.0
     """Smallest mean gradient modulus of a long segment's contour pixels, grey levels per px."""
 
+    min_gradient_ratio: NonNegative = 3.0
+    """Smallest mean gradient modulus of a long segment's contour pixels as a multiple of the frame's gradient level,
+    the median modulus (:func:`trackbench_segmentation.detector.edge_gradient`); the larger of this and
+    ``min_gradient`` holds.  0: ``min_gradient`` alone (the paper variant)."""
+
     max_rms_px: Positive = 1.5
     """Largest root mean square distance of a long segment's pixels from its line, px."""
 
@@ -105,7 +121,7 @@ class SegmentationParams:
     min_width_px: NonNegative = 5.0
     """Smallest plausible cable width, px (seeds/000, Table 5.2)."""
 
-    max_width_px: Positive = 100.0
+    max_width_px: Positive = 160.0
     """Largest plausible cable width, px (seeds/000, Table 5.2)."""
 
     min_overlap: Share = 0.5
@@ -144,3 +160,24 @@ class SegmentationParams:
             Naming the parameters and their values.
         """
         require_order(self, ("min_width_px", "max_width_px"))
+        if self.grey_quantiles is not None:
+            low, high = self.grey_quantiles
+            if not low < high:
+                raise ValueError(f"grey_quantiles must be (low, high) with low < high, got {self.grey_quantiles}")
+
+
+SCALED_LENGTHS: tuple[str, ...] = ("min_width_px", "max_width_px", "roi_margin_px")
+"""The lengths in px that scale with the frame width: sizes of the cable and of its moves in the image."""
+
+SCALED_VARIANCES: tuple[str, ...] = ("process_var", "measurement_var")
+"""The ``(d, alpha, w)`` variances whose ``d`` and ``w`` parts, in px^2, scale with the square of the frame width."""
+
+
+PAPER: dict[str, object] = {
+    "reference_width_px": None,
+    "grey_quantiles": None,
+    "projection_sigma": 3.0,
+    "max_width_px": 100.0,
+    "min_gradient_ratio": 0.0,
+}
+"""The values chosen for the thesis' 320 x 240 suite, in raw grey levels and fixed pixels: ``segmentation-paper``."""

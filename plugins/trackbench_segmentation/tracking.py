@@ -56,9 +56,13 @@ class CableKalman:
     """
 
     def __init__(self, process_var: tuple[float, float, float], measurement_var: tuple[float, float, float]) -> None:
+        self.belief: Gaussian | None = None
+        self.use_noise(process_var, measurement_var)
+
+    def use_noise(self, process_var: tuple[float, float, float], measurement_var: tuple[float, float, float]) -> None:
+        """Take these variances from now on (a frame of another size states them in other pixels)."""
         self.process_noise = np.diag(np.asarray(process_var, dtype=float))
         self.measurement_noise = np.diag(np.asarray(measurement_var, dtype=float))
-        self.belief: Gaussian | None = None
 
     def forget(self) -> None:
         """Drop the belief: the cable is lost."""
