@@ -221,7 +221,13 @@ def cell_lines(
 
 
 def detect(image: np.ndarray, params: SegmentationParams, prediction: Prediction | None = None) -> BorderPair | None:
-    """The best pair of cable borders in one grey image.
+    """The best pair of cable borders in one grey image: the first of :func:`detect_pairs`, or None."""
+    pairs = detect_pairs(image, params, prediction)
+    return pairs[0] if pairs else None
+
+
+def detect_pairs(image: np.ndarray, params: SegmentationParams, prediction: Prediction | None = None) -> list[BorderPair]:
+    """The plausible pairs of cable borders in one grey image, best first.
 
     Parameters
     ----------
@@ -234,9 +240,9 @@ def detect(image: np.ndarray, params: SegmentationParams, prediction: Prediction
 
     Returns
     -------
-    BorderPair or None
-        The pair with the highest score after the fusion of all cells'
-        pairs; None when no plausible pair is found.
+    list of BorderPair
+        The pairs after the fusion of all cells' pairs, highest score
+        first; empty when no plausible pair is found.
 
     References
     ----------

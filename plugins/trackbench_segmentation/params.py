@@ -145,6 +145,11 @@ class SegmentationParams:
     roi_sigmas: NonNegative = 2.0
     """Further margin of the region of interest in standard deviations of a border's predicted position."""
 
+    gate_sigmas: NonNegative = 4.0
+    """A pair is taken only when its ``(d, alpha, w)`` lies within this many standard deviations (Mahalanobis
+    distance under the predicted covariance plus the measurement noise) of the prediction; the best such pair is
+    reported, and a frame without one counts as a miss.  0: the best pair, wherever it lies (the paper)."""
+
     max_misses: Annotated[int, Ge(1)] = 5
     """Frames in a row without a pair after which the cable is lost and the whole image is searched again."""
 
@@ -179,5 +184,6 @@ PAPER: dict[str, object] = {
     "projection_sigma": 3.0,
     "max_width_px": 100.0,
     "min_gradient_ratio": 0.0,
+    "gate_sigmas": 0.0,
 }
 """The values chosen for the thesis' 320 x 240 suite, in raw grey levels and fixed pixels: ``segmentation-paper``."""

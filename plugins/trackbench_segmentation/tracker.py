@@ -44,7 +44,8 @@ from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTru
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
 from trackbench_segmentation.contours import compile_kernels as compile_walk_kernels
-from trackbench_segmentation.detector import Prediction, detect
+from trackbench_segmentation.detector import Prediction, detect_pairs
+from trackbench_segmentation.pairing import BorderPair
 from trackbench_segmentation.histogram import compile_kernels as compile_histogram_kernels
 from trackbench_segmentation.lines import compile_kernels as compile_group_kernels
 from trackbench_segmentation.params import SegmentationParams
@@ -164,7 +165,7 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
             roi, _ = region_of_interest(belief, (width, height), p.roi_margin_px, p.roi_sigmas)
             alpha = float(np.clip(belief.mean[1], -1.4, 1.4))
             self.prediction = Prediction(roi, alpha, float(belief.mean[2]))
-        pair = detect(image, p, self.prediction)
+        pair = self._first_in_gate(detect_pairs(image, p, self.prediction), p.gate_sigmas)
         if pair is None:
             self._misses += 1
             if self._misses >= p.max_misses:
@@ -173,3 +174,10 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
         self._misses = 0
         self.filter.update(pair.state)
         return pair.state
+
+    def _first_in_gate(self, pairs: list[BorderPair], gate_sigmas: float) -> BorderPair | None:
+        """The best pair whose state lies within ``gate_sigmas`` (Mahalanobis) of the prediction; 0: the best pair."""
+        if gate_sigmas == 0:
+            return pairs[0] if pairs else None
+        limit = gate_sigmas**2
+        return next((pair for pair in pairs if self.filter.distance(pair.state) <= limit), None)
