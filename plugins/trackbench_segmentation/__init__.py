@@ -54,13 +54,14 @@ of the right width is taken like the cable's borders.
 """
 
 from benchmark import Registry, hookimpl
-from trackbench_segmentation.params import SegmentationParams
+from trackbench_segmentation.params import PAPER, SegmentationParams
 from trackbench_segmentation.tracker import SegmentationTracker
 
-__all__ = ["SegmentationParams", "SegmentationTracker", "trackbench_register_trackers"]
+__all__ = ["PAPER", "SegmentationParams", "SegmentationTracker", "trackbench_register_trackers"]
 
 
 @hookimpl
 def trackbench_register_trackers(registry: Registry) -> None:
-    """Register the segmentation tracker."""
+    """Register the segmentation tracker and its paper variant, ``segmentation-paper``."""
     registry.add_tracker(SegmentationTracker)
+    registry.add_tracker(SegmentationTracker, name="segmentation-paper", params=PAPER)

@@ -25,6 +25,14 @@ contours into short pieces.  Without it the mean share of correct frames
 over camera/S1..S7 and two clutter draws falls from 86.3 to 78.2 % (S4 95.3
 to 76.2 %, S6 94.6 to 75.2 %; ``smoothing_sigma`` in
 :class:`trackbench_segmentation.params.SegmentationParams`).
+
+Three things make the search independent of the frame's contrast and size
+(not in the thesis; the numbers are in :mod:`trackbench_segmentation.params`):
+the smoothed grey levels are stretched between two quantiles of the frame
+(:mod:`trackbench_segmentation.grey`); a long line must be steeper than a
+multiple of the frame's median gradient (:func:`edge_gradient`); and the
+lengths that describe the cable, its plausible widths and the region of
+interest's margin, follow the frame width (:mod:`trackbench_segmentation.scaling`).
 """
 
 from __future__ import annotations
@@ -33,14 +41,15 @@ import functools
 import math
 from dataclasses import dataclass
 
-import cv2
 import numpy as np
 
 from trackbench_segmentation.contours import follow_chains, label_changes, snap_to_edges, split_chains
-from trackbench_segmentation.histogram import gradient_bins, gradient_modulus, mountain_starts
+from trackbench_segmentation.grey import normalised_grey
+from trackbench_segmentation.histogram import gradient_bins, gradient_level, gradient_modulus, mountain_starts
 from trackbench_segmentation.lines import Segments, group_collinear, select_long
 from trackbench_segmentation.pairing import BorderPair, PairRules, border_pairs, fuse, pair_lines
 from trackbench_segmentation.params import SegmentationParams
+from trackbench_segmentation.scaling import frame_params
 
 Cell = tuple[slice, slice]
 """Rows and columns of one cell."""
@@ -110,6 +119,25 @@ def pair_rules(params: SegmentationParams) -> PairRules:
     )
 
 
+def edge_gradient(modulus: np.ndarray, params: SegmentationParams) -> float:
+    """The smallest mean gradient modulus of a long line on a frame, grey levels per px.
+
+    ``min_gradient``, or ``min_gradient_ratio`` times the frame's gradient
+    level (:func:`trackbench_segmentation.histogram.gradient_level`) when
+    that is larger: a line must stand out of the frame's own ground and
+    noise, whatever the contrast the normalisation stretched them to.
+
+    References
+    ----------
+    seeds/000, section 2.3: long lines are filtered by "the average of the
+    gradient modulus of the contour pixels", rejecting "lines that do not
+    lie on or near an edge".
+    """
+    if params.min_gradient_ratio == 0:
+        return params.min_gradient
+    return max(params.min_gradient, params.min_gradient_ratio * gradient_level(modulus))
+
+
 def cell_lines(
     grey: np.ndarray,
     modulus: np.ndarray,
@@ -117,6 +145,7 @@ def cell_lines(
     cell: Cell,
     params: SegmentationParams,
     prediction: Prediction | None,
+    min_gradient: float,
 ) -> Segments:
     """The lines of the most likely border pairs of one cell.
 
@@ -135,6 +164,8 @@ def cell_lines(
         The tracker's parameters.
     prediction : Prediction, optional
         The filter's prediction while tracking.
+    min_gradient : float
+        Smallest mean gradient modulus of a long line (:func:`edge_gradient`).
 
     Returns
     -------
@@ -180,7 +211,7 @@ def cell_lines(
     lines = select_long(
         grouped,
         min_rows=p.long_share * cell_height,
-        min_gradient=p.min_gradient,
+        min_gradient=min_gradient,
         max_rms=p.max_rms_px,
         max_count=p.max_lines,
     )
@@ -190,7 +221,13 @@ def cell_lines(
 
 
 def detect(image: np.ndarray, params: SegmentationParams, prediction: Prediction | None = None) -> BorderPair | None:
-    """The best pair of cable borders in one grey image.
+    """The best pair of cable borders in one grey image: the first of :func:`detect_pairs`, or None."""
+    pairs = detect_pairs(image, params, prediction)
+    return pairs[0] if pairs else None
+
+
+def detect_pairs(image: np.ndarray, params: SegmentationParams, prediction: Prediction | None = None) -> list[BorderPair]:
+    """The plausible pairs of cable borders in one grey image, best first.
 
     Parameters
     ----------
@@ -203,21 +240,22 @@ def detect(image: np.ndarray, params: SegmentationParams, prediction: Prediction
 
     Returns
     -------
-    BorderPair or None
-        The pair with the highest score after the fusion of all cells'
-        pairs; None when no plausible pair is found.
+    list of BorderPair
+        The pairs after the fusion of all cells' pairs, highest score
+        first; empty when no plausible pair is found.
 
     References
     ----------
     seeds/000, section 2.3 and Fig. 2.5.
     """
-    p = params
     height, width = image.shape
-    grey = image if p.smoothing_sigma == 0 else cv2.GaussianBlur(image, (0, 0), p.smoothing_sigma)
+    p = frame_params(params, (width, height))
+    grey = normalised_grey(image, p.smoothing_sigma, p.grey_quantiles)
     modulus = gradient_modulus(grey)
     gradient_rows = gradient_bins(modulus, p.gradient_bin, p.gradient_bins)
+    min_gradient = edge_gradient(modulus, p)
     found = [
-        cell_lines(grey, modulus, gradient_rows, cell, p, prediction)
+        cell_lines(grey, modulus, gradient_rows, cell, p, prediction, min_gradient)
         for cell in cell_pyramid((width, height), p.pyramid_levels)
     ]
     return fuse(
@@ -227,7 +265,7 @@ def detect(image: np.ndarray, params: SegmentationParams, prediction: Prediction
         strip_px=p.strip_px,
         max_angle=math.radians(p.group_angle_deg),
         min_rows=p.long_share * height,
-        min_gradient=p.min_gradient,
+        min_gradient=min_gradient,
         max_rms=p.max_rms_px,
         max_lines=p.max_lines,
         expected_width=None if prediction is None else prediction.width,

@@ -71,6 +71,36 @@ def gradient_modulus(image: np.ndarray) -> np.ndarray:
     return np.sqrt((gx * gx + gy * gy).astype(np.float32)) * np.float32(0.25)
 
 
+LEVEL_STEP = 0.25
+"""Resolution of :func:`gradient_level`, grey levels per px."""
+
+
+def gradient_level(modulus: np.ndarray) -> float:
+    """The frame's gradient level: the median of its gradient moduli, to :data:`LEVEL_STEP`.
+
+    The level at which half the pixels count as smooth (``smooth_share``
+    0.5, :func:`contour_cut`) measures how rough the frame's ground and
+    noise are; a line lies on an edge when its contour pixels are several
+    times steeper.  Read from a histogram of :data:`LEVEL_STEP` bins, which
+    costs a fraction of a full median on a 640 x 480 frame.
+
+    Parameters
+    ----------
+    modulus : numpy.ndarray
+        ``float32`` gradient moduli (:func:`gradient_modulus`).
+
+    Returns
+    -------
+    float
+        The lower edge of the bin holding the median modulus.
+    """
+    top = float(modulus.max()) + LEVEL_STEP
+    n_bins = int(np.ceil(top / LEVEL_STEP))
+    counts = cv2.calcHist([modulus], [0], None, [n_bins], [0.0, n_bins * LEVEL_STEP]).ravel()
+    middle = 0.5 * (modulus.size - 1)
+    return float(np.searchsorted(np.cumsum(counts), middle, side="right")) * LEVEL_STEP
+
+
 def joint_histogram(grey: np.ndarray, modulus: np.ndarray, bin_width: float, n_bins: int) -> np.ndarray:
     """The bidimensional histogram of grey level x gradient modulus of Fig. 2.4.
 

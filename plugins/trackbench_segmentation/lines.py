@@ -270,6 +270,7 @@ def _group(
     b = np.empty(count)
     for k in range(count):
         a[k], b[k] = _fit(n[k], sv[k], su[k], svv[k], suv[k])
+    angle = np.arctan(b)
     labels = np.full(count, -1, dtype=np.int64)
     groups = 0
     for seed in order:
@@ -284,7 +285,7 @@ def _group(
             scale = np.sqrt(1.0 + gb * gb)
             group_angle = np.arctan(gb)
             for j in range(count):
-                if labels[j] >= 0 or abs(np.arctan(b[j]) - group_angle) > max_angle:
+                if labels[j] >= 0 or abs(angle[j] - group_angle) > max_angle:
                     continue
                 top = abs(a[j] + b[j] * v_low[j] - ga - gb * v_low[j]) / scale
                 bottom = abs(a[j] + b[j] * v_high[j] - ga - gb * v_high[j]) / scale

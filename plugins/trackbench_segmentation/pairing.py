@@ -162,8 +162,8 @@ def fuse(
     max_rms: float,
     max_lines: int,
     expected_width: float | None = None,
-) -> BorderPair | None:
-    """Fuse the lines of the cells' best pairs and select the final pair.
+) -> list[BorderPair]:
+    """Fuse the lines of the cells' best pairs and rank the final pairs.
 
     Parameters
     ----------
@@ -182,9 +182,11 @@ def fuse(
 
     Returns
     -------
-    BorderPair or None
-        The best pair after the fusion, its indices into the fused lines;
-        None when no pair survives.
+    list of BorderPair
+        The plausible pairs after the fusion, best first, their indices
+        into the fused lines; empty when no pair survives.  The first is
+        the system's output; the tracker may pass over pairs its filter
+        cannot have produced (:mod:`trackbench_segmentation.tracking`).
 
     References
     ----------
@@ -194,6 +196,5 @@ def fuse(
     """
     merged = group_collinear(Segments.concatenate(cell_lines), strip_px, max_angle)
     lines = select_long(merged, min_rows=min_rows, min_gradient=min_gradient, max_rms=max_rms, max_count=max_lines)
-    pairs = border_pairs(lines, size, rules, expected_width)
-    return pairs[0] if pairs else None
+    return border_pairs(lines, size, rules, expected_width)
 

@@ -56,9 +56,13 @@ class CableKalman:
     """
 
     def __init__(self, process_var: tuple[float, float, float], measurement_var: tuple[float, float, float]) -> None:
+        self.belief: Gaussian | None = None
+        self.use_noise(process_var, measurement_var)
+
+    def use_noise(self, process_var: tuple[float, float, float], measurement_var: tuple[float, float, float]) -> None:
+        """Take these variances from now on (a frame of another size states them in other pixels)."""
         self.process_noise = np.diag(np.asarray(process_var, dtype=float))
         self.measurement_noise = np.diag(np.asarray(measurement_var, dtype=float))
-        self.belief: Gaussian | None = None
 
     def forget(self) -> None:
         """Drop the belief: the cable is lost."""
@@ -73,23 +77,42 @@ class CableKalman:
         if self.belief is not None:
             self.belief = predict(self.belief, _IDENTITY, None, self.process_noise)
 
+    def aligned(self, state: CableState) -> np.ndarray:
+        """A measured ``(d, alpha, w)`` in the form whose angle lies within a quarter turn of the belief's.
+
+        ``(d, alpha)`` and ``(-d, alpha +- pi)`` are the same centreline.
+        """
+        d, alpha = state.d, state.alpha
+        if self.belief is not None:
+            reference = float(self.belief.mean[1])
+            if abs(alpha - reference) > math.pi / 2:
+                d, alpha = -d, alpha - math.copysign(math.pi, alpha - reference)
+        return np.array([d, alpha, state.w])
+
+    def distance(self, state: CableState) -> float:
+        """Squared Mahalanobis distance of a measured state from the belief: ``nu^T S^-1 nu``.
+
+        ``nu`` is the innovation, the measurement (:meth:`aligned`) less the
+        belief's mean, and ``S`` its covariance, the belief's covariance plus
+        the measurement noise; 0 while there is no belief.
+        """
+        if self.belief is None:
+            return 0.0
+        innovation = self.aligned(state) - self.belief.mean
+        spread = self.belief.covariance + self.measurement_noise
+        return float(innovation @ np.linalg.solve(spread, innovation))
+
     def update(self, state: CableState) -> None:
         """Correct the belief with a measured state, or start from it when there is no belief.
 
-        The measured ``(d, alpha)`` is first written in the form whose angle
-        lies within a quarter turn of the belief's (``(d, alpha)`` and
-        ``(-d, alpha +- pi)`` are the same centreline); a corrected angle
-        that leaves ``(-pi/2, pi/2]`` is brought back the same way, with
-        the covariance of ``d`` with the other two turned accordingly.
+        The measurement is first :meth:`aligned` with the belief; a corrected
+        angle that leaves ``(-pi/2, pi/2]`` is brought back the same way,
+        with the covariance of ``d`` with the other two turned accordingly.
         """
         if self.belief is None:
             self.start(state)
             return
-        d, alpha = state.d, state.alpha
-        reference = float(self.belief.mean[1])
-        if abs(alpha - reference) > math.pi / 2:
-            d, alpha = -d, alpha - math.copysign(math.pi, alpha - reference)
-        corrected = update(self.belief, np.array([d, alpha, state.w]), _IDENTITY, None, self.measurement_noise)
+        corrected = update(self.belief, self.aligned(state), _IDENTITY, None, self.measurement_noise)
         mean = corrected.mean
         if not -math.pi / 2 < mean[1] <= math.pi / 2:
             flip = np.diag([-1.0, 1.0, 1.0])

@@ -56,7 +56,7 @@ def test_the_expected_width_selects_among_pairs(scene):
 def test_fusion_joins_a_border_found_in_two_cells(scene):
     top = Segments.concatenate([scene.segment(140.0, 0.1, 0, 119), scene.segment(170.0, 0.1, 0, 119)])
     bottom = Segments.concatenate([scene.segment(140.0, 0.1, 120, 239), scene.segment(170.0, 0.1, 120, 239)])
-    pair = fuse(
+    pairs = fuse(
         [pair_lines(top, border_pairs(top, SIZE, RULES)), pair_lines(bottom, border_pairs(bottom, SIZE, RULES))],
         SIZE,
         RULES,
@@ -67,10 +67,11 @@ def test_fusion_joins_a_border_found_in_two_cells(scene):
         max_rms=1.5,
         max_lines=12,
     )
-    assert pair is not None
+    assert len(pairs) == 1
+    (pair,) = pairs
     assert pair.score == pytest.approx(480.0 * math.cos(0.0))
     assert pair.state.w == pytest.approx(30.0 * math.cos(math.atan(0.1)))
 
 
-def test_fusion_without_lines_is_none():
-    assert fuse([], SIZE, RULES, strip_px=2, max_angle=0.1, min_rows=1, min_gradient=0, max_rms=1, max_lines=3) is None
+def test_fusion_without_lines_has_no_pair():
+    assert fuse([], SIZE, RULES, strip_px=2, max_angle=0.1, min_rows=1, min_gradient=0, max_rms=1, max_lines=3) == []

@@ -80,6 +80,26 @@ def test_init_starts_the_filter_and_unknown_init_is_ignored(scene):
         assert outcome(ignoring.step(Frame(0, scene.cable(distractor))), distractor) is Outcome.CORRECT
 
 
+def test_the_filter_states_its_variances_in_pixels_of_the_frame_size(scene):
+    cable = CableState(-80.0, 0.0, 30.0, 0.0)
+    d_var, alpha_var, w_var = SegmentationTracker.Params().measurement_var
+    for size, factor in ((SIZE, 1.0), ((640, 480), 2.0)):
+        tracker = SegmentationTracker()
+        tracker.reset(SequenceInfo("drawn", "camera", frame_size=size), np.random.default_rng(0), init=CameraTruth(cable))
+        expected = np.diag([d_var * factor**2, alpha_var, w_var * factor**2])
+        assert np.allclose(tracker.belief.covariance, expected)
+
+
+def test_without_a_known_frame_size_the_start_waits_for_the_first_frame(scene):
+    truth = moving_cable(0)
+    tracker = SegmentationTracker()
+    tracker.reset(SequenceInfo("drawn", "camera"), np.random.default_rng(0), init=CameraTruth(truth))
+    assert tracker.belief is None
+    estimate = tracker.step(Frame(0, scene.cable(truth)))
+    assert tracker.prediction is not None, "the first frame is searched in the region of interest of init"
+    assert outcome(estimate, truth) is Outcome.CORRECT
+
+
 def test_reset_forgets_the_previous_sequence(scene):
     tracker = fresh()
     tracker.step(Frame(0, scene.cable(CableState(0.0, 0.0, 30.0, 0.0))))
@@ -136,7 +156,7 @@ def test_unknown_parameter_is_a_parameter_error():
         {"smooth_share": 0.0},
         {"valley_ratio": 1.5},
         {"max_skew_deg": 45.0},
-        {"min_width_px": 150.0},
+        {"min_width_px": 200.0},
         {"process_var": (1.0, -1.0, 1.0)},
         {"max_misses": 0},
     ],
@@ -145,3 +165,18 @@ def test_values_outside_the_declared_domains_are_parameter_errors(bad):
     (name,) = bad
     with pytest.raises(ParameterError, match=rf"tracker 'segmentation'.*{name}"):
         SegmentationTracker.make_params(bad)
+
+
+@pytest.mark.parametrize("gate_sigmas, reported", [(4.0, "cable"), (0.0, "distractor")])
+def test_the_gate_passes_over_better_scored_pairs_the_filter_cannot_have_produced(
+    scene, monkeypatch, gate_sigmas, reported
+):
+    import trackbench_segmentation.tracker as tracker_module
+    from trackbench_segmentation.pairing import BorderPair
+
+    cable = CableState(0.0, 0.0, 30.0, 0.0)
+    states = {"distractor": CableState(4.0, math.radians(25.0), 30.0, 0.0), "cable": CableState(2.0, 0.01, 31.0, 0.0)}
+    pairs = [BorderPair(0, 1, cable_borders(state), state, score) for state, score in zip(states.values(), (900.0, 500.0))]
+    monkeypatch.setattr(tracker_module, "detect_pairs", lambda image, params, prediction: pairs)
+    tracker = fresh(init=CameraTruth(cable), gate_sigmas=gate_sigmas)
+    assert tracker.step(Frame(0, scene.cable(cable))) == states[reported]

@@ -113,3 +113,27 @@ def test_the_roi_holds_both_predicted_borders_and_grows_with_uncertainty(d, alph
 def test_lateral_std_combines_position_width_and_angle():
     covariance = np.diag([4.0, 1e-4, 16.0])
     assert lateral_std(covariance, 100.0) == np.float64(math.sqrt(4.0 + 4.0 + 1.0))
+
+
+@settings(max_examples=40, deadline=None)
+@given(start=states, measured=states, frames=st.integers(0, 5))
+def test_the_gate_distance_is_the_same_for_both_forms_of_a_centreline(start, measured, frames):
+    kalman = CableKalman(PROCESS, MEASUREMENT)
+    kalman.start(start)
+    for _ in range(frames):
+        kalman.predict()
+    other_form = CableState(-measured.d, measured.alpha - math.copysign(math.pi, measured.alpha), measured.w, 0.0)
+    distance = kalman.distance(measured)
+    assert distance >= 0.0
+    assert kalman.distance(other_form) == pytest.approx(distance, rel=1e-9, abs=1e-9)
+    assert kalman.distance(start) == pytest.approx(0.0, abs=1e-12)
+
+
+def test_the_gate_distance_counts_standard_deviations_of_the_innovation():
+    kalman = CableKalman(PROCESS, MEASUREMENT)
+    assert kalman.distance(CableState(50.0, 0.0, 30.0, 0.0)) == 0.0, "no belief: nothing to gate against"
+    kalman.start(CableState(0.0, 0.0, 30.0, 0.0))
+    kalman.predict()
+    d_spread = MEASUREMENT[0] + PROCESS[0] + MEASUREMENT[0]
+    # Three standard deviations of the innovation in d alone: a squared distance of 9.
+    assert kalman.distance(CableState(3.0 * math.sqrt(d_spread), 0.0, 30.0, 0.0)) == pytest.approx(9.0)
