@@ -118,7 +118,7 @@ class Session:
         if self._registry is None:
             self._registry = plugins.load_registry(disable=self.disable, strict=self.strict_plugins)
             for problem in self._registry.problems:
-                click.echo(f"Warning: {problem}; its trackers are unavailable.", err=True)
+                click.echo(f"Warning: {problem}", err=True)
         return self._registry
 
     @property

@@ -10,7 +10,20 @@ class TrackbenchError(Exception):
 
 
 class PluginError(TrackbenchError):
-    """A plugin failed to import, registered something invalid, or misspelt a hook."""
+    """A plugin failed to import, registered something invalid, or misspelt a hook.
+
+    Parameters
+    ----------
+    message : str
+        What went wrong, naming the plugin.
+    plugin : str, optional
+        The entry-point name of the one plugin at fault, when it is known;
+        such a plugin can be left out and the others kept.
+    """
+
+    def __init__(self, message: str, plugin: str | None = None) -> None:
+        super().__init__(message)
+        self.plugin = plugin
 
 
 class ParameterError(TrackbenchError):

@@ -13,8 +13,10 @@ for pytest's plugins.
 Two distributions that offer an entry point of the same name are an error
 naming both: one would otherwise silently shadow the other.  A plugin that
 fails to import or does not validate against the hook specifications is
-left out: its trackers are unavailable, the registry lists the problem
-(:attr:`benchmark.registry.Registry.problems`) and every other plugin works.
+left out, and so is one whose register hook raises (``SystemExit``
+included) or adds something invalid: its trackers are unavailable, the
+registry lists the problem (:attr:`benchmark.registry.Registry.problems`)
+and every other plugin works.
 With ``strict=True`` (``trackbench --strict-plugins``, for CI) it is an
 error instead.  A plugin is
 blocked with ``--disable NAME`` or by listing it, comma separated, in the
@@ -87,7 +89,7 @@ class PluginManager(pluggy.PluginManager):
         if strict:
             raise error
         self.set_blocked(name)
-        self.problems.append(str(error))
+        self.problems.append(f"{error} (left out: its trackers are unavailable)")
 
 
 def make_plugin_manager(
@@ -137,7 +139,7 @@ def make_plugin_manager(
         except pluggy.PluginValidationError as exc:
             manager.leave_out(name, PluginError(f"plugin {name!r} ({distribution}): {exc}"), strict)
             continue
-        except Exception as exc:
+        except (Exception, SystemExit) as exc:  # a plugin's sys.exit() at import must not end the command
             error = PluginError(
                 f"plugin {name!r} ({distribution}) failed to import {ep.value!r}: "
                 f"{type(exc).__name__}: {' '.join(str(exc).split())}. "
@@ -227,11 +229,12 @@ def fill_registry(manager: pluggy.PluginManager, origins: Mapping[str, Origin]) 
                 getattr(manager.hook, hook_name)(registry=registry)
             except PluginError:
                 raise
-            except Exception as exc:
+            except (Exception, SystemExit) as exc:
                 origin = _raising_plugin(exc, implementations)
                 raise PluginError(
                     f"plugin {origin.plugin!r} ({origin.distribution}) raised in {hook_name}: "
-                    f"{type(exc).__name__}: {exc}"
+                    f"{type(exc).__name__}: {exc}",
+                    plugin=origin.plugin,
                 ) from exc
     finally:
         registry.attribute_with(None)
@@ -241,9 +244,28 @@ def fill_registry(manager: pluggy.PluginManager, origins: Mapping[str, Origin]) 
 def load_registry(disable: Iterable[str] = (), *, strict: bool = False) -> Registry:
     """Discover all plugins and return the registry they filled, with the problems of those left out.
 
-    ``strict`` makes a plugin that fails to import or validate an error (:func:`make_plugin_manager`).
+    A plugin whose register hook raises, or adds something invalid, is left
+    out like one that fails to import, and the registry is filled again
+    without it, so that nothing it added before failing remains.  ``strict``
+    makes any of these an error (:func:`make_plugin_manager`).
+
+    Raises
+    ------
+    PluginError
+        With ``strict``, for any plugin left out; always, for a failure that
+        cannot be pinned on one plugin.
     """
     manager, origins = make_plugin_manager(disable, strict=strict)
-    registry = fill_registry(manager, origins)
+    while True:
+        try:
+            registry = fill_registry(manager, origins)
+            break
+        except PluginError as exc:
+            if exc.plugin not in origins:
+                raise
+            origins = {name: origin for name, origin in origins.items() if name != exc.plugin}
+            manager.leave_out(exc.plugin, exc, strict)
+    if strict and registry.problems:
+        raise PluginError(registry.problems[0])
     registry.problems.extend(manager.problems)
     return registry

@@ -126,9 +126,19 @@ class Registry:
             return self._origin
         return self._find_origin() if self._find_origin is not None else Origin()
 
+    def add_problem(self, message: str) -> None:
+        """Note, for the calling plugin, something it could not register, such as one invalid suite file.
+
+        The rest of what it registers is kept; the problem is shown as a
+        warning and in the board's Problems section, and the command exits
+        non-zero.
+        """
+        origin = self.origin
+        self.problems.append(f"plugin {origin.plugin!r} ({origin.distribution}): {message}")
+
     def _fail(self, message: str) -> PluginError:
         origin = self.origin
-        return PluginError(f"plugin {origin.plugin!r} ({origin.distribution}): {message}")
+        return PluginError(f"plugin {origin.plugin!r} ({origin.distribution}): {message}", plugin=origin.plugin)
 
     def add_modality(self, modality: Modality) -> Modality:
         """Register a modality: a kind of sensor data, its types, scorer, readers and scene kinds.

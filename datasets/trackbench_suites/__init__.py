@@ -74,13 +74,19 @@ a sequence may start from a sequence of another shipped suite
 """
 
 from benchmark import Registry, hookimpl
-from trackbench_suites.loader import SuiteDefinition, load_suites, parse_suite, shipped_table
+from benchmark.errors import DataError
+from trackbench_suites.loader import SuiteDefinition, load_suites, parse_suite, shipped_table, suite_files
 
 __all__ = ["SuiteDefinition", "load_suites", "parse_suite", "shipped_table", "trackbench_register_datasets"]
 
 
 @hookimpl
 def trackbench_register_datasets(registry: Registry) -> None:
-    """Register every suite defined by a TOML file of this package."""
-    for suite in load_suites(registry.scene_kinds):
+    """Register every suite defined by a TOML file of this package; an invalid file costs only its suite."""
+    for item in suite_files():
+        try:
+            suite = parse_suite(item.read_text(encoding="utf-8"), item.name, registry.scene_kinds)
+        except DataError as exc:
+            registry.add_problem(f"{exc} (suite left out)")
+            continue
         registry.add_suite(suite.name, suite.sequences, training=suite.training, scored=suite.scored)

@@ -83,7 +83,7 @@ def test_a_duplicate_tracker_name_is_named(monkeypatch, installed):
     installed("copycat", [("copycat", "copycat_trackers")])
     # pluggy calls the plugin registered last first: copycat adds 'acme', then acme is refused.
     with pytest.raises(PluginError, match=r"tracker name 'acme' is already registered by plugin") as info:
-        load_registry()
+        load_registry(strict=True)
     message = str(info.value)
     assert "plugin 'acme' (acme-trackers 0.3)" in message and "by plugin 'copycat'" in message
 
@@ -95,7 +95,7 @@ def test_an_unknown_parameter_is_named(monkeypatch, installed):
     plugin_module(monkeypatch, "acme_trackers", trackbench_register_trackers=register)
     installed("acme-trackers", [("acme", "acme_trackers")])
     with pytest.raises(PluginError, match=r"plugin 'acme'.*no parameter 'speed'"):
-        load_registry()
+        load_registry(strict=True)
 
 
 def test_a_misspelt_hook_fails_loudly(monkeypatch, installed):
@@ -115,8 +115,58 @@ def test_an_exception_in_a_hook_is_named(monkeypatch, installed):
     plugin_module(monkeypatch, "acme_trackers", trackbench_register_datasets=register)
     installed("acme-trackers", [("acme", "acme_trackers")])
     with pytest.raises(PluginError, match=r"plugin 'acme'.*trackbench_register_datasets.*database offline"):
-        load_registry()
+        load_registry(strict=True)
 
+
+@pytest.mark.parametrize("failure", [RuntimeError("database offline"), SystemExit(0)], ids=["raises", "exits"])
+def test_a_plugin_whose_hook_fails_is_left_out_with_what_it_added_and_the_others_are_kept(
+    monkeypatch, installed, failure
+):
+    def register(registry):
+        registry.add_tracker(ThirdParty)
+        raise failure
+
+    def register_other(registry):
+        registry.add_tracker(ThirdParty, name="acme-other")
+
+    plugin_module(monkeypatch, "acme_trackers", trackbench_register_trackers=register)
+    plugin_module(monkeypatch, "other_trackers", trackbench_register_trackers=register_other)
+    installed("acme-trackers", [("acme", "acme_trackers")])
+    installed("other", [("other", "other_trackers")])
+    registry = load_registry()
+    assert "acme" not in registry.trackers
+    assert {"acme-other", "hough"} <= set(registry.trackers)
+    (problem,) = registry.problems
+    assert problem.startswith("plugin 'acme' (acme-trackers 0.3) raised in trackbench_register_trackers")
+    with pytest.raises(PluginError, match=r"^plugin 'acme' \(acme-trackers 0.3\) raised"):
+        load_registry(strict=True)
+
+
+def test_a_plugin_that_exits_at_import_is_a_warning_and_a_failed_exit_status(monkeypatch, installed, tmp_path):
+    (tmp_path / "exiting_plugin.py").write_text("import sys\nsys.exit(0)\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    installed("exiting", [("exiting", "exiting_plugin")])
+    listing = CliRunner().invoke(main, ["list"])
+    assert listing.exit_code == 1, listing.output
+    assert "plugin 'exiting' (exiting 0.3) failed to import 'exiting_plugin': SystemExit" in listing.output
+    assert "hough" in listing.output
+    assert CliRunner().invoke(main, ["--strict-plugins", "list"]).exit_code == 2
+
+
+def test_an_invalid_suite_file_costs_only_its_suite(monkeypatch, tmp_path):
+    import trackbench_suites
+
+    shipped = list(trackbench_suites.suite_files())
+    bad = tmp_path / "zz_broken.toml"
+    bad.write_text("[suite]\nname = 'broken'\nkind = 'camera'\n[[sequence]]\nname = 'a'\nfocal_px = 'wide'\n")
+    monkeypatch.setattr(trackbench_suites, "suite_files", lambda: iter([*shipped, bad]))
+    registry = load_registry()
+    assert "broken" not in registry.suites and {"camera", "sonar", "stereo"} <= set(registry.suites)
+    (problem,) = registry.problems
+    assert problem.startswith("plugin 'suites' (subsea-trackbench ") and "zz_broken.toml" in problem
+    assert problem.endswith("(suite left out)")
+    with pytest.raises(PluginError, match=r"zz_broken\.toml"):
+        load_registry(strict=True)
 
 def test_a_third_party_tracker_shows_up_ranked(monkeypatch, installed, fakes, tmp_path):
     class Acme(fakes.Perfect):
@@ -326,7 +376,7 @@ def test_a_modality_added_twice_names_the_plugin_that_did_it(monkeypatch, instal
     installed("scan-one", [("scan-one", "scan_one")])
     installed("scan-two", [("scan-two", "scan_two")])
     with pytest.raises(PluginError, match=message):
-        load_registry()
+        load_registry(strict=True)
 
 
 def test_methods_of_one_plugin_class_are_told_apart_by_their_object(monkeypatch, installed):
@@ -357,7 +407,7 @@ def test_an_exception_names_its_plugin_after_another_plugin_ran_in_the_same_call
     installed("acme-trackers", [("acme", "acme_trackers")])
     installed("helper-dist", [("helper", "helper_trackers")])  # called before acme
     with pytest.raises(PluginError) as info:
-        load_registry()
+        load_registry(strict=True)
     assert str(info.value) == (
         "plugin 'acme' (acme-trackers 0.3) raised in trackbench_register_trackers: RuntimeError: database offline"
     )
@@ -378,7 +428,7 @@ def test_an_exception_names_its_plugin_inside_another_plugin_s_wrapper(monkeypat
     installed("acme-trackers", [("acme", "acme_trackers")])
     installed("wrapping-dist", [("wrapping", "wrapping_trackers")])
     with pytest.raises(PluginError, match=r"^plugin 'acme' \(acme-trackers 0.3\) raised in trackbench_register_tr"):
-        load_registry()
+        load_registry(strict=True)
 
 
 def test_a_bad_addition_after_another_plugin_ran_names_the_plugin_that_made_it(monkeypatch, installed):
@@ -391,7 +441,7 @@ def test_a_bad_addition_after_another_plugin_ran_names_the_plugin_that_made_it(m
     installed("acme-trackers", [("acme", "acme_trackers")])
     installed("helper-dist", [("helper", "helper_trackers")])
     with pytest.raises(PluginError, match=r"^plugin 'acme' \(acme-trackers 0.3\): .*no parameter 'speed'"):
-        load_registry()
+        load_registry(strict=True)
 
 
 def test_plugins_sharing_the_closures_of_one_factory_get_their_own_additions(monkeypatch, installed):
