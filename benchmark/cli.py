@@ -46,6 +46,7 @@ Exit status, as pytest's:
 from __future__ import annotations
 
 import dataclasses
+import math
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -99,6 +100,21 @@ class TrackbenchGroup(click.Group):
         if isinstance(session, Session) and session.problems:
             ctx.exit(EXIT_FAILED)
         return result
+
+
+class Seconds(click.FloatRange):
+    """A positive, finite number of seconds (``nan`` and ``inf`` would lift a time limit)."""
+
+    name = "seconds"
+
+    def __init__(self) -> None:
+        super().__init__(min=0.0, min_open=True)
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> float:
+        seconds = super().convert(value, param, ctx)
+        if not math.isfinite(seconds):
+            self.fail(f"{value!r} is not a finite number of seconds.", param, ctx)
+        return seconds
 
 
 @dataclasses.dataclass
@@ -283,7 +299,7 @@ _RUN_OPTIONS = [
     click.option("--resume", is_flag=True, help="Skip cells this database already finished with status ok."),
     click.option(
         "--timeout",
-        type=click.FloatRange(min=0, min_open=True),
+        type=Seconds(),
         default=DEFAULT_TIMEOUT_S,
         show_default=True,
         metavar="SECONDS",
@@ -751,7 +767,7 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
 @click.option(
     "--time-limit",
     "time_limit_s",
-    type=click.FloatRange(min=0.0, min_open=True),
+    type=Seconds(),
     default=60.0,
     show_default=True,
     help="Seconds one check may take before it fails as a hang.",

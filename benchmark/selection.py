@@ -37,6 +37,10 @@ from benchmark.runner import Cell, InitMode
 from benchmark.training import Training, learns, overlap_error
 
 
+MAX_CELLS = 1_000_000
+"""The most cells one run makes: each is kept in memory until it ends and in the results database after."""
+
+
 class SelectionError(TrackbenchError):
     """A tracker, suite or dataset name that nothing registered answers to."""
 
@@ -251,11 +255,18 @@ def make_cells(
     Raises
     ------
     SelectionError
-        If no tracker reads the modality of any selected sequence.
+        If no tracker reads the modality of any selected sequence, or the
+        cells would be more than :data:`MAX_CELLS`.
     """
     tracker_list = list(trackers)
     sequence_list = list(sequences)
-    seed_list = list(seeds)
+    seed_list = seeds if isinstance(seeds, range) else list(seeds)
+    pairs = sum(1 for t in tracker_list for s in sequence_list if s.identity.modality == t.modality)
+    if pairs * len(seed_list) > MAX_CELLS:
+        raise SelectionError(
+            f"{pairs:,} tracker and sequence pairs x {len(seed_list):,} seeds make more cells than one run holds "
+            f"({MAX_CELLS:,}); run fewer seeds, or fewer trackers or suites at a time"
+        )
     cells = [
         Cell(tracker, sequence, seed, init, modality=modalities[tracker.modality])
         for tracker in tracker_list

@@ -144,7 +144,7 @@ class DaskExecutor:
         else:
             try:
                 self._client = Client(scheduler, timeout=CONNECT_TIMEOUT_S)
-            except (OSError, TimeoutError) as exc:
+            except (OSError, TimeoutError, ValueError) as exc:
                 raise DataError(f"--scheduler {scheduler}: cannot reach the Dask scheduler: {exc}") from None
 
     @property

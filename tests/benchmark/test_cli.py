@@ -127,6 +127,7 @@ def test_param_overrides_reach_the_tracker(invoke: Invoke, tmp_path: Path) -> No
         (["--tracker", "raising", "--param", "perfect.x=1"], ["'perfect'", "not selected"]),
         (["--param", "no-equals-sign"], ["TRACKER.KEY=VALUE"]),
         (["--tracker", "sonar-only"], ["nothing to run", "sonar-only (sonar)"]),
+        (["--seeds", "100000000"], ["x 100,000,000 seeds", "more cells than one run holds (1,000,000)"]),
     ],
 )
 def test_bad_selections_exit_2_with_a_clear_message(
@@ -138,6 +139,16 @@ def test_bad_selections_exit_2_with_a_clear_message(
     assert message.startswith("Error: ") and "\n" not in message and "Traceback" not in result.output
     for word in words:
         assert word in message
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf", "0"])
+@pytest.mark.parametrize(("command", "option"), [(["run"], "--timeout"), (["check", "perfect"], "--time-limit")])
+def test_a_time_limit_must_be_a_positive_finite_number_of_seconds(
+    invoke: Invoke, command: list[str], option: str, value: str
+) -> None:
+    result = invoke(*command, option, value)
+    assert result.exit_code == 2
+    assert f"Invalid value for '{option}'" in result.stderr and value in result.stderr
 
 
 def test_resume_skips_ok_cells_and_redoes_failed_ones(

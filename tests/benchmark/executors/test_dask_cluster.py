@@ -65,15 +65,18 @@ def test_a_dask_cluster_gives_the_local_board_value_for_value(cluster, tmp_path:
     assert any(local_pictures.values()) and pictures(tmp_path / "dask") == local_pictures
 
 
-def test_a_scheduler_that_cannot_be_reached_is_a_usage_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+@pytest.mark.parametrize("address", ["tcp://127.0.0.1:9", "not a url"])
+def test_a_scheduler_that_cannot_be_reached_is_a_usage_error(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, address: str
+) -> None:
     monkeypatch.setattr("benchmark.executors.dask_cluster.CONNECT_TIMEOUT_S", 1.0)
     result = CliRunner().invoke(
         main,
         ["run", "--tracker", "hough", "--dataset", "camera/S6", "--executor", "dask"]
-        + ["--scheduler", "tcp://127.0.0.1:9", "--out", str(tmp_path)],
+        + ["--scheduler", address, "--out", str(tmp_path)],
     )
     assert result.exit_code == 2
-    assert "tcp://127.0.0.1:9: cannot reach the Dask scheduler" in result.output
+    assert f"Error: --scheduler {address}: cannot reach the Dask scheduler" in result.output
 
 
 def test_options_the_executor_does_not_take_are_refused(tmp_path: Path) -> None:
