@@ -15,7 +15,10 @@ worker is prepared by :func:`init_worker` before its first cell:
   OpenMP, OpenCV and numba otherwise start a thread per core in every
   worker, and on two cores two workers then fight over them: ``--jobs 2``
   was slower than ``--jobs 1``, and the board's frames per second measured
-  the fight rather than the tracker.
+  the fight rather than the tracker;
+* its standard output is its standard error (:func:`quiet_stdout`): the
+  command's standard output carries the board, and a tracker's ``print``
+  (or a native library's write to file descriptor 1) must not land in it.
 
 A worker stays alive from cell to cell, so what it imports and loads once
 (plugins, compiled numba kernels, fitted models) serves all its cells.
@@ -111,8 +114,20 @@ def _watch_parent(parent_pid: int) -> None:
     os._exit(1)
 
 
+def quiet_stdout() -> None:
+    """Send this process's standard output, Python's and file descriptor 1, to its standard error.
+
+    Where either stream is closed, standard output is sent nowhere instead.
+    """
+    try:
+        os.dup2(sys.stderr.fileno(), 1)
+    except (OSError, ValueError, AttributeError):
+        os.dup2(os.open(os.devnull, os.O_WRONLY), 1)
+    sys.stdout = sys.stderr if sys.stderr is not None else open(os.devnull, "w")  # noqa: SIM115
+
+
 def init_worker(parent_pid: int) -> None:
-    """Prepare a worker process: leave Ctrl-C to the parent, die with it, run one native thread.
+    """Prepare a worker process: leave Ctrl-C to the parent, die with it, run one native thread, keep stdout clean.
 
     Parameters
     ----------
@@ -125,3 +140,4 @@ def init_worker(parent_pid: int) -> None:
     if os.getppid() != parent_pid:  # the parent ended before the request above took effect
         os._exit(1)
     limit_native_threads()
+    quiet_stdout()

@@ -17,8 +17,10 @@ wherever it ran.
 from __future__ import annotations
 
 import concurrent.futures
+import contextlib
 import os
 import signal
+import sys
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
@@ -141,7 +143,9 @@ class LocalExecutor:
             limit_native_threads()
             for cell in cells:
                 self._current = cell
-                yield run_cell(cell, timeout_s)
+                with contextlib.redirect_stdout(sys.stderr):  # the board goes to stdout; a tracker's print does not
+                    result = run_cell(cell, timeout_s)
+                yield result
             self._current = None
             return
         if not cells:

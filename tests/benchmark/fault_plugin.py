@@ -149,6 +149,17 @@ class Slow(Faulty):
         return frame.truth.cable
 
 
+class Chatty(Faulty):
+    """Right on every frame, but talks on standard output, through Python and through file descriptor 1."""
+
+    name = "chatty"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        print(f"chatter from print, frame {frame.index}")
+        os.write(1, f"chatter from fd 1, frame {frame.index}\n".encode())
+        return frame.truth.cable
+
+
 SAFE = (Honest, Exits, Interrupts, RaisesOddly, ReturnsNan, ReturnsAbsurd)
 """Trackers whose faults a run in the test process survives even without worker processes."""
 PROCESS_KILLERS = (Spins, ExitsHard, Segfaults)
@@ -157,7 +168,7 @@ PROCESS_KILLERS = (Spins, ExitsHard, Segfaults)
 
 @hookimpl
 def trackbench_register_trackers(registry: Any) -> None:
-    for tracker in (*SAFE, *PROCESS_KILLERS, Slow):
+    for tracker in (*SAFE, *PROCESS_KILLERS, Slow, Chatty):
         registry.add_tracker(tracker)
 
 

@@ -232,6 +232,23 @@ def test_a_fifo_as_a_frame_costs_its_cell_not_the_run(site: Path, tmp_path: Path
     assert cells.loc["honest", "status"] == "timeout"
 
 
+def test_a_tracker_that_prints_does_not_print_into_the_board(site: Path, tmp_path: Path) -> None:
+    process = start_trackbench(
+        site, "run", "--suite", "faults", "--tracker", "chatty", "--tracker", "honest", "--jobs", "2",
+        "--out", str(tmp_path / "out"),
+    )
+    stdout, stderr = process.communicate(timeout=120)
+    assert process.returncode == 0, stderr
+    assert "chatter" not in stdout and "chatty" in stdout  # its row is on the board, its words are not
+    assert "chatter from print" in stderr and "chatter from fd 1" in stderr
+
+
+def test_in_process_a_tracker_s_print_goes_to_stderr(faults_installed: None, tmp_path: Path) -> None:
+    result = invoke("run", "--suite", "faults", "--tracker", "chatty", "--in-process", "--out", str(tmp_path))
+    assert result.exit_code == 0, result.output
+    assert "chatter from print" not in result.stdout and "chatter from print" in result.stderr
+
+
 def test_check_gives_each_fault_its_failed_checks_and_goes_on(faults_installed: None) -> None:
     trackers = ["exits", "interrupts", "raises-oddly", "spins", "exits-hard", "segfaults", "honest"]
     result = invoke("check", *trackers, "--frames", "3", "--time-limit", "0.5")
