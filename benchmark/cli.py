@@ -59,6 +59,7 @@ from benchmark.errors import TrackbenchError
 from benchmark.executors import EXECUTORS
 from benchmark.frame_cache import CACHE_ENV
 from benchmark.registry import Registry
+from benchmark.report.display import one_line, printable
 from benchmark.runner import DEFAULT_TIMEOUT_S
 
 if TYPE_CHECKING:
@@ -92,7 +93,7 @@ class TrackbenchGroup(click.Group):
         try:
             result = super().invoke(ctx)
         except TrackbenchError as exc:
-            raise ReportedError(str(exc)) from exc
+            raise ReportedError(printable(str(exc))) from exc
         except KeyboardInterrupt:
             click.echo("Interrupted.", err=True)
             ctx.exit(EXIT_INTERRUPTED)
@@ -134,7 +135,7 @@ class Session:
         if self._registry is None:
             self._registry = plugins.load_registry(disable=self.disable, strict=self.strict_plugins)
             for problem in self._registry.problems:
-                click.echo(f"Warning: {problem}", err=True)
+                click.echo(f"Warning: {one_line(problem)}", err=True)
         return self._registry
 
     @property
@@ -171,7 +172,7 @@ def list_trackers(session: Session) -> None:
     if not trackers:
         click.echo("No trackers registered.")
     for problem in session.problems:
-        click.echo(f"unavailable: {problem}")
+        click.echo(f"unavailable: {one_line(problem)}")
     for entry in trackers.values():
         click.echo(
             f"{entry.name} {entry.version}  modality {entry.modality}  "

@@ -57,6 +57,7 @@ from benchmark.leaderboard import leaderboards
 from benchmark.modality import Modality
 from benchmark.progress import Progress, SilentProgress
 from benchmark.report import write_condition_board, write_leaderboards
+from benchmark.report.display import one_line, printable
 from benchmark.results import CellResult
 from benchmark.runner import DEFAULT_TIMEOUT_S, Cell, run_cells
 from benchmark.store import DATABASE_NAME, ResultStore
@@ -163,7 +164,7 @@ def describe_result(result: CellResult) -> str:
         f"{result.tracker}  {result.dataset}  seed {result.seed}  {result.status}  "
         f"correct {correct:.1f}%  {fps:.0f} fps  ({len(result.scores)} frames, {result.elapsed_s:.1f} s)"
     )
-    return f"{line}  {result.message}" if result.message else line
+    return printable(f"{line}  {one_line(result.message)}" if result.message else line)
 
 
 def publish(

@@ -14,7 +14,7 @@ from collections.abc import Mapping, Sequence
 
 import pandas as pd
 
-from benchmark.report.display import alignment, display_table, format_value, one_line
+from benchmark.report.display import alignment, display_table, format_value, one_line, printable
 
 _INLINE_MARKUP = re.compile(r"[\\`*_\[\]|~$]")
 """Characters that mean something anywhere in a line: code, emphasis, links, table cells, strikethrough, math."""
@@ -47,7 +47,7 @@ def to_text(boards: Mapping[str, pd.DataFrame], status_width: int = 60, problems
     """The boards for a terminal, one block per modality, long statuses shortened, then any ``problems``."""
     blocks = [] if boards else ["No results."]
     for modality, board in boards.items():
-        shown = display_table(board)
+        shown = display_table(board).map(lambda value: printable(value) if isinstance(value, str) else value)
         shown["status"] = [_shorten(text, status_width) for text in shown["status"]]
         table = shown.to_markdown(index=False, tablefmt="simple", disable_numparse=True, colalign=alignment(board))
         blocks.append(f"{modality}\n\n{table}")

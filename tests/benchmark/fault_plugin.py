@@ -160,6 +160,15 @@ class Chatty(Faulty):
         return frame.truth.cable
 
 
+class RaisesInColour(Faulty):
+    """Raises with terminal escapes in its message: colour, bell, a rewritten window title."""
+
+    name = "raises-in-colour"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        raise RuntimeError("\x1b[31mred\x1b[0m\x07\x1b]0;owned\x07")
+
+
 SAFE = (Honest, Exits, Interrupts, RaisesOddly, ReturnsNan, ReturnsAbsurd)
 """Trackers whose faults a run in the test process survives even without worker processes."""
 PROCESS_KILLERS = (Spins, ExitsHard, Segfaults)
@@ -168,7 +177,7 @@ PROCESS_KILLERS = (Spins, ExitsHard, Segfaults)
 
 @hookimpl
 def trackbench_register_trackers(registry: Any) -> None:
-    for tracker in (*SAFE, *PROCESS_KILLERS, Slow, Chatty):
+    for tracker in (*SAFE, *PROCESS_KILLERS, Slow, Chatty, RaisesInColour):
         registry.add_tracker(tracker)
 
 

@@ -249,6 +249,15 @@ def test_in_process_a_tracker_s_print_goes_to_stderr(faults_installed: None, tmp
     assert "chatter from print" not in result.stdout and "chatter from print" in result.stderr
 
 
+def test_terminal_escapes_in_a_plugin_s_message_are_shown_not_obeyed(faults_installed: None, tmp_path: Path) -> None:
+    result = invoke("run", "--suite", "faults", "--tracker", "raises-in-colour", "--in-process", "--out", str(tmp_path))
+    assert result.exit_code == 1
+    for stream in (result.stdout, result.stderr):
+        assert "\x1b" not in stream and "\x07" not in stream
+    assert "RuntimeError: \\x1b[31mred\\x1b[0m\\x07" in result.stderr  # the cell's line
+    assert "RuntimeError: \\x1b[31mred" in result.stdout  # the board's status
+
+
 def test_check_gives_each_fault_its_failed_checks_and_goes_on(faults_installed: None) -> None:
     trackers = ["exits", "interrupts", "raises-oddly", "spins", "exits-hard", "segfaults", "honest"]
     result = invoke("check", *trackers, "--frames", "3", "--time-limit", "0.5")
