@@ -417,7 +417,7 @@ def _run_benchmark(
     _show(summary.publication)
     click.echo(summary.describe(), err=True)
     if summary.interrupted:
-        ctx.exit(EXIT_INTERRUPTED)
+        ctx.exit(128 + summary.interrupted)  # 130 for Ctrl-C, 143 for SIGTERM
     failed = summary.statuses.total() - summary.statuses["ok"]
     if failed:
         click.echo(f"{failed} of {summary.statuses.total()} cells did not end ok.", err=True)

@@ -39,6 +39,7 @@ import collections
 import dataclasses
 import math
 import resource
+import signal
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -106,8 +107,9 @@ class RunSummary:
         The run's boards and files.
     statuses : collections.Counter
         Cells of the run by status, resumed cells counted as ``ok``.
-    interrupted : bool
-        The user stopped the run (Ctrl-C); the cells not finished are not in it.
+    interrupted : int
+        The signal that stopped the run (``SIGINT`` for Ctrl-C, ``SIGTERM``),
+        0 when nothing did; the cells not finished are not in it.
     elapsed_s : float
         Wall time of the run.
     rendered : int
@@ -122,7 +124,7 @@ class RunSummary:
 
     publication: Publication
     statuses: collections.Counter[str]
-    interrupted: bool = False
+    interrupted: int = 0
     elapsed_s: float = 0.0
     rendered: int = 0
     step_s: float = 0.0
@@ -327,7 +329,7 @@ def run_benchmark(
     statuses: collections.Counter[str] = collections.Counter()
     ran = rendered = 0
     step_s = read_s = 0.0
-    interrupted = False
+    interrupted = 0
     started, cpu_started = time.perf_counter(), _cpu_s()
     executor = executor or LocalExecutor(jobs, in_process=in_process)
     progress = progress or SilentProgress()
@@ -360,8 +362,8 @@ def run_benchmark(
                     log(describe_result(result))
                     progress.advance(result, executor.running)
                 store.finish_run(run_id)
-            except KeyboardInterrupt:
-                interrupted = True
+            except KeyboardInterrupt as stop:
+                interrupted = getattr(stop, "signum", signal.SIGINT)
                 log(f"interrupted: {ran} cells finished and kept, {len(todo) - ran} not run")
             finally:
                 progress.close()

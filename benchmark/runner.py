@@ -182,24 +182,39 @@ def cell_rng(seed: int, tracker_name: str, dataset: DatasetIdentity) -> np.rando
 
 
 class UserInterrupt(KeyboardInterrupt):
-    """The user's Ctrl-C, as told apart from a ``KeyboardInterrupt`` a tracker raises itself."""
+    """The user's Ctrl-C or a ``SIGTERM``, as told apart from a ``KeyboardInterrupt`` a tracker raises itself.
+
+    Parameters
+    ----------
+    signum : int
+        The signal that stopped the run.
+    """
+
+    def __init__(self, signum: int = signal.SIGINT) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+"""The signals that stop a run the way the user's Ctrl-C does: what finished is kept and published."""
 
 
 @contextmanager
 def sigint_is_user_interrupt() -> Iterator[None]:
-    """While the block runs, the user's Ctrl-C raises :class:`UserInterrupt` (main thread only)."""
+    """While the block runs, Ctrl-C and ``SIGTERM`` raise :class:`UserInterrupt` (main thread only)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
 
     def interrupt(signum: int, frame: object) -> None:
-        raise UserInterrupt
+        raise UserInterrupt(signum)
 
-    previous = signal.signal(signal.SIGINT, interrupt)
+    previous = {signum: signal.signal(signum, interrupt) for signum in STOP_SIGNALS}
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, previous)
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
 
 
 def _safe_text(render: Any, value: Any) -> str:

@@ -3,7 +3,8 @@
 Cells run in worker processes (:func:`benchmark.runner.run_cells`).  Each
 worker is prepared by :func:`init_worker` before its first cell:
 
-* it ignores ``SIGINT``: a Ctrl-C in the terminal reaches every process of
+* it ignores ``SIGINT`` and ``SIGTERM``: a Ctrl-C in the terminal, or a
+  job scheduler's ``SIGTERM`` to the process group, reaches every process of
   the group, and it is the main process's to act on (stop the run, keep the
   finished cells); a worker that took it would turn the cell it was running
   into an error row;
@@ -134,7 +135,8 @@ def init_worker(parent_pid: int) -> None:
     parent_pid : int
         The pid of the main process, taken there before the worker started.
     """
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, signal.SIG_IGN)
     if not _kill_on_parent_death():
         threading.Thread(target=_watch_parent, args=(parent_pid,), name="watch-parent", daemon=True).start()
     if os.getppid() != parent_pid:  # the parent ended before the request above took effect

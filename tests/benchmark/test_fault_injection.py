@@ -183,7 +183,10 @@ linux_only = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="re
 
 
 @linux_only
-def test_ctrl_c_stops_the_run_keeps_the_finished_cells_publishes_and_exits_130(site: Path, tmp_path: Path) -> None:
+@pytest.mark.parametrize(("signum", "status"), [(signal.SIGINT, 130), (signal.SIGTERM, 143)], ids=["ctrl-c", "sigterm"])
+def test_ctrl_c_or_sigterm_stops_the_run_keeps_the_finished_cells_publishes_and_exits_128_plus_the_signal(
+    site: Path, tmp_path: Path, signum: int, status: int
+) -> None:
     selected = ["--tracker", "honest", "--tracker", "slow"]
     process = start_trackbench(site, "run", "--suite", "faults", *selected, "--jobs", "1", "--out", str(tmp_path))
     lines: list[str] = []
@@ -192,9 +195,9 @@ def test_ctrl_c_stops_the_run_keeps_the_finished_cells_publishes_and_exits_130(s
         lines.append(line)
         if line.startswith("honest "):
             break
-    os.killpg(process.pid, signal.SIGINT)
+    os.killpg(process.pid, signum)  # the whole process group, workers included, as a terminal or scheduler does
     stdout, rest = process.communicate(timeout=60)
-    assert process.returncode == 130, "".join(lines) + rest
+    assert process.returncode == status, "".join(lines) + rest
     assert "interrupted: 1 cells finished and kept, 1 not run" in rest
     assert "Traceback" not in rest
     cells = stored_cells(tmp_path)
