@@ -168,16 +168,31 @@ class History:
 
     @_reports_database_errors
     def _create(self) -> None:
-        """Create the tables that are missing; refuse a database whose tables of our names are not ours."""
-        _metadata.create_all(self._engine)
+        """Create the tables that are missing, after refusing, untouched, a database that is not a history.
+
+        A database with tables but none of a history's is another
+        program's; one whose table of a history's name lacks its columns is
+        not ours either.  Only an empty database or a history (perhaps of
+        an older trackbench, missing newer tables) gets tables.
+        """
         inspector = sa.inspect(self._engine)
+        existing = set(inspector.get_table_names())
+        ours = {table.name for table in _metadata.sorted_tables}
+        if existing and not existing & ours:
+            raise DataError(
+                f"history database {self.location}: holds other tables ({', '.join(sorted(existing)[:5])}) and "
+                "none of a trackbench history's; the database was left unchanged"
+            )
         for table in _metadata.sorted_tables:
+            if table.name not in existing:
+                continue
             found = {column["name"] for column in inspector.get_columns(table.name)}
             if not set(table.columns.keys()) <= found:
                 raise DataError(
                     f"history database {self.location}: its table {table.name!r} is not a trackbench history's "
                     "(columns missing); the database was left unchanged"
                 )
+        _metadata.create_all(self._engine)
 
     def close(self) -> None:
         """Release the database's connections."""

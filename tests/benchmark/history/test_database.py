@@ -74,12 +74,23 @@ def test_a_file_that_is_no_database_is_a_data_error_naming_it(tmp_path: Path) ->
         History(bad)
 
 
-def test_another_programs_tables_are_left_alone(tmp_path: Path) -> None:
+@pytest.mark.parametrize(
+    ("table", "message"),
+    [("runs (x TEXT)", "its table 'runs' is not a trackbench history's"), ("notes (x TEXT)", "holds other tables \\(notes\\)")],
+    ids=["a table of our name", "tables of its own"],
+)
+def test_another_programs_database_is_refused_and_left_byte_for_byte_unchanged(
+    tmp_path: Path, table: str, message: str
+) -> None:
     other = tmp_path / "other.sqlite"
-    with sqlite3.connect(other) as connection:
-        connection.execute("CREATE TABLE runs (x TEXT)")
-    with pytest.raises(DataError, match="other.sqlite"):
+    connection = sqlite3.connect(other)
+    with connection:
+        connection.execute(f"CREATE TABLE {table}")
+    connection.close()
+    before = other.read_bytes()
+    with pytest.raises(DataError, match=f"other.sqlite: {message}.*left unchanged"):
         History(other)
+    assert other.read_bytes() == before
 
 
 def test_only_the_latest_runs_keep_frames_and_pictures(
