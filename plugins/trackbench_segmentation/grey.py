@@ -23,7 +23,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
-from trackbench_segmentation.histogram import GREY_LEVELS
+from trackbench_segmentation.histogram import GREY_LEVELS, ranked_bins
 
 SMALLEST_RANGE = 1.0
 """A frame whose quantiles lie closer than this many grey levels is not stretched: it shows nothing to stretch."""
@@ -84,8 +84,6 @@ def grey_quantiles(image: np.ndarray, quantiles: tuple[float, float]) -> tuple[f
         ``floor(q (n - 1))`` (from 0) in increasing order of the ``n``
         pixels.
     """
-    counts = cv2.calcHist([image], [0], None, [GREY_LEVELS], [0, GREY_LEVELS]).ravel().astype(np.int64)
-    cumulative = np.cumsum(counts)
-    ranks = np.asarray(quantiles, dtype=np.float64) * (cumulative[-1] - 1)
-    low, high = np.searchsorted(cumulative, ranks, side="right")
+    counts = cv2.calcHist([image], [0], None, [GREY_LEVELS], [0, GREY_LEVELS]).ravel()
+    low, high = ranked_bins(counts, quantiles)
     return float(low), float(high)

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Sequence
 
 import cv2
 import numba
@@ -71,6 +72,25 @@ def gradient_modulus(image: np.ndarray) -> np.ndarray:
     return np.sqrt((gx * gx + gy * gy).astype(np.float32)) * np.float32(0.25)
 
 
+def ranked_bins(counts: np.ndarray, shares: Sequence[float]) -> np.ndarray:
+    """For each share ``q``, the bin holding the value of rank ``floor(q (n - 1))`` (from 0) among the ``n`` counted.
+
+    Parameters
+    ----------
+    counts : numpy.ndarray
+        A histogram: how many values fall in each bin, in increasing order of value.
+    shares : sequence of float
+        Shares in ``[0, 1]``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``int`` bin indices, one per share.
+    """
+    cumulative = np.cumsum(np.asarray(counts).astype(np.int64))
+    return np.searchsorted(cumulative, np.asarray(shares, dtype=np.float64) * (cumulative[-1] - 1), side="right")
+
+
 LEVEL_STEP = 0.25
 """Resolution of :func:`gradient_level`, grey levels per px."""
 
@@ -97,8 +117,7 @@ def gradient_level(modulus: np.ndarray) -> float:
     top = float(modulus.max()) + LEVEL_STEP
     n_bins = int(np.ceil(top / LEVEL_STEP))
     counts = cv2.calcHist([modulus], [0], None, [n_bins], [0.0, n_bins * LEVEL_STEP]).ravel()
-    middle = 0.5 * (modulus.size - 1)
-    return float(np.searchsorted(np.cumsum(counts), middle, side="right")) * LEVEL_STEP
+    return float(ranked_bins(counts, (0.5,))[0]) * LEVEL_STEP
 
 
 def joint_histogram(grey: np.ndarray, modulus: np.ndarray, bin_width: float, n_bins: int) -> np.ndarray:

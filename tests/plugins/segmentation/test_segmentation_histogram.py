@@ -16,6 +16,7 @@ from trackbench_segmentation.histogram import (
     grey_projection,
     joint_histogram,
     mountains,
+    ranked_bins,
     segment_cell,
 )
 
@@ -185,3 +186,14 @@ def test_segmentation_equals_the_histogram_quantile_and_mountains(grey, sigma, r
         cut = contour_cut(modulus[pixels], 0.5, 1.0, 32)
         starts = _reference_mountains(histogram[:cut].sum(axis=0), sigma, ratio)
         assert np.array_equal(labels, back_project(grey, starts))
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    arrays(np.uint8, st.integers(1, 200)),
+    st.lists(st.floats(0.0, 1.0), min_size=1, max_size=4),
+)
+def test_ranked_bins_finds_the_bin_of_each_share_s_order_statistic(values: np.ndarray, shares: list[float]) -> None:
+    counts = np.bincount(values, minlength=256)
+    expected = [np.sort(values)[int(np.floor(share * (values.size - 1)))] for share in shares]
+    assert ranked_bins(counts, shares).tolist() == expected
