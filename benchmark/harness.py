@@ -210,12 +210,16 @@ def record_conditions(store: ResultStore, cells: Iterable[Cell], log: Log) -> No
     """Keep the conditions of every sequence the cells read (:meth:`benchmark.model.Sequence.conditions`).
 
     A sequence that fails to tell its conditions costs only them: the
-    failure is logged, naming the sequence, and the run goes on.
+    failure is logged, naming the sequence, and the run goes on.  A
+    sequence whose conditions the store holds already is not asked again
+    (a camera scene renders frames to measure its contrast).
     """
+    cells = list(cells)
+    known = store.conditions(cell.identity.key for cell in cells)
     found: dict[str, dict[str, Any]] = {}
     for cell in cells:
         key = cell.identity.key
-        if key in found:
+        if key in found or key in known:
             continue
         try:
             found[key] = dict(cell.sequence.conditions())

@@ -7,6 +7,7 @@ import sqlite3
 import types
 from pathlib import Path
 
+import pandas as pd
 import pytest
 
 from benchmark import harness
@@ -158,3 +159,24 @@ def test_a_run_keeps_conditions_and_publishes_the_board_by_condition(
     assert "### water" in (tmp_path / "conditions.md").read_text()
     run_benchmark(cells[:0], registry.modalities, tmp_path, in_process=True)
     assert not (tmp_path / "conditions.md").exists()
+
+
+def test_conditions_the_store_holds_are_not_measured_again(fakes: types.ModuleType, tmp_path: Path) -> None:
+    asked: list[str] = []
+
+    @dataclasses.dataclass(frozen=True)
+    class Measured(fakes.FakeSequence):
+        def conditions(self) -> dict[str, object]:
+            asked.append(self.info.name)
+            return {"contrast_grey": 40.0}
+
+    registry = fakes.make_registry()
+    cells = select_cells(registry, Selection(trackers=("perfect", "blind"), suites=("fake",)))
+    sequences = {"fake/S1": Measured("world/A", 4), "fake/S2": Measured("world/B", 4)}
+    cells = [dataclasses.replace(cell, sequence=sequences[cell.sequence.info.name]) for cell in cells]
+    first = run_benchmark(cells, registry.modalities, tmp_path, in_process=True).publication.by_condition
+    assert sorted(asked) == ["world/A", "world/B"]  # once per sequence, not per cell
+    second = run_benchmark(cells, registry.modalities, tmp_path, in_process=True).publication.by_condition
+    assert sorted(asked) == ["world/A", "world/B"]  # the second run into the folder asks nobody
+    assert not first.empty
+    pd.testing.assert_frame_equal(first.reset_index(drop=True), second.reset_index(drop=True))
