@@ -196,7 +196,7 @@ def test_ctrl_c_or_sigterm_stops_the_run_keeps_the_finished_cells_publishes_and_
         if line.startswith("honest "):
             break
     os.killpg(process.pid, signum)  # the whole process group, workers included, as a terminal or scheduler does
-    stdout, rest = process.communicate(timeout=60)
+    stdout, rest = process.communicate()
     assert process.returncode == status, "".join(lines) + rest
     assert "interrupted: 1 cells finished and kept, 1 not run" in rest
     assert "Traceback" not in rest
@@ -240,7 +240,7 @@ def test_a_tracker_that_prints_does_not_print_into_the_board(site: Path, tmp_pat
         site, "run", "--suite", "faults", "--tracker", "chatty", "--tracker", "honest", "--jobs", "2",
         "--out", str(tmp_path / "out"),
     )
-    stdout, stderr = process.communicate(timeout=120)
+    stdout, stderr = process.communicate()
     assert process.returncode == 0, stderr
     assert "chatter" not in stdout and "chatty" in stdout  # its row is on the board, its words are not
     assert "chatter from print" in stderr and "chatter from fd 1" in stderr
