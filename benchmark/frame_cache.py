@@ -19,38 +19,40 @@ The key
     frame rendered by an older renderer is never served, even when the
     version number did not change.
 The format
-    One file per sequence, ``KEY.frames``: a header (name, modality, frame
-    count) and then every :class:`~benchmark.model.Frame` pickled one after
-    another (protocol 5, so an image is stored as its raw bytes).  Reading
-    one frame is one ``pickle.load`` from a buffered file, so memory stays
-    flat in the length of the sequence.  Measured on a 320 x 240 camera
-    frame, reading it back takes about 20 us against 2.4 ms to render it;
-    PNG would take about 0.3 ms to decode and would not store the truth,
-    the navigation data or the sonar's and stereo camera's observations.
+    One file per sequence, ``KEY.frames``: records of :mod:`benchmark.storage`
+    (data only, never code), a header naming the key, the sequence, its
+    modality and frame count, then one record per
+    :class:`~benchmark.model.Frame`.  Reading one frame is one record read
+    from a buffered file, so memory stays flat in the length of the
+    sequence.  Reading a 320 x 240 camera frame back takes about 40 us,
+    against 15-20 us for the pickles this format replaced and 2.4 ms to
+    render it (``benchmarks/test_scale.py``).
     The file is written under a temporary name and renamed when complete,
     while a lock (``KEY.lock``) makes the other processes that want the same
     sequence wait for it instead of rendering it again.
+Checked on every read
+    Each record's checksum, the header's key against the entry's name (an
+    entry copied over another's is not served under its name) and each
+    frame's index.  An entry that fails is removed and the sequence rendered
+    again, into the cache when it can be written, and the reader carries on
+    from the frame it had reached, with a :class:`CacheRebuilt` warning
+    naming the file: a damaged cache costs time, never a wrong frame.
 When the cache cannot be written
     (a full disk, a read-only folder), or rendering fails part way, the
     frames are rendered and streamed as if there were no cache, so that a
     rendering error reaches the cell at the frame it concerns: the cache
-    saves time, it is never a reason for a cell to fail.  An entry that cannot be read back is a
-    :class:`~benchmark.errors.DataError` naming its file; the entry is
-    removed, so the next run renders it again.
-
-The cache holds pickles, like the fitted models of a results folder: it is
-the user's own folder, and a file placed there by someone else would be
-code run by trackbench.
+    saves time, it is never a reason for a cell to fail.
 """
 
 from __future__ import annotations
 
 import functools
 import hashlib
+import itertools
 import os
-import pickle
 import sys
 import uuid
+import warnings
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -58,16 +60,23 @@ from typing import IO, Any
 
 import filelock
 
+from benchmark import storage
 from benchmark.errors import DataError
 from benchmark.files import make_folder
 from benchmark.identity import DatasetIdentity, digest
 from benchmark.model import Frame, Sequence, SequenceInfo
+from benchmark.storage import StorageError
 
 CACHE_ENV = "TRACKBENCH_CACHE"
 """Environment variable naming the cache folder, in place of the platform's default."""
-FORMAT = 1
+FORMAT = 2
 """Version of the entry format; a new one gives new keys."""
 SUFFIX = ".frames"
+_HEADER_PACKAGES: storage.Packages = frozenset()
+
+
+class CacheRebuilt(UserWarning):
+    """A cache entry failed its checks and was removed; its sequence was rendered again."""
 
 
 def default_cache_folder() -> Path:
@@ -96,8 +105,8 @@ def _package_code_digest(module: str) -> str:
     return hasher.hexdigest()
 
 
-def _entry_header(identity: DatasetIdentity, info: SequenceInfo) -> dict[str, Any]:
-    return {"format": FORMAT, "name": identity.name, "modality": identity.modality, "frames": info.n_frames}
+def _entry_header(key: str, identity: DatasetIdentity, info: SequenceInfo) -> dict[str, Any]:
+    return {"format": FORMAT, "key": key, "name": identity.name, "modality": identity.modality, "frames": info.n_frames}
 
 
 @dataclass(frozen=True)
@@ -157,7 +166,7 @@ class FrameCache:
         for path in sorted(self.folder.glob(f"*{SUFFIX}")) if self.folder.is_dir() else []:
             try:
                 with path.open("rb") as handle:
-                    header = pickle.load(handle)
+                    header = storage.read(handle, _HEADER_PACKAGES, str(path))
                 name, modality, frames = header["name"], header["modality"], header["frames"]
             except Exception:
                 name, modality, frames = "unreadable", "-", None
@@ -195,14 +204,32 @@ class FrameCache:
         return removed, freed
 
     def frames(self, sequence: Sequence, key: str) -> Iterator[Frame]:
-        """The frames of ``sequence``, rendered into the cache first unless they are there already."""
-        path = self.path(key)
-        if not path.is_file() and not self._render(sequence, path):
-            yield from sequence.frames()
-            return
-        yield from _read_entry(path, sequence.identity.name)
+        """The frames of ``sequence``, rendered into the cache first unless they are there already.
 
-    def _render(self, sequence: Sequence, path: Path) -> bool:
+        An entry that fails its checks is removed and rendered again (once;
+        then the frames are rendered without the cache), and the frames
+        carry on from the one reached, with a :class:`CacheRebuilt` warning.
+        """
+        path = self.path(key)
+        served = 0
+        for _ in range(2):
+            if not path.is_file() and not self._render(sequence, path, key):
+                break
+            try:
+                for frame in _read_entry(path, key, sequence, skip=served):
+                    yield frame
+                    served += 1
+                return
+            except StorageError as exc:
+                warnings.warn(
+                    CacheRebuilt(f"{exc}; the entry was removed and {sequence.identity.name} rendered again"),
+                    stacklevel=2,
+                )
+            except OSError:
+                break
+        yield from itertools.islice(sequence.frames(), served, None)
+
+    def _render(self, sequence: Sequence, path: Path, key: str) -> bool:
         """Write ``sequence`` into ``path`` unless another process did; False when the cache cannot be written."""
         try:
             make_folder(path.parent)
@@ -212,49 +239,81 @@ class FrameCache:
                 temporary = path.with_name(f".{path.name}.{uuid.uuid4().hex[:12]}.tmp")
                 try:
                     with temporary.open("xb") as handle:
-                        _write_entry(handle, sequence)
+                        _write_entry(handle, sequence, key)
                     os.replace(temporary, path)
                 finally:
                     temporary.unlink(missing_ok=True)
+        except StorageError as exc:
+            warnings.warn(CacheRebuilt(f"{sequence.identity.name}: frames not cached: {exc}"), stacklevel=3)
+            return False
         except Exception:
             return False
         return True
 
 
-def _write_entry(handle: IO[bytes], sequence: Sequence) -> None:
-    """The header, then each frame as a pickle of its own, so that each is read back on its own."""
-    handle.write(pickle.dumps(_entry_header(sequence.identity, sequence.info), protocol=5))
+def _write_entry(handle: IO[bytes], sequence: Sequence, key: str) -> None:
+    """The header, then each frame as a record of its own, so that each is read back on its own."""
+    storage.write(handle, _entry_header(key, sequence.identity, sequence.info), _HEADER_PACKAGES)
+    packages = storage.packages_of(type(sequence))
     for frame in sequence.frames():
-        handle.write(pickle.dumps(frame, protocol=5))
+        storage.write(handle, frame, packages)
 
 
-def _read_entry(path: Path, name: str) -> Iterator[Frame]:
-    """Stream the frames of an entry; a damaged entry is removed and reported, naming its file."""
-    try:
-        handle = path.open("rb")
-    except OSError as exc:
-        raise DataError(f"{path}: cannot read the cached frames of {name}: {exc.strerror or exc}") from None
-    with handle:
-        count = None
+def _read_entry(path: Path, key: str, sequence: Sequence, skip: int = 0) -> Iterator[Frame]:
+    """Stream the frames of an entry from frame ``skip`` on, checking it is ``key``'s.
+
+    Raises
+    ------
+    StorageError
+        Naming the file, when a record is damaged or the entry is not
+        ``key``'s; the file is removed first (unless it was replaced
+        meanwhile by another process).
+    OSError
+        When the file cannot be opened or read.
+    """
+    source = str(path)
+    packages = storage.packages_of(type(sequence))
+    with path.open("rb") as handle:
         try:
-            header = pickle.load(handle)
+            header = _read_header(handle, key, sequence.identity.name, source)
             count = header["frames"]
-            index = 0
-            while count is None or index < count:
+            for index in itertools.count():
+                if count is not None and index >= count:
+                    return
                 try:
-                    frame = pickle.load(handle)
+                    frame = storage.read(handle, packages, source)
                 except EOFError:
                     if count is None:
                         return
-                    raise
-                yield frame
-                index += 1
-        except (pickle.UnpicklingError, EOFError, KeyError, TypeError, AttributeError, ValueError) as exc:
-            path.unlink(missing_ok=True)
-            raise DataError(
-                f"{path}: the cached frames of {name} are damaged ({type(exc).__name__}); "
-                "the entry was removed and the next run renders it again"
-            ) from None
+                    raise StorageError(f"{source}: {count} frames announced, {index} found") from None
+                if not isinstance(frame, Frame) or frame.index != index:
+                    raise StorageError(f"{source}: record {index + 1} is not frame {index}")
+                if index >= skip:
+                    yield frame
+        except StorageError:
+            _remove_if_same(path, os.fstat(handle.fileno()))
+            raise
+
+
+def _read_header(handle: IO[bytes], key: str, name: str, source: str) -> dict[str, Any]:
+    try:
+        header = storage.read(handle, _HEADER_PACKAGES, source)
+    except EOFError:
+        raise StorageError(f"{source}: empty") from None
+    if not isinstance(header, dict) or header.get("format") != FORMAT or header.get("key") != key:
+        found = header.get("name") if isinstance(header, dict) else None
+        raise StorageError(f"{source}: the entry holds {found or 'something else'}, not {name} as its name says")
+    return header
+
+
+def _remove_if_same(path: Path, opened: os.stat_result) -> None:
+    """Remove ``path`` if it is still the file opened (another process may have replaced it since)."""
+    try:
+        now = path.stat()
+        if (now.st_dev, now.st_ino) == (opened.st_dev, opened.st_ino):
+            path.unlink()
+    except OSError:
+        pass
 
 
 @dataclass(frozen=True)

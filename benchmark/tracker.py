@@ -141,8 +141,11 @@ class Learns(Protocol):
     parameters, training set) on a training split that never overlaps the
     scored sequences, stores the model :meth:`fit` returns, and hands it to
     every cell's fresh instance through :meth:`use_model` before
-    :meth:`Tracker.reset`.  The model must be picklable: cells may run in
-    other processes.
+    :meth:`Tracker.reset`.  The model is stored as data, never as code
+    (:mod:`benchmark.storage`): it must be built of None, numbers, strings,
+    lists, tuples, dicts, numpy arrays of numbers, and enums and dataclasses
+    defined in the tracker's own package; ``trackbench check`` fails a
+    model that is not.
     """
 
     def fit(self, training: SequenceOf[Sequence], rng: np.random.Generator) -> Any:

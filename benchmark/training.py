@@ -14,9 +14,13 @@ other seeds).  Selection plans a :class:`Training` per learning cell
   a scored frame;
 * fits each (tracker version and parameters, training set) once, in a
   worker process under the cells' time limit, seeded by that pair, and
-  stores the model as ``OUT/models/TRACKER-KEY.pickle``, written
-  atomically.  A model already there is reused: ``--resume`` does not
-  retrain, and neither does a second run into the same folder;
+  stores the model as ``OUT/models/TRACKER-KEY.model``, written
+  atomically: a record of :mod:`benchmark.storage` (data only, never
+  code; so a model is built of the values a record may hold), naming the
+  tracker and the key.  A model already there is reused when it passes
+  those checks: ``--resume`` does not retrain, and neither does a second
+  run into the same folder; a damaged or foreign one is removed and
+  fitted again;
 * hands every cell the stored model's path, or the reason training failed.
 
 Each cell's fresh tracker adopts the model (:meth:`Training.load`, cached
@@ -32,7 +36,6 @@ from __future__ import annotations
 import dataclasses
 import functools
 import hashlib
-import pickle
 import time
 import zlib
 from collections.abc import Callable, Iterable, Sequence
@@ -42,6 +45,7 @@ from typing import Any
 
 import numpy as np
 
+from benchmark import storage
 from benchmark.errors import TrackbenchError
 from benchmark.files import make_folder, write_bytes_atomically
 from benchmark.model import Sequence as FrameSequence
@@ -49,6 +53,7 @@ from benchmark.registry import TrackerEntry
 
 MODELS_FOLDER = "models"
 """Folder of the results folder that holds the fitted models."""
+MODEL_SUFFIX = ".model"
 
 
 class TrainingError(TrackbenchError):
@@ -80,6 +85,8 @@ class Training:
         The stored model, once fitted.
     error : str
         Why the tracker cannot be trained; its cells end in this error.
+    packages : frozenset of str
+        Where the model's types may come from (:func:`benchmark.storage.packages_of` the tracker's class).
     """
 
     name: str
@@ -87,6 +94,7 @@ class Training:
     sequences: tuple[FrameSequence, ...] = ()
     model_path: Path | None = None
     error: str = ""
+    packages: storage.Packages = frozenset()
 
     @classmethod
     def plan(cls, entry: TrackerEntry, name: str, sequences: Iterable[FrameSequence]) -> Training:
@@ -94,7 +102,8 @@ class Training:
         items = tuple(sequences)
         identities = sorted(sequence.identity.key for sequence in items)
         payload = "\n".join([entry.cache_key, *identities]).encode()
-        return cls(name, hashlib.sha256(payload).hexdigest()[:16], items)
+        key = hashlib.sha256(payload).hexdigest()[:16]
+        return cls(name, key, items, packages=storage.packages_of(entry.tracker_class))
 
     @classmethod
     def refused(cls, name: str, error: str) -> Training:
@@ -113,17 +122,33 @@ class Training:
             raise TrainingError(self.error)
         if self.model_path is None:
             raise TrainingError(f"the model of training set {self.name!r} was never fitted")
-        return _read_model(str(self.model_path))
+        try:
+            stat = self.model_path.stat()
+        except OSError as exc:
+            raise TrainingError(f"{self.model_path}: cannot read the fitted model: {exc.strerror or exc}") from None
+        version = (stat.st_dev, stat.st_ino, stat.st_size, stat.st_mtime_ns)
+        return _read_model(str(self.model_path), version, self.key, self.packages)
 
 
 @functools.lru_cache(maxsize=4)
-def _read_model(path: str) -> Any:
-    """A stored model, read once per process."""
+def _read_model(path: str, version: tuple[int, ...], key: str, packages: storage.Packages) -> Any:
+    """The model stored in ``path`` for training ``key``, read once per process and version of the file.
+
+    Raises
+    ------
+    TrainingError
+        Naming the file, when it cannot be read, is damaged, or holds another training's model.
+    """
     try:
         with open(path, "rb") as handle:
-            return pickle.load(handle)
-    except Exception as exc:
-        raise TrainingError(f"{path}: cannot read the fitted model: {type(exc).__name__}: {exc}") from exc
+            stored = storage.loads(handle.read(), packages, path)
+    except OSError as exc:
+        raise TrainingError(f"{path}: cannot read the fitted model: {exc.strerror or exc}") from None
+    except storage.StorageError as exc:
+        raise TrainingError(f"cannot read the fitted model: {exc}") from None
+    if not isinstance(stored, dict) or stored.get("key") != key:
+        raise TrainingError(f"{path}: not the model of training {key}")
+    return stored["model"]
 
 
 def overlap_error(training: Training, scored: Iterable[FrameSequence]) -> str:
@@ -139,14 +164,20 @@ def overlap_error(training: Training, scored: Iterable[FrameSequence]) -> str:
 
 
 def fit_model(entry: TrackerEntry, sequences: Sequence[FrameSequence], key: str) -> bytes:
-    """Fit a fresh tracker on ``sequences`` and return its pickled model.
+    """Fit a fresh tracker on ``sequences`` and return its model as a record (:mod:`benchmark.storage`).
 
     The generator is seeded by the tracker's name and the training key, so
     the same tracker on the same training set fits the same model.
+
+    Raises
+    ------
+    benchmark.storage.StorageError
+        If the model holds a value a record cannot.
     """
     rng = np.random.default_rng([zlib.crc32(entry.name.encode()), int(key[:15], 16)])
     model = entry.create().fit(list(sequences), rng)  # type: ignore[attr-defined]
-    return pickle.dumps(model, protocol=pickle.HIGHEST_PROTOCOL)
+    stored = {"tracker": entry.name, "key": key, "model": model}
+    return storage.dumps(stored, storage.packages_of(entry.tracker_class))
 
 
 Runner = Callable[[Callable[..., bytes], tuple[Any, ...], float | None], bytes]
@@ -202,11 +233,18 @@ def _fit_once(
     log: Callable[[str], None],
 ) -> Training:
     """Fit ``entry`` on ``training`` unless its model is stored already; the training the cells carry."""
-    path = out / MODELS_FOLDER / f"{entry.name}-{training.key}.pickle"
+    path = out / MODELS_FOLDER / f"{entry.name}-{training.key}{MODEL_SUFFIX}"
     what = f"{entry.name} on {training.name} ({len(training.sequences)} sequences)"
     if path.is_file():
-        log(f"training: {what}: reusing {path}")
-        return dataclasses.replace(training, sequences=(), model_path=path)
+        stored = dataclasses.replace(training, sequences=(), model_path=path)
+        try:
+            stored.load()
+        except TrainingError as exc:
+            log(f"training: {what}: {exc}; fitting it again")
+            path.unlink(missing_ok=True)
+        else:
+            log(f"training: {what}: reusing {path}")
+            return stored
     started = time.perf_counter()
     try:
         model = run(fit_model, (entry, training.sequences, training.key), timeout_s)

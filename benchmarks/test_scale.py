@@ -8,13 +8,17 @@ every ``trackbench run`` prints; README.md gives the commands.
 
 from __future__ import annotations
 
+import io
+import itertools
 import json
+import pickle
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
+from benchmark import storage
 from benchmark.frame_cache import FrameCache
 from benchmark.plugins import load_registry
 
@@ -22,6 +26,7 @@ CELL_SCRIPT = """
 import dataclasses, json, resource, sys
 from pathlib import Path
 from benchmark.executors.local import LocalExecutor
+from benchmark import storage
 from benchmark.frame_cache import FrameCache
 from benchmark.plugins import load_registry
 from benchmark.runner import Cell
@@ -80,3 +85,37 @@ def test_read_camera_s1_from_the_frame_cache(benchmark, scene, tmp_path: Path) -
     cached = FrameCache(tmp_path).wrap(scene)
     sum(1 for _ in cached.frames())
     benchmark.pedantic(lambda: sum(1 for _ in cached.frames()), rounds=10)
+
+
+@pytest.fixture(scope="module")
+def streams(scene):  # type: ignore[no-untyped-def]
+    """camera/S1's first 60 frames as records (the cache's format) and as the pickles it replaced."""
+    frames = list(itertools.islice(scene.frames(), 60))
+    packages = storage.packages_of(type(scene))
+    records = b"".join(storage.dumps(frame, packages) for frame in frames)
+    pickles = b"".join(pickle.dumps(frame, protocol=5) for frame in frames)
+    return frames, packages, records, pickles
+
+
+def test_read_60_frames_as_records(benchmark, streams) -> None:  # type: ignore[no-untyped-def]
+    benchmark.group = "reading back 60 frames of camera/S1 (320 x 240)"
+    frames, packages, records, _ = streams
+
+    def read() -> None:
+        handle = io.BytesIO(records)
+        for _ in frames:
+            storage.read(handle, packages, "records")
+
+    benchmark(read)
+
+
+def test_read_60_frames_as_pickles(benchmark, streams) -> None:  # type: ignore[no-untyped-def]
+    benchmark.group = "reading back 60 frames of camera/S1 (320 x 240)"
+    frames, _, _, pickles = streams
+
+    def read() -> None:
+        handle = io.BytesIO(pickles)
+        for _ in frames:
+            pickle.load(handle)  # the format replaced, for comparison; these bytes were written here
+
+    benchmark(read)

@@ -20,16 +20,21 @@ Frames: a cell's sequence reads through the frame cache it was given
 resolved on the worker, so each machine renders what it lacks into its own
 cache; a ``--cache`` folder that every machine mounts is shared instead.
 Fitted models travel with the cells: a worker that cannot see the results
-folder gets the model's bytes and stores them in its own temporary folder.
+folder gets the model's bytes and stores them in a temporary folder of its
+own (made by :func:`tempfile.mkdtemp`, so only its user may write there),
+named by their hash; the model is a record of :mod:`benchmark.storage` and
+is checked again when a cell reads it.
 """
 
 from __future__ import annotations
 
 import atexit
 import dataclasses
+import functools
 import hashlib
 import logging
 import os
+import shutil
 import tempfile
 import threading
 import uuid
@@ -71,16 +76,24 @@ def _worker_pool() -> Any:
         return _pool
 
 
+@functools.cache
+def _models_folder() -> Path:
+    """This worker's own folder for fitted models, removed when it exits."""
+    folder = Path(tempfile.mkdtemp(prefix="trackbench-models-"))
+    atexit.register(shutil.rmtree, folder, ignore_errors=True)
+    return folder
+
+
 def _adopt_model(cell: Cell, model: bytes | None) -> Cell:
     """``cell`` reading its fitted model from a file of this machine, written from ``model`` when missing."""
     training = cell.training
     if model is None or training is None or training.model_path is None or training.model_path.is_file():
         return cell
-    path = Path(tempfile.gettempdir()) / "trackbench-models" / f"{hashlib.sha256(model).hexdigest()[:24]}.pickle"
+    path = _models_folder() / f"{hashlib.sha256(model).hexdigest()[:24]}{training.model_path.suffix}"
     if not path.is_file():
-        from benchmark.files import make_folder, write_bytes_atomically
+        from benchmark.files import write_bytes_atomically
 
-        write_bytes_atomically(make_folder(path.parent) / path.name, model, "fitted model")
+        write_bytes_atomically(path, model, "fitted model")
     return dataclasses.replace(cell, training=dataclasses.replace(training, model_path=path))
 
 

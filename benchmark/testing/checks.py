@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from benchmark import storage
 from benchmark.identity import DatasetIdentity
 from benchmark.modality import Modality
 from benchmark.model import Frame, Sequence, SequenceInfo
@@ -283,6 +284,11 @@ def prepare(
         raise
     except BaseException as exc:
         return dataclasses.replace(subject, problem=f"fit on {training!r} raised {describe_exception(exc)}")
+    packages = storage.packages_of(entry.tracker_class)
+    try:  # as a run stores the model and every cell reads it back
+        model = storage.loads(storage.dumps(model, packages), packages, "the fitted model")
+    except storage.StorageError as exc:
+        return dataclasses.replace(subject, problem=f"its fitted model cannot be stored: {exc}")
     return dataclasses.replace(subject, model=model)
 
 

@@ -40,6 +40,7 @@ import functools
 from dataclasses import dataclass
 
 import numpy as np
+from sklearn._loss.loss import HalfBinomialLoss, HalfMultinomialLoss
 from sklearn.cluster import KMeans
 from sklearn.ensemble import HistGradientBoostingClassifier
 from threadpoolctl import threadpool_limits
@@ -98,26 +99,38 @@ def split_ground(ground: np.ndarray, rng: np.random.Generator) -> np.ndarray:
 class RegionClassifier:
     """A learned per-pixel classifier of texture descriptors into :class:`Region` classes.
 
+    It keeps only the fitted classifier's trees as tables (arrays and
+    numbers), so that a stored model is data, never code
+    (:mod:`benchmark.storage`).
+
     Attributes
     ----------
-    classifier : sklearn.ensemble.HistGradientBoostingClassifier
-        Fitted on descriptor vectors labelled with region classes.
+    forest : Forest
+        The fitted classifier's trees (:meth:`of`).
+    classes : tuple of int
+        The :class:`Region` values the classifier learned, in the order of its probabilities.
     min_confidence : float
         Probability below which a pixel is :attr:`Region.UNDEFINED`.
     """
 
-    classifier: HistGradientBoostingClassifier
+    forest: Forest
+    classes: tuple[int, ...]
     min_confidence: float
+
+    @classmethod
+    def of(cls, classifier: HistGradientBoostingClassifier, min_confidence: float) -> RegionClassifier:
+        """The region classifier of a fitted scikit-learn classifier."""
+        return cls(Forest.of(classifier), tuple(int(c) for c in classifier.classes_), float(min_confidence))
 
     @property
     def regions(self) -> tuple[Region, ...]:
         """The classes the classifier learned, in the order of its probabilities."""
-        return tuple(Region(int(c)) for c in self.classifier.classes_)
+        return tuple(Region(c) for c in self.classes)
 
     @functools.cached_property
-    def forest(self) -> Forest:
-        """The classifier's trees as lookup tables, built on first use."""
-        return Forest.of(self.classifier)
+    def _loss(self) -> HalfBinomialLoss | HalfMultinomialLoss:
+        """The link from raw predictions to probabilities scikit-learn's classifier uses for this many classes."""
+        return HalfBinomialLoss() if len(self.classes) == 2 else HalfMultinomialLoss(n_classes=len(self.classes))
 
     def probabilities(self, descriptors: np.ndarray) -> np.ndarray:
         """The class probabilities of descriptor vectors, equal to the classifier's ``predict_proba``.
@@ -132,7 +145,7 @@ class RegionClassifier:
         numpy.ndarray
             ``(N, classes)`` probabilities, in the order of :attr:`regions`.
         """
-        return self.classifier._loss.predict_proba(self.forest.raw_predict(descriptors))
+        return self._loss.predict_proba(self.forest.raw_predict(descriptors))
 
     def classify(self, descriptors: np.ndarray) -> np.ndarray:
         """The region class of every pixel.
@@ -153,7 +166,6 @@ class RegionClassifier:
         regions = np.asarray(self.regions, dtype=np.uint8)[best]
         regions[probabilities.max(axis=1) < self.min_confidence] = Region.UNDEFINED
         return regions.reshape(height, width)
-
 
 def train_regions(
     descriptors: np.ndarray, on_cable: np.ndarray, rounds: int, min_confidence: float, rng: np.random.Generator
@@ -190,4 +202,4 @@ def train_regions(
     classifier = HistGradientBoostingClassifier(max_iter=rounds, early_stopping=False, random_state=_seed(rng))
     with threadpool_limits(1):
         classifier.fit(descriptors.astype(np.float64), labels)
-    return RegionClassifier(classifier, min_confidence)
+    return RegionClassifier.of(classifier, min_confidence)

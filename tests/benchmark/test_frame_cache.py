@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import pickle
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -12,8 +13,7 @@ import pytest
 from click.testing import CliRunner
 
 from benchmark.cli import main
-from benchmark.errors import DataError
-from benchmark.frame_cache import CachedSequence, FrameCache
+from benchmark.frame_cache import CacheRebuilt, CachedSequence, FrameCache
 from benchmark.modalities.camera.scenes.scene import CameraScene
 from benchmark.modalities.sonar.scenes.scene import SonarScene
 from benchmark.model import Frame, Sequence
@@ -128,18 +128,83 @@ def test_a_rendering_error_reaches_the_reader_at_its_frame_and_leaves_no_entry(r
     assert not cache.holds(scene) and not list(tmp_path.glob("*.tmp")) and not cache.entries()
 
 
-def test_a_damaged_entry_is_an_error_naming_its_file_and_is_removed(registry, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    scene = short(registry, "camera/S6", 5)
+def cached_entry(registry, tmp_path: Path, name: str = "camera/S6", n_frames: int = 5):  # type: ignore[no-untyped-def]
+    """A cache holding a short sequence: (cache, scene, the entry's file)."""
+    scene = short(registry, name, n_frames)
     cache = FrameCache(tmp_path)
     list(cache.wrap(scene).frames())
-    path = cache.path(cache.key(scene))
-    data = path.read_bytes()
-    path.write_bytes(data[: len(data) // 2])
-    with pytest.raises(DataError, match=str(path.name)) as error:
-        list(cache.wrap(scene).frames())
-    assert "camera/S6" in str(error.value) and "damaged" in str(error.value)
-    assert not path.exists()
-    assert_same_frames(list(cache.wrap(scene).frames()), list(scene.frames()))
+    return cache, scene, cache.path(cache.key(scene))
+
+
+def read_back_rebuilt(cache: FrameCache, scene: Sequence, path: Path) -> str:
+    """Read ``scene`` through ``cache`` expecting its entry to be rebuilt; the warning's message."""
+    with pytest.warns(CacheRebuilt, match=path.name) as caught:
+        frames = list(cache.wrap(scene).frames())
+    assert_same_frames(frames, list(scene.frames()))
+    assert cache.holds(scene)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert_same_frames(list(cache.wrap(scene).frames()), frames)  # the rebuilt entry passes its checks
+    return str(caught[0].message)
+
+
+def test_a_cut_entry_is_rendered_again_and_the_reader_carries_on_without_repeating_a_frame(registry, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    cache, scene, path = cached_entry(registry, tmp_path)
+    path.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
+    assert "cut short" in read_back_rebuilt(cache, scene, path)
+
+
+def test_a_frame_blanked_inside_an_entry_fails_its_checksum_and_is_never_served(registry, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    cache, scene, path = cached_entry(registry, tmp_path)
+    data = bytearray(path.read_bytes())
+    image = bytes(scene.frames().__next__().observation)  # frame 0's pixels, found in the file
+    at = data.index(image)
+    data[at : at + len(image)] = bytes(len(image))
+    path.write_bytes(data)
+    assert "checksum" in read_back_rebuilt(cache, scene, path)
+
+
+def test_another_sequence_s_entry_under_this_one_s_name_is_not_served(registry, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    cache, scene, path = cached_entry(registry, tmp_path)
+    other = type(scene)(dataclasses.replace(scene.spec, seed=scene.spec.seed + 1))
+    list(cache.wrap(other).frames())
+    path.write_bytes(cache.path(cache.key(other)).read_bytes())
+    assert "not camera/S6" in read_back_rebuilt(cache, scene, path)
+
+
+class Planted:
+    """What a pickle planted in a cache would run: it leaves a mark."""
+
+    def __init__(self, mark: Path) -> None:
+        self.mark = mark
+
+    def __reduce__(self):  # type: ignore[no-untyped-def]
+        return (Path.write_text, (self.mark, "code ran"))
+
+
+def test_a_pickle_planted_in_the_cache_runs_nothing(registry, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    cache, scene, path = cached_entry(registry, tmp_path / "cache")
+    mark = tmp_path / "mark"
+    planted = pickle.dumps(Planted(mark))
+    path.write_bytes(planted * 3)
+    (tmp_path / "cache" / "0123abcd.frames").write_bytes(planted)
+    info = CliRunner().invoke(main, ["cache", "info", "--cache", str(tmp_path / "cache")])
+    assert info.exit_code == 0 and "unreadable" in info.output
+    assert "not a trackbench record" in read_back_rebuilt(cache, scene, path)
+    assert not mark.exists()
+
+
+def test_frames_that_cannot_be_stored_are_streamed_with_a_warning_naming_the_sequence(registry, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    class Unstorable(SonarScene):
+        def frames(self):  # type: ignore[no-untyped-def]
+            for frame in super().frames():
+                yield dataclasses.replace(frame, navigation=object())
+
+    scene = Unstorable(short(registry, "sonar/concrete", 3).spec)
+    cache = FrameCache(tmp_path)
+    with pytest.warns(CacheRebuilt, match="sonar/concrete: frames not cached: cannot store a builtins.object"):
+        frames = list(cache.wrap(scene).frames())
+    assert [frame.index for frame in frames] == [0, 1, 2] and not cache.holds(scene)
 
 
 def test_a_second_run_renders_nothing_and_gives_the_same_board(

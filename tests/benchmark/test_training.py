@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import pickle
 import types
 from collections.abc import Iterator
 from pathlib import Path
@@ -11,6 +12,7 @@ from typing import Any, ClassVar
 import numpy as np
 import pytest
 
+from benchmark import storage
 from benchmark.harness import run_benchmark
 from benchmark.model import Frame, Sequence
 from benchmark.registry import Registry
@@ -105,7 +107,7 @@ def test_a_learner_is_fitted_once_on_the_split_and_never_sees_a_scored_frame(tmp
     assert rows.loc["learner", "training"] == "train" and rows.loc["perfect", "training"] == ""
     assert rows.loc["learner", "correct_pct"] == 100.0
     assert any(line.startswith("training: learner on train (2 sequences): fitted in") for line in lines)
-    assert len(list((tmp_path / "models").glob("learner-*.pickle"))) == 1
+    assert len(list((tmp_path / "models").glob("learner-*.model"))) == 1
 
 
 def test_the_stored_model_serves_resume_and_the_next_run_without_refitting(tmp_path: Path) -> None:
@@ -118,6 +120,60 @@ def test_the_stored_model_serves_resume_and_the_next_run_without_refitting(tmp_p
     assert summary.clean and summary.statuses["ok"] == 6
     assert len(Learner.fits) == 1
     assert any("reusing" in line for line in lines)
+
+
+class Planted:
+    """What a pickle planted as a model would run: it leaves a mark."""
+
+    def __init__(self, mark: Path) -> None:
+        self.mark = mark
+
+    def __reduce__(self):  # type: ignore[no-untyped-def]
+        return (Path.write_text, (self.mark, "code ran"))
+
+
+@pytest.mark.parametrize(
+    ("spoil", "says"),
+    [
+        (lambda path, mark: path.write_bytes(path.read_bytes()[:-3] + b"xyz"), "fails its checksum"),
+        (lambda path, mark: path.write_bytes(pickle.dumps(Planted(mark))), "not a trackbench record"),
+        (lambda path, mark: path.write_bytes(storage.dumps({"key": "0" * 16, "model": {}}, frozenset())), "not the model"),
+    ],
+    ids=["damaged", "planted pickle", "another training's"],
+)
+def test_a_stored_model_that_fails_its_checks_is_fitted_again_and_runs_nothing(tmp_path: Path, spoil: Any, says: str) -> None:
+    registry = registry_with_training()
+    cells = select_cells(registry, Selection(trackers=("learner",)))
+    run_benchmark(cells, registry.modalities, tmp_path / "out", in_process=True)
+    [path] = (tmp_path / "out" / "models").glob("learner-*.model")
+    spoil(path, tmp_path / "mark")
+    lines: list[str] = []
+    summary = run_benchmark(cells, registry.modalities, tmp_path / "out", in_process=True, log=lines.append)
+    assert summary.clean and len(Learner.fits) == 2 and not (tmp_path / "mark").exists()
+    assert any(says in line and "fitting it again" in line and path.name in line for line in lines), lines
+
+
+class Unstorable(Learner):
+    """A learner whose model holds an object a record cannot."""
+
+    name = "unstorable"
+
+    def fit(self, training: list[Sequence], rng: np.random.Generator) -> Any:
+        return {"level": object()}
+
+
+def test_a_model_a_record_cannot_hold_makes_error_rows_that_say_what(tmp_path: Path) -> None:
+    registry = make_registry((Unstorable,))
+    scored = registry.suites.pop("fake")
+    with registry.acting_for(ORIGIN):
+        registry.add_suite("fake", scored.sequences, training="train")
+        registry.add_suite("train", [SpySequence(name, 5) for name in TRAINING], scored=False)
+    lines: list[str] = []
+    summary = run_benchmark(select_cells(registry, Selection()), registry.modalities, tmp_path, in_process=True, log=lines.append)
+    assert board(summary).loc["unstorable", "status"].startswith(
+        "error (2/2 cells): TrainingError: training on train failed: StorageError: cannot store a builtins.object"
+    )
+    assert not (tmp_path / "models").exists() or not list((tmp_path / "models").iterdir())
 
 
 def test_the_training_set_is_part_of_a_cell_s_identity(tmp_path: Path) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 from collections.abc import Iterator
 from pathlib import Path
@@ -86,3 +87,22 @@ def test_options_the_executor_does_not_take_are_refused(tmp_path: Path) -> None:
     assert scheduler_alone.exit_code == 2 and "--scheduler needs --executor dask" in scheduler_alone.output
     in_process = runner.invoke(main, [*base, "--executor", "dask", "--in-process"])
     assert in_process.exit_code == 2 and "does not go with --executor dask" in in_process.output
+
+
+def test_a_worker_keeps_a_model_it_is_sent_in_a_folder_only_its_user_may_write(tmp_path: Path) -> None:
+    from benchmark.executors.dask_cluster import _adopt_model
+    from benchmark.selection import Selection, select_cells
+    from benchmark.training import Training
+
+    from ..test_training import registry_with_training
+
+    registry = registry_with_training()
+    [cell, *_] = select_cells(registry, Selection(trackers=("learner",)))
+    unseen = tmp_path / "results-folder-of-another-machine" / "learner-0123.model"
+    cell = dataclasses.replace(cell, training=dataclasses.replace(cell.training, sequences=(), model_path=unseen))
+    model = b"the model's record"
+    adopted = _adopt_model(cell, model)
+    path = adopted.training.model_path
+    assert isinstance(adopted.training, Training) and path.read_bytes() == model and path.suffix == ".model"
+    assert path.parent.name.startswith("trackbench-models-") and path.parent.stat().st_mode & 0o777 == 0o700
+    assert _adopt_model(cell, model).training.model_path == path  # one file per model and worker

@@ -117,6 +117,16 @@ class SlowLearner(Steady):
         self.model = model
 
 
+class CodeLearner(SlowLearner):
+    """Learns a model that holds a function, which no stored model may."""
+
+    name = "code-learner"
+
+    def fit(self, training: Any, rng: np.random.Generator) -> Any:
+        self.model = {"threshold": 0.5, "rule": abs}
+        return self.model
+
+
 class Unpicklable(Steady):
     """Keeps a lambda, which pickle refuses."""
 
@@ -251,6 +261,12 @@ def test_a_fit_that_hangs_is_stopped_and_every_run_says_why(registry: Registry, 
     assert "metadata" not in failed
     assert "cannot run: preparing its frames and model did not finish within 0.5 s" in failed["runs"]
     assert sum(result.elapsed_s for result in results) < 5.0
+
+
+def test_a_model_that_cannot_be_stored_fails_the_runs_saying_what_it_holds(registry: Registry, fakes: types.ModuleType) -> None:
+    failed = failures(run_kit(CodeLearner, registry, fakes))
+    assert "metadata" not in failed
+    assert "its fitted model cannot be stored: cannot store a builtins.builtin_function_or_method" in failed["runs"]
 
 
 def test_conformance_cases_are_one_test_per_check(registry: Registry, fakes: types.ModuleType) -> None:

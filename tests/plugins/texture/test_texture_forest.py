@@ -58,7 +58,7 @@ def points(draw, forest: Forest) -> np.ndarray:
 @given(data=st.data())
 def test_the_tables_predict_exactly_what_scikit_learn_predicts(name, data):
     classifier = CLASSIFIERS[name]
-    regions = RegionClassifier(classifier, 0.5)
+    regions = RegionClassifier.of(classifier, 0.5)
     x = data.draw(points(regions.forest))
     expected = classifier.predict_proba(x)
     actual = regions.probabilities(x)
@@ -67,16 +67,16 @@ def test_the_tables_predict_exactly_what_scikit_learn_predicts(name, data):
 
 
 def test_trees_of_more_than_32_leaves_keep_64_bit_masks():
-    forest = RegionClassifier(CLASSIFIERS["four classes, trees of up to 60 leaves"], 0.5).forest
+    forest = RegionClassifier.of(CLASSIFIERS["four classes, trees of up to 60 leaves"], 0.5).forest
     assert forest.reachable.dtype == np.uint64
-    assert RegionClassifier(CLASSIFIERS["three classes"], 0.5).forest.reachable.dtype == np.uint32
+    assert RegionClassifier.of(CLASSIFIERS["three classes"], 0.5).forest.reachable.dtype == np.uint32
 
 
 @pytest.mark.parametrize("name", CLASSIFIERS)
 @settings(max_examples=40, deadline=None)
 @given(data=st.data())
 def test_each_value_selects_the_row_of_its_bin_among_the_sorted_thresholds(name, data):
-    forest = RegionClassifier(CLASSIFIERS[name], 0.5).forest
+    forest = RegionClassifier.of(CLASSIFIERS[name], 0.5).forest
     x = data.draw(points(forest))
     rows = _bin_rows(x, forest.thresholds, forest.starts, forest.cell_low, forest.cell_scale, forest.cell_bins)
     for f in range(x.shape[1]):
@@ -89,7 +89,7 @@ def test_float32_descriptors_are_compared_as_scikit_learn_compares_them():
     classifier = CLASSIFIERS["three classes"]
     x = np.random.default_rng(1).random((2000, 5)).astype(np.float32)
     expected = classifier.predict_proba(x.astype(np.float64))
-    assert RegionClassifier(classifier, 0.5).probabilities(x).tobytes() == expected.tobytes()
+    assert RegionClassifier.of(classifier, 0.5).probabilities(x).tobytes() == expected.tobytes()
 
 
 def test_a_categorical_split_is_refused():

@@ -8,10 +8,15 @@ import numpy as np
 import pytest
 from trackbench_texture.model import TextureModel, train
 from trackbench_texture.params import TextureParams
+from trackbench_texture.tracker import TextureTracker
 
+from benchmark import storage
 from benchmark.errors import DataError
 from benchmark.modalities.camera.model import UNKNOWN_CABLE, CameraTruth
 from benchmark.model import Frame
+
+
+PACKAGES = storage.packages_of(TextureTracker)
 
 
 def _params(drawn) -> TextureParams:
@@ -30,7 +35,7 @@ def test_the_same_seed_gives_the_same_model_bit_for_bit(drawn):
     for seed in (7, 7, 8):
         model = train(drawn.training_set(), _params(drawn), np.random.default_rng(seed))
         kinds, regions = model.analyse(image)
-        probabilities = model.regions.classifier.predict_proba(np.random.default_rng(0).random((500, 5)))
+        probabilities = model.regions.probabilities(np.random.default_rng(0).random((500, 5)))
         outputs.append((regions, probabilities))
     assert np.array_equal(outputs[0][0], outputs[1][0])
     assert np.array_equal(outputs[0][1], outputs[1][1])
@@ -38,13 +43,22 @@ def test_the_same_seed_gives_the_same_model_bit_for_bit(drawn):
     assert not np.array_equal(outputs[0][1], outputs[2][1])
 
 
-def test_the_model_round_trips_through_pickle(trained, drawn):
+@pytest.mark.parametrize(
+    "round_trip",
+    [
+        lambda model: pickle.loads(pickle.dumps(model)),  # to a worker process
+        lambda model: storage.loads(storage.dumps(model, PACKAGES), PACKAGES, "model"),  # to and from disk
+    ],
+    ids=["pickle", "storage"],
+)
+def test_the_model_round_trips_and_classifies_alike(trained, drawn, round_trip):
     model = trained.model
-    copy = pickle.loads(pickle.dumps(model))
+    copy = round_trip(model)
     assert isinstance(copy, TextureModel)
     image = _probe(drawn)
     assert np.array_equal(copy.analyse(image)[1], model.analyse(image)[1])
     assert copy.training == model.training and copy.n_frames == model.n_frames
+    assert copy.descriptors == model.descriptors and copy.regions.regions == model.regions.regions
 
 
 def test_the_model_records_what_it_learned_from(trained):
