@@ -68,6 +68,7 @@ from benchmark.model import Frame, Outcome, Sequence
 from benchmark.registry import TrackerEntry
 from benchmark.results import CellKey, CellResult, FrameScore, Picture, Status
 from benchmark.training import Training
+from benchmark.workers import cell_isolation
 
 if TYPE_CHECKING:
     from benchmark.executors import Executor
@@ -271,7 +272,18 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
     ----------
     seeds/004, section VI-C and Table V (per-frame outcome);
     seeds/000, section 5.2.5 (speed as time per frame).
+
+    Notes
+    -----
+    What the cell changes in its process (working folder, environment,
+    processes started) is undone when it ends (:func:`benchmark.workers.cell_isolation`).
     """
+    with cell_isolation():
+        return _run_cell(cell, timeout_s)
+
+
+def _run_cell(cell: Cell, timeout_s: float | None) -> CellResult:
+    """:func:`run_cell`'s work."""
     started = time.perf_counter()
     deadline = math.inf if timeout_s is None else started + timeout_s
     scores: list[FrameScore] = []

@@ -19,10 +19,16 @@ worker is prepared by :func:`init_worker` before its first cell:
   the fight rather than the tracker;
 * its standard output is its standard error (:func:`quiet_stdout`): the
   command's standard output carries the board, and a tracker's ``print``
-  (or a native library's write to file descriptor 1) must not land in it.
+  (or a native library's write to file descriptor 1) must not land in it;
+* it adopts the processes its cells leave behind (on Linux,
+  ``PR_SET_CHILD_SUBREAPER``: a daemon a tracker starts, forking twice,
+  becomes the worker's child rather than the system's).
 
 A worker stays alive from cell to cell, so what it imports and loads once
 (plugins, compiled numba kernels, fitted models) serves all its cells.
+What a cell changes in its process is undone before the next one
+(:func:`cell_isolation`): its working folder, its environment and, in a
+worker, every process it started, which is killed.
 """
 
 from __future__ import annotations
@@ -34,12 +40,18 @@ import signal
 import sys
 import threading
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 PARENT_POLL_S = 0.5
 """How often a worker without ``PR_SET_PDEATHSIG`` checks that its parent lives."""
 
 _PR_SET_PDEATHSIG = 1
+_PR_SET_CHILD_SUBREAPER = 36
+CHILDREN_GRACE_S = 5.0
+"""How long a worker waits for the processes it killed after a cell to be gone."""
+_in_worker = False
 
 THREAD_VARIABLES = (
     "OMP_NUM_THREADS",
@@ -98,15 +110,66 @@ def native_threads() -> dict[str, int]:
     return counts
 
 
-def _kill_on_parent_death() -> bool:
-    """Ask Linux to send SIGKILL to this process when its parent ends; False where unavailable."""
+def _prctl(option: int, value: int) -> bool:
+    """Linux's ``prctl(option, value)``; False where unavailable or refused."""
     if not sys.platform.startswith("linux"):
         return False
     try:
         libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
-        return libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0) == 0
+        return libc.prctl(option, value, 0, 0, 0) == 0
     except (OSError, AttributeError):
         return False
+
+
+def _kill_on_parent_death() -> bool:
+    """Ask Linux to send SIGKILL to this process when its parent ends; False where unavailable."""
+    return _prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
+
+
+def adopt_orphans() -> bool:
+    """Make this process the parent of every orphan among its descendants (Linux); False where unavailable."""
+    return _prctl(_PR_SET_CHILD_SUBREAPER, 1)
+
+
+def end_children() -> int:
+    """Kill every process this one started, and theirs, and wait for them; how many there were."""
+    import psutil
+
+    try:
+        children = psutil.Process().children(recursive=True)
+    except psutil.Error:
+        return 0
+    for child in children:
+        try:
+            child.kill()
+        except psutil.Error:
+            pass
+    psutil.wait_procs(children, timeout=CHILDREN_GRACE_S)
+    return len(children)
+
+
+@contextmanager
+def cell_isolation() -> Iterator[None]:
+    """Undo, when the block ends, what it changed in the process: working folder, environment, and, in a worker, children.
+
+    A tracker that changes folder or sets a variable would otherwise change
+    every later cell of the worker (a relative cache folder, a library
+    reading the environment), and a process it starts would outlive the run.
+    """
+    folder = os.getcwd()
+    environment = dict(os.environ)
+    try:
+        yield
+    finally:
+        try:
+            os.chdir(folder)
+        except OSError:
+            pass
+        if dict(os.environ) != environment:
+            os.environ.clear()
+            os.environ.update(environment)
+        if _in_worker:
+            end_children()
 
 
 def _watch_parent(parent_pid: int) -> None:
@@ -143,3 +206,6 @@ def init_worker(parent_pid: int) -> None:
         os._exit(1)
     limit_native_threads()
     quiet_stdout()
+    adopt_orphans()
+    global _in_worker
+    _in_worker = True

@@ -16,6 +16,7 @@ from __future__ import annotations
 import ctypes
 import os
 import sys
+import tempfile
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -169,6 +170,62 @@ class RaisesInColour(Faulty):
         raise RuntimeError("\x1b[31mred\x1b[0m\x07\x1b]0;owned\x07")
 
 
+WANDERED = "ACME_FAULTS_WANDERED"
+"""Set by the wandering tracker, which also leaves for a folder of its own."""
+
+
+class Wanders(Faulty):
+    """Right on every frame, but changes its process's working folder and environment."""
+
+    name = "wanders"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        elsewhere = Path(tempfile.gettempdir()) / "acme-wandered"
+        elsewhere.mkdir(exist_ok=True)
+        os.chdir(elsewhere)
+        os.environ[WANDERED] = "1"
+        os.environ["TRACKBENCH_CACHE"] = "relative-cache"
+        return frame.truth.cable
+
+
+class Settled(Faulty):
+    """Right on every frame, as long as no earlier cell of its process changed folder or environment."""
+
+    name = "settled"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        if WANDERED in os.environ or "acme-wandered" in os.getcwd():
+            raise RuntimeError(f"an earlier cell's folder ({os.getcwd()}) or environment is still here")
+        return frame.truth.cable
+
+
+class Daemonises(Faulty):
+    """Right on every frame, but starts a daemon (forking twice) that would sleep for ten minutes."""
+
+    name = "daemonises"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        if frame.index == FAULT_AT:
+            started, ready = os.pipe()
+            child = os.fork()
+            if child == 0:
+                os.setsid()
+                if os.fork() == 0:
+                    for stream in (0, 1, 2):  # as a daemon does, so the run's pipes close without it
+                        os.dup2(os.open(os.devnull, os.O_RDWR), stream)
+                    pid_file = os.environ.get(PID_FILE_ENV)
+                    if pid_file:
+                        Path(f"{pid_file}.{os.getpid()}").write_text(str(os.getpid()))
+                    os.write(ready, b"1")
+                    time.sleep(600)
+                os._exit(0)
+            os.waitpid(child, 0)
+            os.read(started, 1)  # the daemon has written its pid
+            os.close(started)
+            os.close(ready)
+        return frame.truth.cable
+
+
 SAFE = (Honest, Exits, Interrupts, RaisesOddly, ReturnsNan, ReturnsAbsurd)
 """Trackers whose faults a run in the test process survives even without worker processes."""
 PROCESS_KILLERS = (Spins, ExitsHard, Segfaults)
@@ -177,7 +234,7 @@ PROCESS_KILLERS = (Spins, ExitsHard, Segfaults)
 
 @hookimpl
 def trackbench_register_trackers(registry: Any) -> None:
-    for tracker in (*SAFE, *PROCESS_KILLERS, Slow, Chatty, RaisesInColour):
+    for tracker in (*SAFE, *PROCESS_KILLERS, Slow, Chatty, RaisesInColour, Wanders, Settled, Daemonises):
         registry.add_tracker(tracker)
 
 

@@ -280,3 +280,22 @@ def test_check_gives_each_fault_its_failed_checks_and_goes_on(faults_installed: 
         assert "FAIL" in rows[tracker, "runs"] and words in rows[tracker, "runs"], rows[tracker, "runs"]
         assert " ok " in rows[tracker, "metadata"]
     assert " ok " in rows["honest", "runs"] and " ok " in rows["honest", "pickles"]
+
+
+@linux_only
+def test_a_cell_s_folder_environment_and_daemons_do_not_outlive_it(site: Path, tmp_path: Path) -> None:
+    pid_file = tmp_path / "daemon.pid"
+    process = start_trackbench(
+        site,
+        "run", "--suite", "faults", "--tracker", "wanders", "--tracker", "daemonises", "--tracker", "settled",
+        "--seeds", "2", "--jobs", "1", "--out", str(tmp_path / "out"),
+        env={"ACME_FAULTS_PID_FILE": str(pid_file)},
+    )
+    stdout, stderr = process.communicate()
+    assert process.returncode == 0, stderr
+    cells = stored_cells(tmp_path / "out")
+    assert (cells["status"] == "ok").all() and len(cells) == 6, cells["message"]
+    daemons = [int(path.read_text()) for path in tmp_path.glob("daemon.pid.*")]
+    assert len(daemons) == 2
+    for pid in daemons:
+        wait_for(lambda: not alive(pid))

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import os
+
 import cv2
 import numpy as np
+import pytest
 
 from benchmark.executors.local import LocalExecutor
-from benchmark.workers import native_threads
+from benchmark.workers import cell_isolation, native_threads
 
 
 def threads_after_loading_every_plugin() -> dict[str, int]:
@@ -28,3 +31,15 @@ def test_a_worker_runs_one_blas_openmp_opencv_and_numba_thread() -> None:
     assert any("gomp" in name or "omp" in name for name in counts)
     assert {"opencv", "numba"} <= set(counts)
     assert all(count == 1 for count in counts.values()), counts
+
+
+def test_a_cell_s_folder_and_environment_are_undone_when_it_ends(tmp_path, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("KEPT", "before")
+    with pytest.raises(RuntimeError), cell_isolation():
+        os.chdir("/")
+        os.environ["KEPT"] = "changed"
+        os.environ["ADDED"] = "1"
+        raise RuntimeError("a tracker's fault")
+    assert os.getcwd() == str(tmp_path)
+    assert os.environ["KEPT"] == "before" and "ADDED" not in os.environ
