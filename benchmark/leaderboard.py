@@ -167,6 +167,10 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
     cells = cells.assign(
         label=key_labels(cells, "tracker", "tracker_key"), dataset=key_labels(cells, "dataset", "dataset_key")
     )
+    # Frames are pooled in this order, not in the order cells finished: sums and the seeds' agreement are then
+    # the same whatever the executor did.
+    order = [column for column in ("label", "dataset", "init", "seed", "tracker_key", "dataset_key", "id") if column in cells]
+    cells = cells.sort_values(order, kind="stable")
     by_cell = {int(cell_id): group for cell_id, group in frames.groupby("cell_id", sort=False)}
     empty = frames.iloc[0:0]
 

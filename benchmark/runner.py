@@ -49,7 +49,9 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
+import random
 import signal
+import sys
 import threading
 import time
 import traceback
@@ -182,6 +184,27 @@ def cell_rng(seed: int, tracker_name: str, dataset: DatasetIdentity) -> np.rando
     return np.random.default_rng([seed, zlib.crc32(tracker_name.encode()), dataset.seed_material])
 
 
+GLOBAL_STREAM = 0x676C6F62
+"""Extra seed word of the stream :func:`seed_global_generators` draws from, so that it is not the cell generator's."""
+
+
+def seed_global_generators(seed: int, tracker_name: str, dataset: DatasetIdentity) -> None:
+    """Seed numpy's and Python's global generators (and OpenCV's, when loaded) for a cell.
+
+    A tracker should draw only from the generator it is given
+    (``trackbench check`` fails one that does not); one that draws from a
+    global generator anyway then still gives the same numbers for the same
+    cell in any process and any order, and other numbers for another seed,
+    instead of whatever state its worker process inherited.
+    """
+    words = np.random.SeedSequence([seed, zlib.crc32(tracker_name.encode()), dataset.seed_material, GLOBAL_STREAM])
+    state = words.generate_state(4)
+    np.random.seed(state)
+    random.seed(int.from_bytes(state.tobytes(), "little"))
+    if "cv2" in sys.modules:
+        sys.modules["cv2"].setRNGSeed(int(state[0] & 0x7FFFFFFF))
+
+
 class UserInterrupt(KeyboardInterrupt):
     """The user's Ctrl-C or a ``SIGTERM``, as told apart from a ``KeyboardInterrupt`` a tracker raises itself.
 
@@ -300,6 +323,7 @@ def _run_cell(cell: Cell, timeout_s: float | None) -> CellResult:
         where = "reading the sequence's info"
         info = cell.sequence.info
         where = "creating the tracker"
+        seed_global_generators(cell.seed, cell.tracker.name, cell.identity)
         tracker = cell.tracker.create()
         if cell.training is not None:
             where = f"adopting the model trained on {cell.training.name}"

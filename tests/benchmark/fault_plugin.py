@@ -226,6 +226,16 @@ class Daemonises(Faulty):
         return frame.truth.cable
 
 
+class GlobalRandom(Faulty):
+    """Right but for noise from numpy's global generator, which a tracker should never draw from."""
+
+    name = "global-random"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        cable = frame.truth.cable
+        return CableState(cable.d + np.random.normal(0.0, 1.0), cable.alpha, cable.w, cable.beta)
+
+
 SAFE = (Honest, Exits, Interrupts, RaisesOddly, ReturnsNan, ReturnsAbsurd)
 """Trackers whose faults a run in the test process survives even without worker processes."""
 PROCESS_KILLERS = (Spins, ExitsHard, Segfaults)
@@ -234,7 +244,7 @@ PROCESS_KILLERS = (Spins, ExitsHard, Segfaults)
 
 @hookimpl
 def trackbench_register_trackers(registry: Any) -> None:
-    for tracker in (*SAFE, *PROCESS_KILLERS, Slow, Chatty, RaisesInColour, Wanders, Settled, Daemonises):
+    for tracker in (*SAFE, *PROCESS_KILLERS, Slow, Chatty, RaisesInColour, Wanders, Settled, Daemonises, GlobalRandom):
         registry.add_tracker(tracker)
 
 

@@ -299,3 +299,17 @@ def test_a_cell_s_folder_environment_and_daemons_do_not_outlive_it(site: Path, t
     assert len(daemons) == 2
     for pid in daemons:
         wait_for(lambda: not alive(pid))
+
+
+def test_a_tracker_drawing_from_numpy_s_global_generator_differs_by_seed_and_repeats_by_seed(
+    faults_installed: None, tmp_path: Path
+) -> None:
+    boards = []
+    for run in ("first", "second"):
+        arguments = ["run", "--suite", "faults", "--tracker", "global-random", "--seeds", "2", "--jobs", "2"]
+        result = invoke(*arguments, "--out", str(tmp_path / run))
+        assert result.exit_code == 0, result.output
+        boards.append(pd.read_csv(tmp_path / run / "leaderboard.csv").drop(columns=["fps"]))
+    pd.testing.assert_frame_equal(boards[0], boards[1])
+    row = boards[0][boards[0].dataset == "(all)"].iloc[0]
+    assert not row["deterministic"] and row["rmse_d_lo_px"] < row["rmse_d_hi_px"]

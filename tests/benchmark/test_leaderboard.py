@@ -254,3 +254,30 @@ def test_suites_and_pooled_rows_are_read_from_dataset_names() -> None:
     assert suite_of("camera-test/t01") == "camera-test"
     assert suite_of("/data/run/seq.txt") == "/data/run/seq.txt"
     assert is_pooled(ALL_DATASETS) and is_pooled("camera-test (all)") and not is_pooled("camera-test/t01")
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.permutations(range(8)), st.lists(st.floats(0.01, 1e3), min_size=3, max_size=3))
+def test_a_board_is_the_same_bit_for_bit_whatever_order_its_cells_finished_in(order: list[int], errors: list[float]) -> None:
+    made = Cells()
+    for tracker in ("a", "b"):
+        for dataset in ("s/S1", "s/S2"):
+            for seed in (0, 1):
+                made.add(tracker, dataset, seed, ["correct", "false", "missed"], [e * (seed + 1) for e in errors])
+    finished = Cells()  # the same cells, stored in another order, as a run with several workers may store them
+    for position, index in enumerate(order):
+        cell = dict(made.cells[index], id=100 + position)
+        finished.cells.append(cell)
+        finished.frames += [dict(frame, cell_id=cell["id"]) for frame in made.frames if frame["cell_id"] == index + 1]
+    expected, got = made.boards()["camera"], finished.boards()["camera"]
+    pd.testing.assert_frame_equal(got, expected, check_exact=True)
+
+
+def test_seeds_that_agree_frame_for_frame_are_deterministic_whatever_order_their_datasets_finished_in() -> None:
+    made = Cells()
+    made.add("a", "s/S1", 0, ["correct", "false"], [1.0, 2.0])
+    made.add("a", "s/S2", 0, ["missed", "correct"], [math.nan, 3.0])
+    made.add("a", "s/S2", 1, ["missed", "correct"], [math.nan, 3.0])  # seed 1 finished S2 first
+    made.add("a", "s/S1", 1, ["correct", "false"], [1.0, 2.0])
+    board = made.boards()["camera"]
+    assert bool(rows(board, ALL_DATASETS).loc["a", "deterministic"])
