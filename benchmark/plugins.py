@@ -45,6 +45,7 @@ from pluggy import HookImpl
 from benchmark import hookspecs
 from benchmark.errors import PluginError
 from benchmark.registry import Origin, Registry
+from benchmark.shared_modules import Snapshot
 
 ENTRY_POINT_GROUP = "trackbench"
 DISABLE_ENV = "TRACKBENCH_DISABLE_PLUGINS"
@@ -134,16 +135,27 @@ def make_plugin_manager(
                 f"{' and '.join(sorted(offers))}; uninstall one, or disable the name with --disable {name}"
             )
         ((distribution, ep),) = offers.items()
+        shared = Snapshot.take()
         try:
             manager.load_setuptools_entrypoints(ENTRY_POINT_GROUP, name=name)
         except pluggy.PluginValidationError as exc:
+            shared.restore()
             manager.leave_out(name, PluginError(f"plugin {name!r} ({distribution}): {exc}"), strict)
             continue
         except (Exception, SystemExit) as exc:  # a plugin's sys.exit() at import must not end the command
+            shared.restore()
             error = PluginError(
                 f"plugin {name!r} ({distribution}) failed to import {ep.value!r}: "
                 f"{type(exc).__name__}: {' '.join(str(exc).split())}. "
                 f"Disable it with --disable {name} or {DISABLE_ENV}={name}"
+            )
+            manager.leave_out(name, error, strict)
+            continue
+        changed = shared.restore()
+        if changed:
+            error = PluginError(
+                f"plugin {name!r} ({distribution}) replaced {', '.join(changed)} when imported, which would change "
+                f"every other tracker's numbers (restored). Disable it with --disable {name} or {DISABLE_ENV}={name}"
             )
             manager.leave_out(name, error, strict)
             continue

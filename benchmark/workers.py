@@ -27,8 +27,9 @@ worker is prepared by :func:`init_worker` before its first cell:
 A worker stays alive from cell to cell, so what it imports and loads once
 (plugins, compiled numba kernels, fitted models) serves all its cells.
 What a cell changes in its process is undone before the next one
-(:func:`cell_isolation`): its working folder, its environment and, in a
-worker, every process it started, which is killed.
+(:func:`cell_isolation`): its working folder, its environment, the names of
+the modules every tracker shares (:mod:`benchmark.shared_modules`) and, in
+a worker, every process it started, which is killed.
 """
 
 from __future__ import annotations
@@ -44,6 +45,8 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from benchmark.shared_modules import Snapshot
+
 PARENT_POLL_S = 0.5
 """How often a worker without ``PR_SET_PDEATHSIG`` checks that its parent lives."""
 
@@ -52,6 +55,7 @@ _PR_SET_CHILD_SUBREAPER = 36
 CHILDREN_GRACE_S = 5.0
 """How long a worker waits for the processes it killed after a cell to be gone."""
 _in_worker = False
+_shared = Snapshot.take()  # before any plugin: this module is read before a cell's tracker is (see shared_modules)
 
 THREAD_VARIABLES = (
     "OMP_NUM_THREADS",
@@ -158,9 +162,11 @@ def cell_isolation() -> Iterator[None]:
     """
     folder = os.getcwd()
     environment = dict(os.environ)
+    _shared.restore()
     try:
         yield
     finally:
+        _shared.restore()
         try:
             os.chdir(folder)
         except OSError:
@@ -207,5 +213,6 @@ def init_worker(parent_pid: int) -> None:
     limit_native_threads()
     quiet_stdout()
     adopt_orphans()
-    global _in_worker
+    global _in_worker, _shared
     _in_worker = True
+    _shared = _shared.extended()

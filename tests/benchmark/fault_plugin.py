@@ -175,7 +175,7 @@ WANDERED = "ACME_FAULTS_WANDERED"
 
 
 class Wanders(Faulty):
-    """Right on every frame, but changes its process's working folder and environment."""
+    """Right on every frame, but changes its process's working folder, its environment and ``numpy.mean``."""
 
     name = "wanders"
 
@@ -185,17 +185,18 @@ class Wanders(Faulty):
         os.chdir(elsewhere)
         os.environ[WANDERED] = "1"
         os.environ["TRACKBENCH_CACHE"] = "relative-cache"
+        np.mean = lambda *args, **kwargs: 0.0
         return frame.truth.cable
 
 
 class Settled(Faulty):
-    """Right on every frame, as long as no earlier cell of its process changed folder or environment."""
+    """Right on every frame, as long as no earlier cell of its process changed folder, environment or numpy."""
 
     name = "settled"
 
     def fault(self, frame: CameraFrame) -> Any:
-        if WANDERED in os.environ or "acme-wandered" in os.getcwd():
-            raise RuntimeError(f"an earlier cell's folder ({os.getcwd()}) or environment is still here")
+        if WANDERED in os.environ or "acme-wandered" in os.getcwd() or np.mean([1.0, 3.0]) != 2.0:
+            raise RuntimeError(f"an earlier cell's folder ({os.getcwd()}), environment or numpy is still here")
         return frame.truth.cable
 
 

@@ -153,6 +153,24 @@ def test_a_plugin_that_exits_at_import_is_a_warning_and_a_failed_exit_status(mon
     assert CliRunner().invoke(main, ["--strict-plugins", "list"]).exit_code == 2
 
 
+def test_a_plugin_that_replaces_a_numpy_function_at_import_is_left_out_and_numpy_restored(monkeypatch, installed, tmp_path):
+    import numpy as np
+
+    mean = np.mean
+    (tmp_path / "patching_plugin.py").write_text("import numpy\nnumpy.mean = lambda *a, **k: 0.0\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    installed("patching", [("patching", "patching_plugin")])
+    registry = load_registry()
+    assert np.mean is mean and np.mean([1.0, 3.0]) == 2.0
+    (problem,) = [problem for problem in registry.problems if "patching" in problem]
+    assert problem.startswith("plugin 'patching' (patching 0.3) replaced numpy.mean when imported")
+    assert "hough" in registry.trackers
+    monkeypatch.delitem(sys.modules, "patching_plugin")  # imported afresh
+    with pytest.raises(PluginError, match="replaced numpy.mean"):
+        load_registry(strict=True)
+    assert np.mean is mean
+
+
 def test_an_invalid_suite_file_costs_only_its_suite(monkeypatch, tmp_path):
     import trackbench_suites
 

@@ -1,0 +1,71 @@
+"""The modules every tracker and scorer shares, which no plugin may change for the others.
+
+A plugin that replaces ``numpy.mean`` when it is imported, or during a
+cell, would change every other tracker's numbers and the board's own
+arithmetic, and every row would still say ``ok``.  A :class:`Snapshot`
+keeps the names of the :data:`SHARED` modules loaded when it is taken, and
+tells which of them were since replaced or removed, and puts them back.
+Names added later (numpy loads some submodules on first use) are left alone.
+
+* :func:`benchmark.plugins.make_plugin_manager` takes one before each
+  plugin's import: a plugin that changed a shared module is left out, with
+  what it changed, and the module restored;
+* :func:`benchmark.workers.cell_isolation` restores the snapshot taken when
+  :mod:`benchmark.workers` was first imported, before and after every cell,
+  so that neither an import in a worker (a Dask worker imports a plugin while
+  it reads its first cell) nor a cell reaches the next cell.
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+from types import ModuleType
+from typing import Any
+
+SHARED = ("math", "random", "numpy", "numpy.linalg", "numpy.random", "numpy.fft", "cv2", "scipy.ndimage", "scipy.stats")
+"""Modules whose names a plugin must not replace."""
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """The names of the :data:`SHARED` modules loaded when taken (:meth:`take`).
+
+    Attributes
+    ----------
+    names : dict
+        Module name to (module, a copy of its namespace).
+    """
+
+    names: dict[str, tuple[ModuleType, dict[str, Any]]]
+
+    @classmethod
+    def take(cls) -> Snapshot:
+        """The shared modules loaded now, and their names."""
+        loaded = {name: sys.modules.get(name) for name in SHARED}
+        return cls({name: (module, dict(vars(module))) for name, module in loaded.items() if module is not None})
+
+    def extended(self) -> Snapshot:
+        """This snapshot, plus the shared modules loaded since (their names as they are now)."""
+        return Snapshot({**Snapshot.take().names, **self.names})
+
+    def changes(self) -> list[str]:
+        """Every name replaced or removed since, as ``module.name``."""
+        return [f"{module_name}.{name}" for module_name, _, name, _ in self._changed()]
+
+    def restore(self) -> list[str]:
+        """Put every replaced or removed name back; the names put back, as :meth:`changes` gives them."""
+        changed = list(self._changed())
+        for _, module, name, value in changed:
+            setattr(module, name, value)
+        return [f"{module_name}.{name}" for module_name, _, name, _ in changed]
+
+    def _changed(self):  # type: ignore[no-untyped-def]
+        for module_name, (module, names) in self.names.items():
+            now = vars(module)
+            for name, value in names.items():
+                if now.get(name, _MISSING) is not value:
+                    yield module_name, module, name, value
+
+
+_MISSING = object()
