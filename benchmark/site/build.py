@@ -7,30 +7,43 @@
     cells/<id>.html        one cell of the run: its frames, errors, failed frames and parameters
     assets/itables.js      the table library, shared by every page (:mod:`benchmark.site.tables`)
 
-with each figure as a PNG file beside its page.  The pages are built in a
-folder of their own inside ``site`` and moved into place only once all of
-them are written: a build that fails leaves the previous site as it was,
-and no page of an earlier run stays behind.
+with each figure as a PNG file beside its page.
+
+The site changes in one step.  A build writes its pages into a folder of
+their own, ``site/.builds/run-N-XXXX``; when all are written, the link
+``site/.current`` is pointed at it by one rename, and ``index.html``,
+``trackers``, ``cells`` and ``assets`` are links through ``.current``.  So
+a reader (a browser, a web server, a copy) sees the previous site or the new
+one, never a mixture, and a build that is killed or fails (a full or
+read-only disk is a :class:`~benchmark.errors.DataError` naming the site)
+leaves the previous site as it was.  Builds take turns (a lock,
+``site/.lock``): each removes what killed builds left, and every build
+but the new one and the one before it, which a reader may still be
+browsing.
 """
 
 from __future__ import annotations
 
 import hashlib
 import math
+import os
 import re
 import shutil
 import tempfile
+import uuid
 from collections.abc import Mapping
 from dataclasses import dataclass
 from datetime import datetime
 from pathlib import Path
 from typing import Any
 
+import filelock
 import jinja2
 import pandas as pd
 from markupsafe import Markup
 
 from benchmark.errors import DataError
+from benchmark.files import make_folder
 from benchmark.history.database import History
 from benchmark.history.regressions import Step, Thresholds, find_changes, steps
 from benchmark.leaderboard import error_columns, is_pooled, leaderboards
@@ -40,7 +53,12 @@ from benchmark.site.figures import OUTCOME_COLOURS, cell_figure, trend_figure
 from benchmark.site.tables import datatable, escaped, link, write_bundle
 
 OWNED = ("index.html", "assets", "trackers", "cells")
-"""What the site consists of inside its folder: only these are replaced."""
+"""What the site shows at its top, each a link through :data:`CURRENT`; nothing else there is touched."""
+BUILDS = ".builds"
+"""The site's folder of builds, each a complete site."""
+CURRENT = ".current"
+"""The link to the build the site shows."""
+LOCK = ".lock"
 
 SHARED_COLUMNS = ("init", "seeds", "training")
 """Board columns shown once above the board instead when every row has the same value."""
@@ -350,18 +368,52 @@ def build_site(
         If the history holds no run, or from the history database.
     """
     night = _load(history, modalities, thresholds or Thresholds())
-    site = Path(site)
-    site.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=".building-", dir=site))
+    site = make_folder(site)
     try:
-        _write(night, staging)
-        for name in OWNED:
-            old = site / name
-            if old.is_dir() and not old.is_symlink():
-                shutil.rmtree(old)
-            elif old.exists() or old.is_symlink():
-                old.unlink()
-            (staging / name).replace(old)
-    finally:
-        shutil.rmtree(staging, ignore_errors=True)
+        with filelock.FileLock(site / LOCK):
+            builds = make_folder(site / BUILDS)
+            shown = _shown_build(site)
+            for leftover in builds.glob("staging-*"):
+                shutil.rmtree(leftover, ignore_errors=True)
+            staging = Path(tempfile.mkdtemp(prefix="staging-", dir=builds))
+            try:
+                _write(night, staging)
+                build = staging.rename(builds / f"run-{int(night.run['id'])}-{uuid.uuid4().hex[:8]}")
+            finally:
+                shutil.rmtree(staging, ignore_errors=True)
+            _point(site / CURRENT, Path(BUILDS) / build.name)
+            for name in OWNED:
+                _point(site / name, Path(CURRENT) / name)
+            for old in builds.iterdir():
+                if old.name not in {build.name, shown}:
+                    shutil.rmtree(old, ignore_errors=True)
+    except OSError as exc:
+        raise DataError(f"site {site}: cannot write it: {exc.strerror or exc}; the site is left as it was") from None
     return site / "index.html"
+
+
+def _shown_build(site: Path) -> str:
+    """The name of the build the site shows now, or ``""``."""
+    try:
+        return Path(os.readlink(site / CURRENT)).name
+    except OSError:
+        return ""
+
+
+def _point(path: Path, target: Path) -> None:
+    """Make ``path`` a link to ``target`` (relative to its folder) in one rename; what was there goes.
+
+    A folder or file of an earlier layout at ``path`` is moved aside first
+    and removed after, so the name is missing only between two renames.
+    """
+    if path.is_symlink() and Path(os.readlink(path)) == target:
+        return
+    temporary = path.with_name(f".{path.name}.{uuid.uuid4().hex[:8]}.link")
+    os.symlink(target, temporary)
+    aside = None
+    if path.exists() and not path.is_symlink():
+        aside = path.with_name(f".{path.name}.{uuid.uuid4().hex[:8]}.old")
+        path.rename(aside)
+    os.replace(temporary, path)
+    if aside is not None:
+        shutil.rmtree(aside) if aside.is_dir() else aside.unlink()

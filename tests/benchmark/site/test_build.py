@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import errno
+import multiprocessing
+import os
 import re
 from html.parser import HTMLParser
 from pathlib import Path
@@ -149,7 +152,8 @@ def test_rebuild_replaces_the_site_and_keeps_other_files(
     assert not (tmp_path / "cells" / "999.html").exists()
     assert (tmp_path / "notes.txt").read_text() == "mine"
     assert site.index == tmp_path / "index.html" and site.index.is_file()
-    assert [path.name for path in tmp_path.iterdir() if path.name.startswith(".")] == []
+    assert sorted(path.name for path in tmp_path.iterdir() if path.name.startswith(".")) == [".builds", ".current", ".lock"]
+    assert [path.name for path in (tmp_path / ".builds").iterdir()] == [Path(os.readlink(tmp_path / ".current")).name]
 
 
 def test_empty_history_is_an_error(registry: Registry, tmp_path: Path) -> None:
@@ -160,3 +164,63 @@ def test_empty_history_is_an_error(registry: Registry, tmp_path: Path) -> None:
 
 def test_build_is_quick(nightly: Site) -> None:
     assert nightly.build_s < 30.0
+
+
+def site_state(site: Path) -> tuple[bytes, list[str]]:
+    """What a reader of ``site`` sees: the index's bytes, and every page it links that is missing."""
+    index = (site / "index.html").read_bytes()
+    links = re.findall(r'href="((?:trackers|cells)/[^"#]+)"', index.decode())
+    return index, [target for target in links if not (site / target).is_file()]
+
+
+def test_a_build_that_fails_part_way_leaves_the_site_as_it_was_and_says_why(
+    first_night: Site, registry: Registry, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    build(first_night.history, tmp_path, registry)
+    before, missing = site_state(tmp_path)
+    assert not missing
+
+    def disk_full(*args: object, **kwargs: object) -> None:
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr("benchmark.site.build._cell", disk_full)
+    with pytest.raises(DataError, match=f"site {tmp_path}: cannot write it: No space left on device"):
+        build_site(first_night.history, tmp_path, registry.modalities)
+    assert site_state(tmp_path) == (before, [])
+    assert len(list((tmp_path / ".builds").iterdir())) == 1
+
+
+def test_what_a_killed_build_left_is_removed_and_two_builds_are_kept(
+    first_night: Site, registry: Registry, tmp_path: Path
+) -> None:
+    builds = tmp_path / ".builds"
+    shown = []
+    for _ in range(3):
+        build(first_night.history, tmp_path, registry)
+        shown.append(Path(os.readlink(tmp_path / ".current")).name)
+        (builds / "staging-killed").mkdir()  # as a build killed while writing leaves it
+    build(first_night.history, tmp_path, registry)
+    newest = Path(os.readlink(tmp_path / ".current")).name
+    assert sorted(path.name for path in builds.iterdir()) == sorted([shown[-1], newest])
+    assert not site_state(tmp_path)[1]
+
+
+def _build_in_a_process(history: Path, site: Path) -> None:
+    from benchmark.plugins import load_registry
+
+    with History(history) as database:
+        build_site(database, site, load_registry().modalities)
+
+
+def test_builds_of_one_site_at_once_take_turns_and_leave_it_whole(first_night: Site, tmp_path: Path) -> None:
+    context = multiprocessing.get_context("fork")
+    processes = [
+        context.Process(target=_build_in_a_process, args=(first_night.history.location, tmp_path)) for _ in range(4)
+    ]
+    for process in processes:
+        process.start()
+    for process in processes:
+        process.join()
+    assert [process.exitcode for process in processes] == [0, 0, 0, 0]
+    assert not site_state(tmp_path)[1]
+    assert len(list((tmp_path / ".builds").iterdir())) == 2
