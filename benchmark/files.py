@@ -90,3 +90,19 @@ def make_folder(path: str | os.PathLike[str]) -> Path:
     except OSError as exc:
         raise DataError(f"{folder}: cannot create folder: {exc.strerror or exc}") from None
     return folder
+
+
+def resolved(path: str | os.PathLike[str]) -> Path:
+    """``path`` made absolute, with links and ``..`` resolved.
+
+    Raises
+    ------
+    DataError
+        If a link cannot be followed (a loop of links, no permission), naming the path.
+    """
+    try:
+        return Path(path).resolve()
+    except RuntimeError:  # Python before 3.13 reports a loop of links so
+        raise DataError(f"{path}: a loop of symbolic links") from None
+    except (OSError, ValueError) as exc:
+        raise DataError(f"{path}: cannot follow its links: {getattr(exc, 'strerror', None) or exc}") from None

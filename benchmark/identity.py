@@ -40,6 +40,8 @@ from typing import Any
 
 import numpy as np
 
+from benchmark.files import resolved
+
 DIGEST_CHARS = 32
 """Hex characters kept of a SHA-256 digest (128 bits)."""
 
@@ -173,7 +175,7 @@ def file_fingerprint(path: str | os.PathLike[str], content: bytes | None = None,
 
 def resolved_source(path: str | os.PathLike[str]) -> str:
     """The source of a dataset on disk: its absolute path with links and ``..`` resolved."""
-    return Path(path).resolve().as_posix()
+    return resolved(path).as_posix()
 
 
 @cache

@@ -46,6 +46,7 @@ import sqlalchemy as sa
 from sqlalchemy.exc import SQLAlchemyError
 
 from benchmark.errors import DataError
+from benchmark.files import resolved
 from benchmark.leaderboard import error_columns
 from benchmark.modality import Modality
 from benchmark.results import Picture, summarise
@@ -125,7 +126,7 @@ def _reports_database_errors(method: Callable[Concatenate[History, _P], _T]) -> 
 def database_url(location: str | Path) -> str:
     """An SQLAlchemy URL as given, or the URL of an SQLite file at a path."""
     text = str(location)
-    return text if "://" in text else f"sqlite:///{Path(text).expanduser().resolve()}"
+    return text if "://" in text else f"sqlite:///{resolved(Path(text).expanduser())}"
 
 
 def _pack(frames: pd.DataFrame) -> bytes:

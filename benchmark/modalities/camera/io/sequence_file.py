@@ -34,10 +34,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from benchmark.errors import DataError
-from benchmark.files import atomic_writer
+from benchmark.files import atomic_writer, resolved
 from benchmark.io import read_regular_file
 from benchmark.modalities.camera.io.image_list import ImageListSequence
 from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState
+
+MAX_LINES = 1_000_000
+"""Most lines an image sequence file may hold: 11 hours of video at 25 frames a second."""
 
 HEADER = "# CableDistance CableAngle CableWidth CableSkew # Filename"
 """The header comment the thesis' tools write first (seeds/000, section 4.7.3)."""
@@ -99,8 +102,8 @@ def _parse_row(text: str, folder: Path, where: str, line: int) -> SequenceRow:
     if not image.is_absolute():
         image = folder / image
     try:
-        image = image.resolve()
-    except (OSError, ValueError) as exc:
+        image = resolved(image)
+    except DataError as exc:
         raise DataError(f"{where}invalid image path {path_text!r}: {exc}") from None
     return SequenceRow(cable=cable, image=image, line=line)
 
@@ -123,7 +126,7 @@ def read_sequence_file(path: str | os.PathLike[str]) -> list[SequenceRow]:
     ------
     DataError
         If the file is missing, not a regular file or unreadable, holds no
-        data row, or a row is malformed (wrong count of numbers, a word that
+        data row or more than :data:`MAX_LINES` lines, or a row is malformed (wrong count of numbers, a word that
         is not a number, an infinite value, ``nan`` mixed with numbers, no
         ``#``, no file name).  The message starts with ``path:line:``.
 
@@ -137,6 +140,11 @@ def read_sequence_file(path: str | os.PathLike[str]) -> list[SequenceRow]:
 
 def _parse(file: Path, content: bytes) -> list[SequenceRow]:
     """The data rows of the bytes ``content`` of the image sequence file ``file``."""
+    lines = content.count(b"\n") + (not content.endswith(b"\n"))
+    if lines > MAX_LINES:
+        raise DataError(
+            f"{file}: {lines:,} lines, more than the {MAX_LINES:,} an image sequence file may hold; split it"
+        )
     try:
         text = content.decode("utf-8-sig")
     except UnicodeDecodeError as exc:

@@ -193,6 +193,23 @@ def test_file_without_data_rows_is_an_error(tmp_path, text):
         read_sequence_file(path)
 
 
+def test_a_file_of_more_lines_than_a_sequence_may_hold_is_refused_before_any_row_is_parsed(tmp_path, monkeypatch):
+    monkeypatch.setattr("benchmark.modalities.camera.io.sequence_file.MAX_LINES", 100)
+    path = tmp_path / "huge.txt"
+    path.write_text("1 0 6 0 # frame.png\n" * 101, encoding="utf-8")
+    monkeypatch.setattr("benchmark.modalities.camera.io.sequence_file._parse_row", None)  # never reached
+    with pytest.raises(DataError, match="huge.txt: 101 lines, more than the 100 an image sequence file may hold"):
+        read_sequence_file(path)
+
+
+def test_an_image_path_that_is_a_loop_of_links_is_named_with_its_line(tmp_path):
+    (tmp_path / "loop.png").symlink_to(tmp_path / "loop.png")
+    path = tmp_path / "seq.txt"
+    path.write_text("1 0 6 0 # loop.png\n", encoding="utf-8")
+    with pytest.raises(DataError, match="seq.txt:1: invalid image path 'loop.png': .*a loop of symbolic links"):
+        read_sequence_file(path)
+
+
 def test_non_text_file_is_an_error_naming_it(tmp_path):
     path = tmp_path / "binary.seq"
     path.write_bytes(b"\xff\xfe\x00\x81" * 10)
