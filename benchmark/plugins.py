@@ -154,7 +154,7 @@ def make_plugin_manager(
         changed = shared.restore()
         if changed:
             error = PluginError(
-                f"plugin {name!r} ({distribution}) replaced {', '.join(changed)} when imported, which would change "
+                f"plugin {name!r} ({distribution}) changed {', '.join(changed)} when imported, which would change "
                 f"every other tracker's numbers (restored). Disable it with --disable {name} or {DISABLE_ENV}={name}"
             )
             manager.leave_out(name, error, strict)

@@ -38,27 +38,41 @@ class Snapshot:
     """
 
     names: dict[str, tuple[ModuleType, dict[str, Any]]]
+    numpy_errors: dict[str, str] | None = None
 
     @classmethod
     def take(cls) -> Snapshot:
-        """The shared modules loaded now, and their names."""
+        """The shared modules loaded now, and their names; numpy's handling of floating-point errors."""
         loaded = {name: sys.modules.get(name) for name in SHARED}
-        return cls({name: (module, dict(vars(module))) for name, module in loaded.items() if module is not None})
+        numpy = sys.modules.get("numpy")
+        return cls(
+            {name: (module, dict(vars(module))) for name, module in loaded.items() if module is not None},
+            numpy.geterr() if numpy is not None else None,
+        )
 
     def extended(self) -> Snapshot:
         """This snapshot, plus the shared modules loaded since (their names as they are now)."""
-        return Snapshot({**Snapshot.take().names, **self.names})
+        now = Snapshot.take()
+        return Snapshot({**now.names, **self.names}, self.numpy_errors or now.numpy_errors)
 
     def changes(self) -> list[str]:
-        """Every name replaced or removed since, as ``module.name``."""
-        return [f"{module_name}.{name}" for module_name, _, name, _ in self._changed()]
+        """Every name replaced or removed since, as ``module.name``, and ``numpy.seterr`` if its state changed."""
+        return [f"{module_name}.{name}" for module_name, _, name, _ in self._changed()] + self._errors_changed()
 
     def restore(self) -> list[str]:
-        """Put every replaced or removed name back; the names put back, as :meth:`changes` gives them."""
-        changed = list(self._changed())
-        for _, module, name, value in changed:
+        """Put every replaced or removed name and numpy's error handling back; what was put back, as :meth:`changes` gives it."""
+        changed = self.changes()
+        for _, module, name, value in list(self._changed()):
             setattr(module, name, value)
-        return [f"{module_name}.{name}" for module_name, _, name, _ in changed]
+        if self._errors_changed():
+            sys.modules["numpy"].seterr(**self.numpy_errors)
+        return changed
+
+    def _errors_changed(self) -> list[str]:
+        numpy = sys.modules.get("numpy")
+        if self.numpy_errors is None or numpy is None or numpy.geterr() == self.numpy_errors:
+            return []
+        return ["numpy.seterr"]
 
     def _changed(self):  # type: ignore[no-untyped-def]
         for module_name, (module, names) in self.names.items():

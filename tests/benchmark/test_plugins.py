@@ -163,10 +163,10 @@ def test_a_plugin_that_replaces_a_numpy_function_at_import_is_left_out_and_numpy
     registry = load_registry()
     assert np.mean is mean and np.mean([1.0, 3.0]) == 2.0
     (problem,) = [problem for problem in registry.problems if "patching" in problem]
-    assert problem.startswith("plugin 'patching' (patching 0.3) replaced numpy.mean when imported")
+    assert problem.startswith("plugin 'patching' (patching 0.3) changed numpy.mean when imported")
     assert "hough" in registry.trackers
     monkeypatch.delitem(sys.modules, "patching_plugin")  # imported afresh
-    with pytest.raises(PluginError, match="replaced numpy.mean"):
+    with pytest.raises(PluginError, match="changed numpy.mean"):
         load_registry(strict=True)
     assert np.mean is mean
 

@@ -43,3 +43,12 @@ def test_a_cell_s_folder_and_environment_are_undone_when_it_ends(tmp_path, monke
         raise RuntimeError("a tracker's fault")
     assert os.getcwd() == str(tmp_path)
     assert os.environ["KEPT"] == "before" and "ADDED" not in os.environ
+
+
+def test_what_a_cell_replaces_in_numpy_or_its_error_handling_is_put_back() -> None:
+    mean, errors = np.mean, np.geterr()
+    with pytest.raises(FloatingPointError), cell_isolation():
+        np.mean = lambda *args, **kwargs: 0.0
+        np.seterr(all="raise")
+        np.float64(1.0) / np.float64(0.0)
+    assert np.mean is mean and np.geterr() == errors
