@@ -35,7 +35,7 @@ Checked on every read
     entry copied over another's is not served under its name) and each
     frame's index.  An entry that fails is removed and the sequence rendered
     again, into the cache when it can be written, and the reader carries on
-    from the frame it had reached, with a :class:`CacheRebuilt` warning
+    from the frame it had reached, with a :class:`CacheWarning`
     naming the file: a damaged cache costs time, never a wrong frame.
 When the cache cannot be written
     (a full disk, a read-only folder), or rendering fails part way, the
@@ -75,8 +75,8 @@ SUFFIX = ".frames"
 _HEADER_PACKAGES: storage.Packages = frozenset()
 
 
-class CacheRebuilt(UserWarning):
-    """A cache entry failed its checks and was removed; its sequence was rendered again."""
+class CacheWarning(UserWarning):
+    """A cache entry failed its checks and was rendered again, or a sequence's frames could not be cached."""
 
 
 def default_cache_folder() -> Path:
@@ -208,7 +208,7 @@ class FrameCache:
 
         An entry that fails its checks is removed and rendered again (once;
         then the frames are rendered without the cache), and the frames
-        carry on from the one reached, with a :class:`CacheRebuilt` warning.
+        carry on from the one reached, with a :class:`CacheWarning`.
         """
         path = self.path(key)
         served = 0
@@ -222,7 +222,7 @@ class FrameCache:
                 return
             except StorageError as exc:
                 warnings.warn(
-                    CacheRebuilt(f"{exc}; the entry was removed and {sequence.identity.name} rendered again"),
+                    CacheWarning(f"{exc}; the entry was removed and {sequence.identity.name} rendered again"),
                     stacklevel=2,
                 )
             except OSError:
@@ -244,7 +244,7 @@ class FrameCache:
                 finally:
                     temporary.unlink(missing_ok=True)
         except StorageError as exc:
-            warnings.warn(CacheRebuilt(f"{sequence.identity.name}: frames not cached: {exc}"), stacklevel=3)
+            warnings.warn(CacheWarning(f"{sequence.identity.name}: frames not cached: {exc}"), stacklevel=3)
             return False
         except Exception:
             return False

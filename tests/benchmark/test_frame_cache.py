@@ -13,7 +13,7 @@ import pytest
 from click.testing import CliRunner
 
 from benchmark.cli import main
-from benchmark.frame_cache import CacheRebuilt, CachedSequence, FrameCache
+from benchmark.frame_cache import CacheWarning, CachedSequence, FrameCache
 from benchmark.modalities.camera.scenes.scene import CameraScene
 from benchmark.modalities.sonar.scenes.scene import SonarScene
 from benchmark.model import Frame, Sequence
@@ -138,7 +138,7 @@ def cached_entry(registry, tmp_path: Path, name: str = "camera/S6", n_frames: in
 
 def read_back_rebuilt(cache: FrameCache, scene: Sequence, path: Path) -> str:
     """Read ``scene`` through ``cache`` expecting its entry to be rebuilt; the warning's message."""
-    with pytest.warns(CacheRebuilt, match=path.name) as caught:
+    with pytest.warns(CacheWarning, match=path.name) as caught:
         frames = list(cache.wrap(scene).frames())
     assert_same_frames(frames, list(scene.frames()))
     assert cache.holds(scene)
@@ -202,7 +202,7 @@ def test_frames_that_cannot_be_stored_are_streamed_with_a_warning_naming_the_seq
 
     scene = Unstorable(short(registry, "sonar/concrete", 3).spec)
     cache = FrameCache(tmp_path)
-    with pytest.warns(CacheRebuilt, match="sonar/concrete: frames not cached: cannot store a builtins.object"):
+    with pytest.warns(CacheWarning, match="sonar/concrete: frames not cached: cannot store a builtins.object"):
         frames = list(cache.wrap(scene).frames())
     assert [frame.index for frame in frames] == [0, 1, 2] and not cache.holds(scene)
 
