@@ -771,7 +771,7 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
     type=Seconds(),
     default=60.0,
     show_default=True,
-    help="Seconds one check may take before it fails as a hang.",
+    help="Seconds of CPU time one check may use (and ten times as long of waiting) before it fails as a hang.",
 )
 @click.option(
     "--in-process",

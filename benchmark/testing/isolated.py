@@ -34,6 +34,7 @@ from benchmark.testing import (
     prepare_within,
     run_check,
 )
+from benchmark.testing.time_limit import WAIT_FACTOR
 
 _REGISTRY: Registry | None = None
 """The registry of the command that started the workers, which forked workers inherit."""
@@ -66,8 +67,9 @@ def check_in_workers(
     """
     global _REGISTRY
     _REGISTRY = registry
-    # A tracker's first check also prepares it, each under the limit; the worker gets a grace period on top.
-    limit = 2.0 * float(hard_limit_s(time_limit_s))
+    # A tracker's first check also prepares it, each under the limit and its wall-time bound (time_limit); the
+    # worker gets a grace period on top, and is stopped only when native code holds it past both.
+    limit = 2.0 * float(hard_limit_s(time_limit_s * WAIT_FACTOR))
     pool = worker_pool(1)
     try:
         for name in names:

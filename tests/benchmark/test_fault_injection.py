@@ -272,7 +272,7 @@ def test_check_gives_each_fault_its_failed_checks_and_goes_on(faults_installed: 
         "exits": "SystemExit: 3 (step, frame 2)",
         "interrupts": "KeyboardInterrupt (step, frame 2)",
         "raises-oddly": "Unprintable: <Unprintable that cannot be shown> (step, frame 2)",
-        "spins": "did not finish within 0.5 s (step, frame 2): does it hang?",
+        "spins": "did not finish within 0.5 s of CPU time (step, frame 2): does it hang?",
         "exits-hard": "the worker process ended (exit status 7) during the check",
         "segfaults": "the worker process ended (killed by SIGSEGV) during the check",
     }

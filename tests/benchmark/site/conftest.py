@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-import time
 import types
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -56,12 +55,11 @@ class Clip(Sequence):
 
 @dataclass(frozen=True)
 class Site:
-    """A history, the site built from it, and how long the build took."""
+    """A history and the site built from it."""
 
     history: History
     root: Path
     index: Path
-    build_s: float
 
 
 def record(registry: Registry, history: History, selection: Selection, out: Path, days: list[int]) -> None:
@@ -79,9 +77,7 @@ def record(registry: Registry, history: History, selection: Selection, out: Path
 
 
 def build(history: History, root: Path, registry: Registry) -> Site:
-    started = time.perf_counter()
-    index = build_site(history, root, registry.modalities)
-    return Site(history, root, index, time.perf_counter() - started)
+    return Site(history, root, build_site(history, root, registry.modalities))
 
 
 @pytest.fixture(scope="session")

@@ -162,9 +162,6 @@ def test_empty_history_is_an_error(registry: Registry, tmp_path: Path) -> None:
     assert not (tmp_path / "site" / "index.html").exists()
 
 
-def test_build_is_quick(nightly: Site) -> None:
-    assert nightly.build_s < 30.0
-
 
 def site_state(site: Path) -> tuple[bytes, list[str]]:
     """What a reader of ``site`` sees: the index's bytes, and every page it links that is missing."""
