@@ -95,3 +95,11 @@ def test_a_bad_training_image_is_a_data_error_naming_sequence_and_frame(drawn):
     params = TextureParams(**{**drawn.FAST, "frames_per_sequence": 10})
     with pytest.raises(DataError, match=r"'drawn/bad', frame 2: .*float64"):
         train([bad], params, np.random.default_rng(0))
+
+
+@pytest.mark.parametrize("rounds", [3, 10])
+def test_the_classifier_boosts_as_many_rounds_as_asked(drawn, rounds):
+    params = TextureParams(**{**drawn.FAST, "boosting_rounds": rounds})
+    model = train(drawn.training_set(), params, np.random.default_rng(0))
+    trees_per_round = 1 if len(model.regions.regions) == 2 else len(model.regions.regions)
+    assert model.regions.forest.leaf_values.shape[0] == rounds * trees_per_round
