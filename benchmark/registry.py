@@ -25,6 +25,10 @@ from benchmark.parameters import params_key
 from benchmark.tracker import Tracker
 
 
+class _InvalidTracker(Exception):
+    """A tracker class that breaks the tracker contract; it costs only that tracker."""
+
+
 @dataclass(frozen=True)
 class Origin:
     """Where a registered item came from: the plugin and its distribution."""
@@ -180,47 +184,58 @@ class Registry:
 
     def add_tracker(
         self, tracker_class: type[Tracker], *, name: str | None = None, params: Mapping[str, Any] | None = None
-    ) -> TrackerEntry:
+    ) -> TrackerEntry | None:
         """Register a tracker class, optionally as a named variant with other parameters.
 
-        Raises
-        ------
-        PluginError
-            If the class does not fulfil the tracker contract, the name is
-            taken, or a parameter is unknown.
+        A class that does not fulfil the tracker contract, a name already
+        taken or a parameter the class does not declare costs only this
+        tracker: it is left out, the problem is noted for the calling plugin
+        (:meth:`add_problem`, an error with ``--strict-plugins``) and the
+        plugin's other trackers are kept.
+
+        Returns
+        -------
+        TrackerEntry or None
+            The entry; None when the tracker was left out.
         """
+        try:
+            entry = self._tracker_entry(tracker_class, name, params)
+        except (_InvalidTracker, ParameterError) as exc:
+            self.add_problem(f"{exc}; the tracker is left out")
+            return None
+        self.trackers[entry.name] = entry
+        return entry
+
+    def _tracker_entry(
+        self, tracker_class: type[Tracker], name: str | None, params: Mapping[str, Any] | None
+    ) -> TrackerEntry:
+        """The entry of a tracker class, or an error saying which part of the contract it breaks."""
         if not (inspect.isclass(tracker_class) and issubclass(tracker_class, Tracker)):
-            raise self._fail(f"{tracker_class!r} is not a subclass of benchmark.Tracker")
+            raise _InvalidTracker(f"{tracker_class!r} is not a subclass of benchmark.Tracker")
         if inspect.isabstract(tracker_class):
             missing = ", ".join(sorted(tracker_class.__abstractmethods__))
-            raise self._fail(f"tracker class {tracker_class.__name__} does not implement {missing}")
+            raise _InvalidTracker(f"tracker class {tracker_class.__name__} does not implement {missing}")
         for attribute in ("name", "version", "modality"):
             if not isinstance(getattr(tracker_class, attribute, None), str) or not getattr(tracker_class, attribute):
-                raise self._fail(f"tracker class {tracker_class.__name__} must set a non-empty str {attribute!r}")
+                raise _InvalidTracker(f"tracker class {tracker_class.__name__} must set a non-empty str {attribute!r}")
         if tracker_class.modality not in self.modalities:
             known = ", ".join(self.modalities) or "none"
-            raise self._fail(
+            raise _InvalidTracker(
                 f"tracker {tracker_class.name!r} has modality {tracker_class.modality!r}, which no plugin "
                 f"registered (registered: {known})"
             )
         params_class = tracker_class.Params
         if not (dataclasses.is_dataclass(params_class) and params_class.__dataclass_params__.frozen):
-            raise self._fail(f"tracker {tracker_class.name!r}: Params must be a frozen dataclass")
+            raise _InvalidTracker(f"tracker {tracker_class.name!r}: Params must be a frozen dataclass")
         try:
             params_class()
         except TypeError as exc:
-            raise self._fail(f"tracker {tracker_class.name!r}: every parameter needs a default ({exc})") from exc
+            raise _InvalidTracker(f"tracker {tracker_class.name!r}: every parameter needs a default ({exc})") from exc
         entry_name = name or tracker_class.name
         if entry_name in self.trackers:
             other = self.trackers[entry_name].origin
-            raise self._fail(f"tracker name {entry_name!r} is already registered by plugin {other.plugin!r}")
-        try:
-            values = tracker_class.make_params(params)
-        except ParameterError as exc:
-            raise self._fail(str(exc)) from exc
-        entry = TrackerEntry(entry_name, tracker_class, values, self.origin)
-        self.trackers[entry_name] = entry
-        return entry
+            raise _InvalidTracker(f"tracker name {entry_name!r} is already registered by plugin {other.plugin!r}")
+        return TrackerEntry(entry_name, tracker_class, tracker_class.make_params(params), self.origin)
 
     def add_suite(
         self, name: str, sequences: Iterable[Sequence], *, training: str | None = None, scored: bool = True

@@ -88,6 +88,29 @@ def test_a_duplicate_tracker_name_is_named(monkeypatch, installed):
     assert "plugin 'acme' (acme-trackers 0.3)" in message and "by plugin 'copycat'" in message
 
 
+def test_a_tracker_whose_params_are_not_frozen_costs_only_itself(monkeypatch, installed):
+    @dataclass
+    class Loose:
+        size: int = 1
+
+    class Unfrozen(ThirdParty):
+        name = "acme-loose"
+        Params = Loose
+
+    def register(registry):
+        registry.add_tracker(Unfrozen)
+        registry.add_tracker(ThirdParty)
+
+    plugin_module(monkeypatch, "acme_trackers", trackbench_register_trackers=register)
+    installed("acme-trackers", [("acme", "acme_trackers")])
+    listing = CliRunner().invoke(main, ["list"])
+    assert listing.exit_code == 1, listing.output
+    assert "tracker 'acme-loose': Params must be a frozen dataclass; the tracker is left out" in listing.output
+    registry = load_registry()
+    assert "acme" in registry.trackers and "acme-loose" not in registry.trackers and "hough" in registry.trackers
+    assert CliRunner().invoke(main, ["--strict-plugins", "list"]).exit_code == 2
+
+
 def test_an_unknown_parameter_is_named(monkeypatch, installed):
     def register(registry):
         registry.add_tracker(ThirdParty, name="acme-fast", params={"speed": 2})
