@@ -46,11 +46,8 @@ When the cache cannot be written
 
 from __future__ import annotations
 
-import functools
-import hashlib
 import itertools
 import os
-import sys
 import uuid
 import warnings
 from collections.abc import Iterator, Mapping
@@ -63,7 +60,7 @@ import filelock
 from benchmark import storage
 from benchmark.errors import DataError
 from benchmark.files import make_folder
-from benchmark.identity import DatasetIdentity, digest
+from benchmark.identity import DatasetIdentity, code_digest, digest
 from benchmark.model import Frame, Sequence, SequenceInfo
 from benchmark.storage import StorageError
 
@@ -87,22 +84,6 @@ def default_cache_folder() -> Path:
     import platformdirs
 
     return Path(platformdirs.user_cache_dir("trackbench")) / "frames"
-
-
-@functools.cache
-def _package_code_digest(module: str) -> str:
-    """A digest of every ``.py`` file of the top-level package of ``module`` (or of the module alone)."""
-    package = sys.modules.get(module.partition(".")[0])
-    folders = [Path(folder) for folder in getattr(package, "__path__", [])]
-    files = sorted((path.relative_to(folder).as_posix(), path) for folder in folders for path in folder.rglob("*.py"))
-    if not files:
-        own = getattr(sys.modules.get(module), "__file__", None)
-        files = [(Path(own).name, Path(own))] if own else []
-    hasher = hashlib.sha256()
-    for name, path in files:
-        hasher.update(name.encode())
-        hasher.update(path.read_bytes())
-    return hasher.hexdigest()
 
 
 def _entry_header(key: str, identity: DatasetIdentity, info: SequenceInfo) -> dict[str, Any]:
@@ -144,7 +125,7 @@ class FrameCache:
         """The key of ``sequence``'s entry, or None when its frames are not cached (read from files)."""
         if not sequence.cache_frames:
             return None
-        return digest(FORMAT, sequence.identity.key, _package_code_digest(type(sequence).__module__))
+        return digest(FORMAT, sequence.identity.key, code_digest(type(sequence).__module__))
 
     def path(self, key: str) -> Path:
         """The entry file of ``key``."""

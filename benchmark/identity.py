@@ -32,6 +32,7 @@ import importlib.metadata
 import json
 import math
 import os
+import sys
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from functools import cache
@@ -176,6 +177,27 @@ def file_fingerprint(path: str | os.PathLike[str], content: bytes | None = None,
 def resolved_source(path: str | os.PathLike[str]) -> str:
     """The source of a dataset on disk: its absolute path with links and ``..`` resolved."""
     return resolved(path).as_posix()
+
+
+@cache
+def code_digest(module: str) -> str:
+    """A digest of every ``.py`` file of the top-level package of ``module`` (or of the module alone), once per process.
+
+    Part of the key of cached frames (a renderer edited without a version
+    bump is not served from the cache) and of a tracker's cache key (a
+    tracker edited without a version bump is run again on ``--resume``).
+    """
+    package = sys.modules.get(module.partition(".")[0])
+    folders = [Path(folder) for folder in getattr(package, "__path__", [])]
+    files = sorted((path.relative_to(folder).as_posix(), path) for folder in folders for path in folder.rglob("*.py"))
+    if not files:
+        own = getattr(sys.modules.get(module), "__file__", None)
+        files = [(Path(own).name, Path(own))] if own else []
+    hasher = hashlib.sha256()
+    for name, path in files:
+        hasher.update(name.encode())
+        hasher.update(path.read_bytes())
+    return hasher.hexdigest()
 
 
 @cache

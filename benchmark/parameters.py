@@ -148,10 +148,10 @@ def _describe(tracker: str, exc: pydantic.ValidationError) -> str:
     return f"tracker {tracker!r}: " + "; ".join(problems)
 
 
-def params_key(name: str, version: str, params: Any) -> str:
-    """Hash of a tracker's name, version and parameters: the results cache key."""
+def params_key(name: str, version: str, params: Any, code: str = "") -> str:
+    """Hash of a tracker's name, version, parameters and code digest: the results cache key."""
     payload = json.dumps(
-        {"name": name, "version": version, "params": dataclasses.asdict(params)},
+        {"name": name, "version": version, "params": dataclasses.asdict(params), **({"code": code} if code else {})},
         sort_keys=True,
         default=repr,
     )

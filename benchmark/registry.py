@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from benchmark.errors import ParameterError, PluginError
+from benchmark.identity import code_digest
 from benchmark.modality import Modality, SceneFactory
 from benchmark.model import Sequence
 from benchmark.parameters import params_key
@@ -56,8 +57,12 @@ class TrackerEntry:
 
     @property
     def cache_key(self) -> str:
-        """Hash of name, version and parameters (see :func:`benchmark.parameters.params_key`)."""
-        return params_key(self.name, self.version, self.params)
+        """Hash of name, version, parameters and the tracker's package's code (:func:`benchmark.identity.code_digest`).
+
+        An edit of the package without a version bump is a new key, so
+        ``--resume`` runs its cells again instead of showing old results.
+        """
+        return params_key(self.name, self.version, self.params, code_digest(self.tracker_class.__module__))
 
     def create(self) -> Tracker:
         """A fresh tracker instance with these parameters."""

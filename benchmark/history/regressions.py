@@ -156,7 +156,7 @@ def _cause(now: pd.DataFrame, earlier: pd.DataFrame) -> str:
         if old != new:
             causes.append(f"{name} {old} -> {new}")
     if not causes and _values(now, "tracker_key") != _values(earlier, "tracker_key"):
-        causes.append("training or tracker key changed")
+        causes.append("the tracker's code or training changed")
     return "; ".join(causes)
 
 

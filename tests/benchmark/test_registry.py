@@ -1,11 +1,14 @@
 """Tests of benchmark.registry: modalities, trackers and suites, checked and attributed to their plugin."""
 
 import dataclasses
+import importlib
 import re
+import sys
 
 import pytest
 
 from benchmark.errors import PluginError
+from benchmark.identity import code_digest
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.modalities.sonar.modality import SONAR
 from benchmark.modality import ANY_FILE, Modality, Reader
@@ -230,3 +233,29 @@ def test_additions_are_attributed_to_the_acting_plugin_else_to_the_finder():
     assert re.match(r"^plugin 'found' \(found-dist 1.0\): .*registered by plugin '<direct>'", registry.problems[1])
     registry.attribute_with(None)
     assert registry.origin == Origin()
+
+
+def test_an_edit_of_a_tracker_s_code_without_a_version_bump_changes_its_cache_key(registry, tmp_path, monkeypatch):
+    source = tmp_path / "edited_tracker.py"
+    body = (
+        "from benchmark.tracker import Tracker\n"
+        "class Edited(Tracker):\n"
+        "    name, version, modality = 'edited', '1.0', 'camera'\n"
+        "    def reset(self, info, rng, init=None):\n"
+        "        pass\n"
+        "    def step(self, frame):\n"
+        "        return {}\n"
+    )
+    source.write_text(body)
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.delitem(sys.modules, "edited_tracker", raising=False)
+    module = importlib.import_module("edited_tracker")
+    entry = registry.add_tracker(module.Edited)
+    before = entry.cache_key
+    assert entry.cache_key == before  # the same code gives the same key
+    source.write_text(body.replace("return {}", "return None"))
+    code_digest.cache_clear()  # a new process reads the files again
+    try:
+        assert entry.cache_key != before
+    finally:
+        code_digest.cache_clear()
