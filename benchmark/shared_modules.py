@@ -19,6 +19,7 @@ Names added later (numpy loads some submodules on first use) are left alone.
 from __future__ import annotations
 
 import sys
+from collections.abc import Iterator
 from dataclasses import dataclass
 from types import ModuleType
 from typing import Any
@@ -61,12 +62,13 @@ class Snapshot:
 
     def restore(self) -> list[str]:
         """Put every replaced or removed name and numpy's error handling back; what was put back, as :meth:`changes` gives it."""
-        changed = self.changes()
-        for _, module, name, value in list(self._changed()):
+        replaced = list(self._changed())
+        for _, module, name, value in replaced:
             setattr(module, name, value)
-        if self._errors_changed():
+        errors = self._errors_changed()
+        if errors:
             sys.modules["numpy"].seterr(**self.numpy_errors)
-        return changed
+        return [f"{module_name}.{name}" for module_name, _, name, _ in replaced] + errors
 
     def _errors_changed(self) -> list[str]:
         numpy = sys.modules.get("numpy")
@@ -74,7 +76,7 @@ class Snapshot:
             return []
         return ["numpy.seterr"]
 
-    def _changed(self):  # type: ignore[no-untyped-def]
+    def _changed(self) -> Iterator[tuple[str, ModuleType, str, Any]]:
         for module_name, (module, names) in self.names.items():
             now = vars(module)
             for name, value in names.items():

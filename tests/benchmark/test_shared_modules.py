@@ -1,0 +1,38 @@
+"""The modules every tracker shares: what a plugin replaces in them is named and put back, what it adds is left."""
+
+from __future__ import annotations
+
+import math
+import sys
+
+import numpy as np
+import pytest
+
+from benchmark.shared_modules import Snapshot
+
+
+def test_replaced_and_removed_names_and_numpy_s_error_handling_are_named_and_put_back() -> None:
+    mean, sqrt, errors = np.mean, math.sqrt, np.geterr()
+    snapshot = Snapshot.take()
+    assert snapshot.changes() == []
+    try:
+        np.mean = lambda *args, **kwargs: 0.0
+        del math.sqrt
+        np.seterr(divide="raise")
+        np.added_by_a_plugin = "new"  # additions are left alone
+        assert sorted(snapshot.changes()) == ["math.sqrt", "numpy.mean", "numpy.seterr"]
+        assert sorted(snapshot.restore()) == ["math.sqrt", "numpy.mean", "numpy.seterr"]
+        assert (np.mean, math.sqrt, np.geterr()) == (mean, sqrt, errors)
+        assert np.added_by_a_plugin == "new" and snapshot.changes() == []
+    finally:
+        np.mean, math.sqrt = mean, sqrt
+        np.seterr(**errors)
+        vars(np).pop("added_by_a_plugin", None)
+
+
+def test_an_extended_snapshot_keeps_what_it_knew_and_adds_modules_loaded_since(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delitem(sys.modules, "math")
+    early = Snapshot.take()
+    assert "math" not in early.names
+    monkeypatch.undo()
+    assert "math" in early.extended().names and early.extended().names["numpy"] is early.names["numpy"]
