@@ -365,7 +365,8 @@ def build_site(
     Raises
     ------
     DataError
-        If the history holds no run, or from the history database.
+        If the history holds no run, from the history database, or when the
+        site cannot be written (a full or read-only disk), naming the site.
     """
     night = _load(history, modalities, thresholds or Thresholds())
     site = make_folder(site)
