@@ -381,17 +381,30 @@ def check_runs(subject: Subject) -> str:
 
 
 def check_frames_without_truth(subject: Subject) -> str:
-    """The same frames with the truth removed (and no ``init``) run without an exception.
+    """The tracker never reads the frames' truth.
+
+    The frames with the truth removed (and no ``init``) run and give valid
+    estimates; and with the truth removed from every frame but the first
+    (which ``init`` hands to ``reset``), the estimates are those the frames
+    with truth give.
 
     Raises
     ------
     AssertionError
-        If the tracker raises, for instance because it reads ``frame.truth``.
+        If the tracker raises or returns an invalid estimate without truth,
+        or an estimate changes when the truth is taken away: it reads
+        ``frame.truth``.
     """
     _, frames = subject.ready()
     unlabelled = [dataclasses.replace(frame, truth=None) for frame in frames.frame_list]
-    estimates = subject.run(subject.create(), unlabelled, truth=False)
-    return f"{sum(estimate is not None for estimate in estimates)} estimates without truth"
+    estimates = subject.run(subject.create(), unlabelled, truth=False, label="without truth")
+    detected = _check_estimates(subject, unlabelled, estimates, "without truth")
+    with_truth = subject.run(subject.create())
+    blind = subject.run(subject.create(), [frames.frame_list[0], *unlabelled[1:]], label="truth only for init")
+    difference = _difference(frames, with_truth, blind)
+    if difference:
+        raise subject.fail(f"its estimates change when the frames' truth is taken away {difference}: it reads frame.truth")
+    return f"{detected} valid estimates without truth; the same estimates whether frames carry truth or not"
 
 
 def check_same_seed_same_output(subject: Subject) -> str:
@@ -606,14 +619,16 @@ def check_random_sequences(subject: Subject) -> str:
 
 
 def check_pickles(subject: Subject) -> str:
-    """The entry, and an instance after ``reset`` and a ``step``, round-trip through pickle.
+    """The entry, and an instance at the start, the middle and the end of the frames, round-trip through pickle.
 
-    The copy's next estimate must equal the original's.
+    After each of those frames the copy's next estimate must equal the
+    original's: a tracker that opens a file or starts a thread part way
+    through is caught where it does.
 
     Raises
     ------
     AssertionError
-        Naming what could not be pickled, or the frame where the copy differs.
+        Naming what could not be pickled and after which frame, or the frame where the copy differs.
     """
     _, frames = subject.ready()
     try:
@@ -622,26 +637,30 @@ def check_pickles(subject: Subject) -> str:
         raise
     except BaseException as exc:
         raise subject.fail(f"its registry entry does not pickle: {describe_exception(exc)}") from exc
-    tracker = subject.create()
-    subject.run(tracker, frames.frame_list[:1])
-    try:
-        copy = pickle.loads(pickle.dumps(tracker))
-    except PASS_THROUGH:
-        raise
-    except BaseException as exc:
-        raise subject.fail(f"an instance after reset and step does not pickle: {describe_exception(exc)}") from exc
-    if len(frames.frame_list) < 2:
-        return "pickled after one frame"
-    following = frames.frame_list[1]
-    try:
-        original, copied = tracker.step(following), copy.step(following)
-    except PASS_THROUGH:
-        raise
-    except BaseException as exc:
-        raise subject.fail(f"{describe_exception(exc)} (step after pickling, frame {following.index})") from exc
-    if not same(original, copied):
-        raise subject.fail(f"the unpickled instance's estimate at frame {following.index} differs: {copied}")
-    return "pickled after one frame; the copy steps alike"
+    steps = frames.frame_list
+    points = sorted({1, len(steps) // 2, len(steps) - 1} - {0}) or [1]
+    for point in points:
+        tracker = subject.create()
+        subject.run(tracker, steps[:point])
+        after = steps[min(point, len(steps)) - 1].index
+        try:
+            copy = pickle.loads(pickle.dumps(tracker))
+        except PASS_THROUGH:
+            raise
+        except BaseException as exc:
+            raise subject.fail(f"an instance after frame {after} does not pickle: {describe_exception(exc)}") from exc
+        if point >= len(steps):
+            continue
+        following = steps[point]
+        try:
+            original, copied = tracker.step(following), copy.step(following)
+        except PASS_THROUGH:
+            raise
+        except BaseException as exc:
+            raise subject.fail(f"{describe_exception(exc)} (step after pickling, frame {following.index})") from exc
+        if not same(original, copied):
+            raise subject.fail(f"the unpickled instance's estimate at frame {following.index} differs: {copied}")
+    return f"pickled after frames {', '.join(str(steps[min(p, len(steps)) - 1].index) for p in points)}; the copies step alike"
 
 
 def check_step_time(subject: Subject) -> str:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 import types
 from typing import Any
 
@@ -54,6 +55,35 @@ class NotANumber(Steady):
     def step(self, frame: Frame) -> Any:
         estimate = super().step(frame)
         return CableState(math.nan, 0.0, 12.0, 0.0) if frame.index == 2 else estimate
+
+
+class Peeking(Steady):
+    """Returns the frame's truth where it has one."""
+
+    name = "peeking"
+
+    def step(self, frame: Frame) -> Any:
+        return frame.truth.cable if frame.truth is not None else super().step(frame)
+
+
+class NanWithoutTruth(Steady):
+    """Returns a NaN state on a frame without truth (once lost, as it were)."""
+
+    name = "nan-without-truth"
+
+    def step(self, frame: Frame) -> Any:
+        return super().step(frame) if frame.truth is not None else CableState(math.nan, 0.0, 12.0, 0.0)
+
+
+class OpensAFileAtFrame5(Steady):
+    """Keeps a file open from frame 5 on, which pickle refuses."""
+
+    name = "opens-a-file"
+
+    def step(self, frame: Frame) -> Any:
+        if frame.index == 5:
+            self.log = open(os.devnull, "w")  # noqa: SIM115
+        return super().step(frame)
 
 
 class Unseeded(Steady):
@@ -155,6 +185,27 @@ def failures(results: list[CheckResult]) -> dict[str, str]:
     return {result.check: result.message for result in results if not result.ok}
 
 
+@pytest.mark.parametrize(
+    ("tracker", "says"),
+    [
+        (Peeking, "its estimates change when the frames' truth is taken away at frame 1"),
+        (NanWithoutTruth, "invalid estimate at frame 0, without truth: EstimateError"),
+    ],
+    ids=["reads truth", "nan without truth"],
+)
+def test_a_tracker_that_leans_on_the_truth_fails_frames_without_truth(
+    registry: Registry, fakes: types.ModuleType, tracker: type[Tracker], says: str
+) -> None:
+    failed = failures(run_kit(tracker, registry, fakes))
+    assert says in failed["frames_without_truth"], failed
+
+
+def test_a_tracker_that_becomes_unpicklable_part_way_fails_where_it_does(registry: Registry, fakes: types.ModuleType) -> None:
+    failed = failures(run_kit(OpensAFileAtFrame5, registry, fakes))
+    assert list(failed) == ["pickles"]
+    assert "an instance after frame 8 does not pickle: TypeError" in failed["pickles"]  # fine after frames 0 and 4
+
+
 def test_checks_are_named_in_order() -> None:
     assert ALL_CHECKS == [
         "metadata",
@@ -217,8 +268,9 @@ def test_a_broken_tracker_fails_exactly_its_check(
 
 def test_a_nan_estimate_fails_every_check_that_validates_estimates(registry: Registry, fakes: types.ModuleType) -> None:
     failed = failures(run_kit(NotANumber, registry, fakes))
-    assert list(failed) == ["runs", "hard_observations", "random_sequences"]
+    assert list(failed) == ["runs", "frames_without_truth", "hard_observations", "random_sequences"]
     assert "invalid estimate at frame 2: EstimateError" in failed["runs"]
+    assert "invalid estimate at frame 2, without truth: EstimateError" in failed["frames_without_truth"]
     assert "invalid estimate at frame 2, 'blank' observations" in failed["hard_observations"]
     assert "invalid estimate at frame 2, random sequence" in failed["random_sequences"]
 
