@@ -30,10 +30,17 @@ __all__ = [
 ]
 
 WEIGHT_SUM_TOLERANCE = 1e-9
-"""How far the weights of a particle belief may sum from one."""
+"""How far float64 weights of a particle belief may sum from one; weights of a coarser dtype get ``N * eps``."""
 
 SYMMETRY_TOLERANCE = 1e-9
-"""Relative tolerance of a covariance's symmetry and of its smallest eigenvalue, times its scale."""
+"""Relative tolerance of a float64 covariance's symmetry and smallest eigenvalue; a coarser dtype gets ``10 * D * eps``."""
+
+
+def dtype_tolerance(value: object, floor: float, terms: int) -> float:
+    """``floor``, or the rounding a sum of ``terms`` values of ``value``'s float dtype can make, whichever is larger."""
+    dtype = getattr(value, "dtype", None)
+    eps = float(np.finfo(dtype).eps) if dtype is not None and np.issubdtype(dtype, np.floating) else 0.0
+    return max(floor, terms * eps)
 
 
 @runtime_checkable
@@ -126,12 +133,13 @@ def particle_belief_problems(particles: object, weights: object) -> list[str]:
         bad = int(np.flatnonzero(w < 0)[0])
         problems.append(f"{int(np.sum(w < 0))} weights are negative (weight {bad} is {w[bad]!r})")
     total = float(np.sum(w))
-    if abs(total - 1.0) > WEIGHT_SUM_TOLERANCE:
-        problems.append(f"weights sum to {total!r}, not 1 within {WEIGHT_SUM_TOLERANCE:g}")
+    tolerance = dtype_tolerance(weights, WEIGHT_SUM_TOLERANCE, w.size)
+    if abs(total - 1.0) > tolerance:
+        problems.append(f"weights sum to {total!r}, not 1 within {tolerance:g}")
     square = float(np.dot(w, w))
     ess = 1.0 / square if square > 0 else np.inf
     n = w.size
-    slack = 1e-9 * n
+    slack = tolerance * n
     if not (1.0 - slack <= ess <= n + slack):
         problems.append(f"effective sample size 1/sum(w^2) = {ess!r} is outside [1, {n}]")
     return problems
@@ -147,10 +155,11 @@ def gaussian_belief_problems(mean: object, cov: object, tol: float = SYMMETRY_TO
     cov : array_like
         The covariance, shape ``(D, D)``.
     tol : float
-        Relative tolerance: the covariance may be asymmetric by ``tol *
-        scale`` and its smallest eigenvalue as low as ``-tol * scale``,
-        where ``scale`` is the largest absolute entry of the covariance (at
-        least 1e-300).
+        Relative tolerance for float64 (:func:`dtype_tolerance` widens it for
+        coarser dtypes): with each component scaled by its own standard
+        deviation (``C_ij / sqrt(|C_ii| |C_jj|)``), the covariance may be
+        asymmetric by ``tol`` and its smallest eigenvalue as low as ``-tol``;
+        a negative variance is an error whatever its size.
 
     Returns
     -------
@@ -175,12 +184,19 @@ def gaussian_belief_problems(mean: object, cov: object, tol: float = SYMMETRY_TO
         return problems
     if sigma.size == 0:
         return problems
-    scale = max(float(np.max(np.abs(sigma))), 1e-300)
-    asymmetry = float(np.max(np.abs(sigma - sigma.T)))
-    if asymmetry > tol * scale:
-        problems.append(f"covariance is not symmetric: |C - C^T| reaches {asymmetry:.3g} (scale {scale:.3g})")
-        sigma = 0.5 * (sigma + sigma.T)
-    smallest = float(np.min(np.linalg.eigvalsh(sigma)))
-    if smallest < -tol * scale:
-        problems.append(f"covariance is not positive semi-definite: eigenvalue {smallest:.3g} (scale {scale:.3g})")
+    tol = dtype_tolerance(cov, tol, 10 * mu.size)
+    # Each component on its own scale: a negative variance of a component measured in millimetres must not hide
+    # behind one in kilometres.
+    spread = np.sqrt(np.maximum(np.abs(np.diag(sigma)), 1e-300))
+    scaled = sigma / np.outer(spread, spread)
+    asymmetry = float(np.max(np.abs(scaled - scaled.T)))
+    if asymmetry > tol:
+        problems.append(f"covariance is not symmetric: |C - C^T| reaches {asymmetry:.3g} of its components' scales")
+        scaled = 0.5 * (scaled + scaled.T)
+    negative = [int(i) for i in np.flatnonzero(np.diag(sigma) < 0)]
+    if negative:
+        problems.append(f"covariance has negative variances: component {negative[0]} is {sigma[negative[0], negative[0]]:.3g}")
+    smallest = float(np.min(np.linalg.eigvalsh(scaled)))
+    if smallest < -tol:
+        problems.append(f"covariance is not positive semi-definite: eigenvalue {smallest:.3g} on its components' scales")
     return problems

@@ -539,7 +539,32 @@ def check_hard_observations(subject: Subject) -> str:
     if modality.hard_observations is None:
         return f"modality {modality.name!r} declares no hard observations"
     own = frames.frame_list
-    start, stop = len(own) // 3, len(own) - len(own) // 3
+    counts = []
+    for kind, label, hard in _hard_runs(subject):
+        estimates = subject.run(subject.create(), hard, label=label)
+        counts.append(f"{kind} {_check_estimates(subject, hard, estimates, label)}")
+    start, stop = _hard_stretch(own)
+    return f"estimates with each kind in the middle {stop - start} of {len(own)} frames: {', '.join(counts)}"
+
+
+def _hard_stretch(frames: SequenceOf[Frame]) -> tuple[int, int]:
+    """The middle third of the frames, where hard observations replace the frames' own."""
+    return len(frames) // 3, len(frames) - len(frames) // 3
+
+
+def _hard_runs(subject: Subject) -> list[tuple[str, str, list[Frame]]]:
+    """For each kind of hard observation: its name, a label for messages, and the frames with the middle third replaced.
+
+    Raises
+    ------
+    AssertionError
+        If the modality cannot make them (not the tracker's fault).
+    """
+    modality, frames = subject.ready()
+    if modality.hard_observations is None:
+        return []
+    own = frames.frame_list
+    start, stop = _hard_stretch(own)
     rng = np.random.default_rng(SEED)
     try:
         made = [
@@ -551,16 +576,14 @@ def check_hard_observations(subject: Subject) -> str:
             f"modality {modality.name!r} could not make hard observations (not the tracker's fault): "
             f"{describe_exception(exc)}"
         ) from exc
-    counts = []
+    runs = []
     for kind in dict.fromkeys(kind for observations in made for kind in observations):
         hard = [
             dataclasses.replace(frame, observation=observations[kind]) if kind in observations else frame
             for frame, observations in zip(own, made)
         ]
-        label = f"{kind!r} observations in frames {own[start].index}-{own[stop - 1].index}"
-        estimates = subject.run(subject.create(), hard, label=label)
-        counts.append(f"{kind} {_check_estimates(subject, hard, estimates, label)}")
-    return f"estimates with each kind in the middle {stop - start} of {len(own)} frames: {', '.join(counts)}"
+        runs.append((kind, f"{kind!r} observations in frames {own[start].index}-{own[stop - 1].index}", hard))
+    return runs
 
 
 RANDOM_EXAMPLES = 10
@@ -705,42 +728,57 @@ def check_belief_invariants(subject: Subject) -> str:
     (weights finite, non-negative, summing to one, effective sample size in
     ``[1, N]``, particles finite) or :class:`~benchmark.testing.beliefs.GaussianBelief`
     (mean and covariance finite, covariance symmetric and positive
-    semi-definite).  A belief of None (no start yet, target lost) is not
-    checked; a tracker that satisfies neither protocol passes with the
-    detail ``"exposes no belief"``.
+    semi-definite).  It is checked along the frames, and along the frames
+    with each kind of hard observation in their middle third, where a
+    tracker loses its target and coasts (a variance that goes negative only
+    while lost shows there).  A belief of None (no start yet, target lost)
+    is not checked; a tracker that satisfies neither protocol passes with
+    the detail ``"exposes no belief"``.  A run that raises on hard
+    observations is left to :func:`check_hard_observations`.
 
     Raises
     ------
     AssertionError
-        Naming the first point (after reset, or the frame) where the belief breaks an invariant.
+        Naming the run, and the first point (after reset, or the frame) where the belief breaks an invariant.
     """
     _, frames = subject.ready()
-    tracker = subject.create()
     kinds: set[str] = set()
-    held = 0
-    where = "reset"
-    try:
-        tracker.reset(frames.info, subject.rng(), init=frames.frame_list[0].truth)
-        for frame in (None, *frames.frame_list):
-            if frame is not None:
-                where = f"step, frame {frame.index}"
-                tracker.step(frame)
-            now, problems = _belief_problems(tracker)
-            if problems:
-                point = "after reset" if frame is None else f"at frame {frame.index}"
-                raise subject.fail(f"its {' and '.join(now)} belief is broken {point}: {'; '.join(problems)}")
-            kinds.update(now)
-            held += bool(now)
-    except AssertionError:
-        raise
-    except PASS_THROUGH:
-        raise
-    except BaseException as exc:
-        raise subject.fail(f"{describe_exception(exc)} ({where}, reading the belief)") from exc
+    held = points = 0
+    runs: list[tuple[str, str, list[Frame]]] = [("", "", frames.frame_list)]
+    belief_class = subject.entry.tracker_class
+    if any(all(hasattr(belief_class, name) for name in names) for names in (("particles", "weights"), ("mean", "covariance"))):
+        try:
+            runs += _hard_runs(subject)
+        except AssertionError:  # the modality cannot make them: check_hard_observations says so
+            pass
+    for kind, label, steps in runs:
+        tracker = subject.create()
+        where = "reset"
+        try:
+            tracker.reset(frames.info, subject.rng(), init=steps[0].truth)
+            for frame in (None, *steps):
+                if frame is not None:
+                    where = f"step, frame {frame.index}"
+                    tracker.step(frame)
+                now, problems = _belief_problems(tracker)
+                if problems:
+                    point = "after reset" if frame is None else f"at frame {frame.index}"
+                    among = f", {label}" if label else ""
+                    raise subject.fail(f"its {' and '.join(now)} belief is broken {point}{among}: {'; '.join(problems)}")
+                kinds.update(now)
+                held += bool(now)
+                points += 1
+        except AssertionError:
+            raise
+        except PASS_THROUGH:
+            raise
+        except BaseException as exc:
+            if kind:  # the hard_observations check reports it
+                continue
+            raise subject.fail(f"{describe_exception(exc)} ({where}, reading the belief)") from exc
     if not (isinstance(tracker, ParticleBelief) or isinstance(tracker, GaussianBelief)) and not kinds:
         return "exposes no belief"
-    points = len(frames.frame_list) + 1
-    return f"{' and '.join(sorted(kinds)) or 'no'} belief held at {held} of {points} points (reset and each frame)"
+    return f"{' and '.join(sorted(kinds)) or 'no'} belief held at {held} of {points} points ({len(runs)} runs: reset and each frame)"
 
 
 CheckFunction = Callable[[Subject], str]

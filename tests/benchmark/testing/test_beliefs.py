@@ -233,6 +233,21 @@ class IndefiniteCovariance(GaussianSteady):
         return np.array([[1.0, 2.0], [2.0, 1.0]]) if self.stepped else None
 
 
+class NegativeWhileLost(GaussianSteady):
+    """Its variance of ``w`` goes negative while it sees nothing (a blank image), as a faulty coasting step might."""
+
+    name = "negative-while-lost"
+
+    def step(self, frame: Frame) -> Any:
+        self.lost = not frame.observation.any()
+        return super().step(frame)
+
+    @property
+    def covariance(self) -> np.ndarray | None:
+        covariance = super().covariance
+        return np.diag([2.0, -1e-3]) if covariance is not None and getattr(self, "lost", False) else covariance
+
+
 @pytest.fixture
 def registry(fakes: types.ModuleType) -> Registry:
     return fakes.make_registry()
@@ -270,7 +285,7 @@ def test_a_tracker_without_a_belief_passes_with_a_note(registry: Registry, fakes
 
 @pytest.mark.parametrize(
     ("tracker", "held"),
-    [(ParticleSteady, "particle belief held at 11 of 11"), (GaussianSteady, "Gaussian belief held at 10 of 11")],
+    [(ParticleSteady, "particle belief held at 44 of 44"), (GaussianSteady, "Gaussian belief held at 40 of 44")],
 )
 def test_a_sound_belief_passes_everything(
     tracker: type, held: str, registry: Registry, fakes: types.ModuleType
@@ -282,7 +297,11 @@ def test_a_sound_belief_passes_everything(
 
 @pytest.mark.parametrize(
     ("tracker", "words"),
-    [(BrokenWeights, "at frame 3: weights sum to"), (IndefiniteCovariance, "at frame 0: covariance is not positive")],
+    [
+        (BrokenWeights, "at frame 3: weights sum to"),
+        (IndefiniteCovariance, "at frame 0: covariance is not positive"),
+        (NegativeWhileLost, "at frame 3, 'blank' observations in frames 3-6: covariance has negative variances: component 1"),
+    ],
 )
 def test_a_broken_belief_fails_exactly_belief_invariants(
     tracker: type, words: str, registry: Registry, fakes: types.ModuleType
@@ -291,3 +310,36 @@ def test_a_broken_belief_fails_exactly_belief_invariants(
     assert list(failed) == ["belief_invariants"]
     assert f"tracker {tracker.name!r}" in failed["belief_invariants"]
     assert words in failed["belief_invariants"]
+
+
+def test_float32_weights_normalised_in_float32_keep_their_invariants() -> None:
+    rng = np.random.default_rng(3)
+    for n in (10, 1000, 100_000):
+        weights = rng.random(n).astype(np.float32)
+        weights /= weights.sum(dtype=np.float32)
+        assert particle_belief_problems(np.zeros((n, 2), np.float32), weights) == []
+
+
+def test_float64_weights_are_held_to_the_float64_tolerance() -> None:
+    weights = np.full(1000, 1e-3)
+    weights[0] += 1e-7
+    [problem] = particle_belief_problems(np.zeros((1000, 2)), weights)
+    assert problem.startswith("weights sum to") and "within 1e-09" in problem
+
+
+def test_a_negative_variance_of_a_small_component_does_not_hide_behind_a_large_one() -> None:
+    covariance = np.diag([1e6, -1e-6])
+    problems = gaussian_belief_problems(np.zeros(2), covariance)
+    assert any("negative variances: component 1" in problem for problem in problems), problems
+    assert any("not positive semi-definite" in problem for problem in problems), problems
+
+
+def test_the_textbook_kalman_update_passes() -> None:
+    rng = np.random.default_rng(5)
+    for _ in range(50):
+        a = rng.normal(size=(4, 4))
+        prior = a @ a.T + np.diag([1e4, 1.0, 1e-4, 1e-2])
+        h = rng.normal(size=(2, 4))
+        gain = prior @ h.T @ np.linalg.inv(h @ prior @ h.T + np.eye(2) * 1e-3)
+        posterior = (np.eye(4) - gain @ h) @ prior  # not symmetrised, as textbooks write it
+        assert gaussian_belief_problems(np.zeros(4), posterior) == [], posterior
