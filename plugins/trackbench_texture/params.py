@@ -288,6 +288,10 @@ class TextureParams(DescriptorParams):
     the borders' feet, train / train world / dev: ``"sides"`` 55.4 / 42.2 /
     57.2 %, ``"parallel"`` 58.7 / 48.2 / 68.9 %."""
 
+    partner_strength: Annotated[float, Interval(ge=0, le=1)] = 0.3
+    """The profile pairings' smallest ratio of the second border's averaged grey-level step to the first's
+    (:mod:`trackbench_texture.partner`)."""
+
     border_search: Literal["strip", "region"] = "region"
     """Where the straight pieces of the borders are looked for: in the strip, or anywhere in the cable region.
 
