@@ -279,7 +279,7 @@ class TextureParams(DescriptorParams):
     min_length_share: Share = 0.5
     """Share of the image rows (or columns) the cable region must span to be cable-shaped."""
 
-    border_pairing: Pairing = "parallel"
+    border_pairing: Pairing = "parallel-profile"
     """How the two borders are found among the straight pieces (:data:`~trackbench_texture.borders.PAIRINGS`).
 
     A cable wider than ``window_px`` leaves a band of cable class along
