@@ -276,6 +276,7 @@ class _PairLimits:
     max_width_px: float
     max_skew: float
     partner_strength: float = 0.0
+    partner_widest_share: float = 1.0
 
     def supported(self, along: np.ndarray, inliers: np.ndarray) -> bool:
         """Whether a border's inliers lie on at least ``min_rows`` scan lines."""
@@ -350,8 +351,14 @@ def _profile_partner(line: ScanLine, scan_grey: np.ndarray | None, limits: _Pair
         max_skew=limits.max_skew,
         min_rows=limits.min_rows,
         min_strength=limits.partner_strength,
+        widest_share=limits.partner_widest_share,
     )
     return None if found is None else ScanLine(*found)
+    middle = 0.5 * (scan_grey.shape[0] - 1)
+    back = partner_of(second)
+    if back is None or abs(back.at(middle) - line.at(middle)) > MUTUAL:
+        return None
+    return second
 
 
 def _paired(
@@ -452,6 +459,7 @@ def fit_borders(
     max_skew: float,
     grey: np.ndarray | None = None,
     partner_strength: float = 0.0,
+    partner_widest_share: float = 1.0,
 ) -> CableState | None:
     """The cable state of the straight borders along the two sides of the strip, or None.
 
@@ -483,6 +491,8 @@ def fit_borders(
         to (lightly smoothed): needed by the profile pairings.
     partner_strength : float
         The profile pairings' smallest ratio of the second border's grey-level step to the first's.
+    partner_widest_share : float
+        The profile pairings take the widest candidate whose step is at least this share of the strongest's.
 
     Returns
     -------
@@ -496,7 +506,7 @@ def fit_borders(
     searched = strip.mask if region is None else strip.scan(region)
     along, across = np.divmod(np.flatnonzero(strip.scan(straight > 0) & searched), strip.mask.shape[1])
     limits = _PairLimits(
-        inlier_px, trials, min_inlier_share * crossed.sum(), min_width_px, max_width_px, max_skew, partner_strength
+        inlier_px, trials, min_inlier_share * crossed.sum(), min_width_px, max_width_px, max_skew, partner_strength, partner_widest_share
     )
     scan_grey = None if grey is None else np.ascontiguousarray(strip.scan(grey), dtype=np.float32)
     borders = PAIRINGS[pairing](strip, along.astype(np.float64), across.astype(np.float64), limits, rng, scan_grey)

@@ -292,6 +292,10 @@ class TextureParams(DescriptorParams):
     """The profile pairings' smallest ratio of the second border's averaged grey-level step to the first's
     (:mod:`trackbench_texture.partner`)."""
 
+    partner_widest_share: Annotated[float, Interval(gt=0, le=1)] = 0.8
+    """Of the profile pairings' candidates whose step comes within this share of the strongest's,
+    the farthest from the first border is the partner (1: the strongest; :mod:`trackbench_texture.partner`)."""
+
     border_search: Literal["strip", "region"] = "region"
     """Where the straight pieces of the borders are looked for: in the strip, or anywhere in the cable region.
 

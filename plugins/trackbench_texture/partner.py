@@ -19,7 +19,10 @@ across it is averaged over every scan line it crosses (a projection of
 the gradient, so that a long weak edge adds up and the seabed's texture
 averages out); the candidate with the largest average of the opposite
 sign wins if that average is at least ``min_strength`` of the first
-border's own.  No threshold in grey levels is involved: only the ratio of
+border's own.  A cylinder's shading and the growth on it make steps inside
+the cable as well; a border is its silhouette, the outermost step, so of
+the candidates whose step comes within ``widest_share`` of the strongest
+the one farthest from the first border is taken.  No threshold in grey levels is involved: only the ratio of
 the two borders' contrasts.
 """
 
@@ -72,6 +75,7 @@ def partner_line(
     max_skew: float,
     min_rows: float,
     min_strength: float,
+    widest_share: float = 1.0,
 ) -> tuple[float, float] | None:
     """The second border of the cable whose first border is ``across = slope * along + intercept``, or None.
 
@@ -89,6 +93,9 @@ def partner_line(
         Fewest scan lines the partner must cross inside the image.
     min_strength : float
         Smallest ratio of the partner's averaged grey-level step to the first border's.
+    widest_share : float
+        Of the candidates whose step is at least this share of the strongest's, the one farthest from
+        the first border wins (1: the strongest).
 
     Returns
     -------
@@ -115,15 +122,24 @@ def partner_line(
     offsets = np.arange(-reach, reach + 1, dtype=np.float32)
     gap = np.abs(offsets) / stretch
     plausible = (gap >= min_width_px) & (gap <= max_width_px)
-    best, best_line = min_strength * abs(own_step), None
+    least = min_strength * abs(own_step)
     angle = math.atan(slope)
+    candidates = []
     for turn in np.linspace(-2.0 * max_skew, 2.0 * max_skew, SLOPE_STEPS):
         turned = math.tan(angle + turn)
         turned_intercept = slope * middle + intercept - turned * middle
         means = _mean_steps(scan_grey, turned, turned_intercept, offsets, min_rows)
         opposite = -np.sign(own_step) * means
         opposite[~plausible | ~np.isfinite(opposite)] = -np.inf
-        k = int(np.argmax(opposite))
-        if opposite[k] >= best:
-            best, best_line = float(opposite[k]), (turned, turned_intercept + float(offsets[k]))
-    return best_line
+        candidates.append((opposite, turned, turned_intercept))
+    peak = max(float(np.max(opposite)) for opposite, _, _ in candidates)
+    if peak < least:
+        return None
+    floor = max(least, widest_share * peak)
+    chosen, widest = None, -1.0
+    for opposite, turned, turned_intercept in candidates:
+        strong = np.flatnonzero(opposite >= floor)
+        if len(strong) and np.abs(offsets[strong]).max() > widest:
+            k = strong[np.argmax(np.abs(offsets[strong]))]
+            widest, chosen = float(abs(offsets[k])), (turned, turned_intercept + float(offsets[k]))
+    return chosen
