@@ -52,7 +52,7 @@ import numpy as np
 
 from benchmark.modalities.camera.geometry import Line, cable_from_borders
 from benchmark.modalities.camera.model import CableState
-from trackbench_texture.partner import partner_line
+from trackbench_texture.partner import MIN_STRENGTH, WIDEST_SHARE, partner_line
 from trackbench_texture.working import WorkingImage
 
 
@@ -275,8 +275,8 @@ class _PairLimits:
     min_width_px: float
     max_width_px: float
     max_skew: float
-    partner_strength: float = 0.0
-    partner_widest_share: float = 1.0
+    partner_strength: float = MIN_STRENGTH
+    partner_widest_share: float = WIDEST_SHARE
 
     def supported(self, along: np.ndarray, inliers: np.ndarray) -> bool:
         """Whether a border's inliers lie on at least ``min_rows`` scan lines."""
@@ -458,8 +458,8 @@ def fit_borders(
     max_width_px: float,
     max_skew: float,
     grey: np.ndarray | None = None,
-    partner_strength: float = 0.0,
-    partner_widest_share: float = 1.0,
+    partner_strength: float = MIN_STRENGTH,
+    partner_widest_share: float = WIDEST_SHARE,
 ) -> CableState | None:
     """The cable state of the straight borders along the two sides of the strip, or None.
 

@@ -33,6 +33,29 @@ import math
 import cv2
 import numpy as np
 
+MIN_STRENGTH = 0.3
+"""Smallest ratio of the second border's averaged grey-level step to the first's.
+
+Out of fold on camera-train's world sequences / on camera-dev (the
+measurements of :mod:`trackbench_texture.params`), strength 0.1 / 0.2 /
+0.3 / 0.5 / 0.7 (the strongest candidate): 63.1 (11.2) / 63.1 (11.2) /
+63.0 (8.3) / 61.4 (5.9) / 60.7 (5.4) and 79.4 (9.4) / 79.4 (8.2) / 78.6
+(7.8) / 75.8 (6.0) / 74.8 (4.9) % correct (false): 0.3 keeps most of the
+gain at fewer false reports.  A module constant rather than a tracker
+parameter, so that the parameters of ``texture-paper``, which never reads
+a border off the grey levels, stay what they were (its model's training
+key hashes them)."""
+
+WIDEST_SHARE = 0.8
+"""Of the candidates whose step comes within this share of the strongest's, the farthest from the first
+border is the partner (1: the strongest).
+
+A cylinder's shading and the growth on it step inside the cable too
+(dev/d13, d06: both borders found on one side, 8-10 px apart).  1 / 0.9 /
+0.8 / 0.6 / 0.4, train world / dev: 63.0 / 63.9 / 64.3 / 63.1 / 62.4 and
+78.6 / 79.3 / 79.5 / 79.4 / 78.9 % correct; a constant for the reason
+:data:`MIN_STRENGTH` is."""
+
 SLOPE_STEPS = 9
 """Relative slopes tried between the first border and its partner, spread over twice the largest skew."""
 
@@ -74,8 +97,8 @@ def partner_line(
     max_width_px: float,
     max_skew: float,
     min_rows: float,
-    min_strength: float,
-    widest_share: float = 1.0,
+    min_strength: float = MIN_STRENGTH,
+    widest_share: float = WIDEST_SHARE,
 ) -> tuple[float, float] | None:
     """The second border of the cable whose first border is ``across = slope * along + intercept``, or None.
 

@@ -195,8 +195,6 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
             max_width_px=p.max_width_px,
             max_skew=math.radians(p.max_skew_deg),
             grey=_smoothed(work.grey, p.smoothing_sigma) if p.border_pairing in PROFILE_PAIRINGS else None,
-            partner_strength=p.partner_strength,
-            partner_widest_share=p.partner_widest_share,
         )
         if state is None or p.foot_reach_px == 0:
             return state

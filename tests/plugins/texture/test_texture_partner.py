@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from trackbench_texture.borders import cable_strip, fit_borders
 from trackbench_texture.partner import partner_line
 
-LIMITS = dict(min_width_px=5.0, max_width_px=120.0, max_skew=math.radians(10.0), min_rows=30.0, min_strength=0.3)
+LIMITS = dict(min_width_px=5.0, max_width_px=120.0, max_skew=math.radians(10.0), min_rows=30.0, min_strength=0.3, widest_share=1.0)
 
 
 def _band(left: float, right: float, inside: float, outside: float, shape=(120, 160), slope: float = 0.0) -> np.ndarray:
@@ -83,8 +83,8 @@ def test_of_close_steps_the_outermost_is_the_border():
     grey = np.full((120, 160), 60.0, np.float32)
     grey[:, 40:60] = 220.0
     grey[:, 60:100] = 135.0
-    strongest = partner_line(grey, 0.0, 39.5, **LIMITS, widest_share=1.0)
-    outermost = partner_line(grey, 0.0, 39.5, **LIMITS, widest_share=0.8)
+    strongest = partner_line(grey, 0.0, 39.5, **LIMITS)
+    outermost = partner_line(grey, 0.0, 39.5, **{**LIMITS, "widest_share": 0.8})
     assert strongest is not None and outermost is not None
     assert abs(strongest[1] - 59.5) <= 1.0
     assert abs(outermost[1] - 99.5) <= 1.0
