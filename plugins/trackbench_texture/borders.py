@@ -52,6 +52,7 @@ import numpy as np
 
 from benchmark.modalities.camera.geometry import Line, cable_from_borders
 from benchmark.modalities.camera.model import CableState
+from trackbench_texture.partner import MIN_STRENGTH, WIDEST_SHARE, partner_line
 from trackbench_texture.working import WorkingImage
 
 
@@ -274,6 +275,8 @@ class _PairLimits:
     min_width_px: float
     max_width_px: float
     max_skew: float
+    partner_strength: float = MIN_STRENGTH
+    partner_widest_share: float = WIDEST_SHARE
 
     def supported(self, along: np.ndarray, inliers: np.ndarray) -> bool:
         """Whether a border's inliers lie on at least ``min_rows`` scan lines."""
@@ -281,7 +284,12 @@ class _PairLimits:
 
 
 def _by_sides(
-    strip: Strip, along: np.ndarray, across: np.ndarray, limits: _PairLimits, rng: np.random.Generator
+    strip: Strip,
+    along: np.ndarray,
+    across: np.ndarray,
+    limits: _PairLimits,
+    rng: np.random.Generator,
+    scan_grey: np.ndarray | None = None,
 ) -> list[ScanLine] | None:
     """One border on each side of the strip's centreline: each side's RANSAC line."""
     left_side = across < centreline(strip).at(along)
@@ -294,22 +302,28 @@ def _by_sides(
     return borders
 
 
-def _parallel(
-    strip: Strip, along: np.ndarray, across: np.ndarray, limits: _PairLimits, rng: np.random.Generator
-) -> list[ScanLine] | None:
-    """The best-supported line along the strip, then the best-supported line a cable's width from it.
-
-    The second line is drawn from the points off the first, among lines
-    that make at most twice the largest skew with it and lie between the
-    smallest and the largest width from it at the middle scan line.
-    """
-    middle = 0.5 * (strip.mask.shape[0] - 1)
+def _first_border(
+    along: np.ndarray, across: np.ndarray, limits: _PairLimits, rng: np.random.Generator
+) -> tuple[ScanLine, np.ndarray] | None:
+    """The best-supported line along the strip (at most 45 degrees off it) and its inliers, or None."""
     first = ransac_line(
         along, across, limits.inlier_px, limits.trials, rng, lambda slopes, _: np.abs(slopes) <= 1.0
     )
     if first is None or not limits.supported(along, first[1]):
         return None
-    line, taken = first
+    return first
+
+
+def _parallel_partner(
+    line: ScanLine,
+    taken: np.ndarray,
+    middle: float,
+    along: np.ndarray,
+    across: np.ndarray,
+    limits: _PairLimits,
+    rng: np.random.Generator,
+) -> ScanLine | None:
+    """The best-supported line off ``line`` that makes at most twice the largest skew with it at a plausible width."""
     angle = math.atan(line.slope)
 
     def partner(slopes: np.ndarray, intercepts: np.ndarray) -> np.ndarray:
@@ -321,15 +335,111 @@ def _parallel(
     second = ransac_line(rest_along, rest_across, limits.inlier_px, limits.trials, rng, partner)
     if second is None or not limits.supported(rest_along, second[1]):
         return None
-    return sorted([line, second[0]], key=lambda border: border.at(middle))
+    return second[0]
 
 
-Pairing = Literal["sides", "parallel"]
+def _profile_partner(line: ScanLine, scan_grey: np.ndarray | None, limits: _PairLimits) -> ScanLine | None:
+    """The partner of ``line`` read off the grey levels beside it (:func:`~trackbench_texture.partner.partner_line`)."""
+    if scan_grey is None:
+        raise ValueError("texture: the profile pairings need the working image's grey levels")
+    found = partner_line(
+        scan_grey,
+        line.slope,
+        line.intercept,
+        min_width_px=limits.min_width_px,
+        max_width_px=limits.max_width_px,
+        max_skew=limits.max_skew,
+        min_rows=limits.min_rows,
+        min_strength=limits.partner_strength,
+        widest_share=limits.partner_widest_share,
+    )
+    return None if found is None else ScanLine(*found)
+    middle = 0.5 * (scan_grey.shape[0] - 1)
+    back = partner_of(second)
+    if back is None or abs(back.at(middle) - line.at(middle)) > MUTUAL:
+        return None
+    return second
+
+
+def _paired(
+    strip: Strip,
+    along: np.ndarray,
+    across: np.ndarray,
+    limits: _PairLimits,
+    rng: np.random.Generator,
+    scan_grey: np.ndarray | None,
+    partners: tuple[str, ...],
+) -> list[ScanLine] | None:
+    """The first border, then the first of ``partners`` (``"straight"``, ``"profile"``) that finds its partner."""
+    middle = 0.5 * (strip.mask.shape[0] - 1)
+    first = _first_border(along, across, limits, rng)
+    if first is None:
+        return None
+    line, taken = first
+    for kind in partners:
+        second = (
+            _parallel_partner(line, taken, middle, along, across, limits, rng)
+            if kind == "straight"
+            else _profile_partner(line, scan_grey, limits)
+        )
+        if second is not None:
+            return sorted([line, second], key=lambda border: border.at(middle))
+    return None
+
+
+def _parallel(
+    strip: Strip,
+    along: np.ndarray,
+    across: np.ndarray,
+    limits: _PairLimits,
+    rng: np.random.Generator,
+    scan_grey: np.ndarray | None = None,
+) -> list[ScanLine] | None:
+    """The best-supported line along the strip, then the best-supported line a cable's width from it.
+
+    The second line is drawn from the points off the first, among lines
+    that make at most twice the largest skew with it and lie between the
+    smallest and the largest width from it at the middle scan line.
+    """
+    return _paired(strip, along, across, limits, rng, scan_grey, ("straight",))
+
+
+def _profile(
+    strip: Strip,
+    along: np.ndarray,
+    across: np.ndarray,
+    limits: _PairLimits,
+    rng: np.random.Generator,
+    scan_grey: np.ndarray | None = None,
+) -> list[ScanLine] | None:
+    """The best-supported line along the strip, then its partner read off the grey levels beside it."""
+    return _paired(strip, along, across, limits, rng, scan_grey, ("profile",))
+
+
+def _parallel_then_profile(
+    strip: Strip,
+    along: np.ndarray,
+    across: np.ndarray,
+    limits: _PairLimits,
+    rng: np.random.Generator,
+    scan_grey: np.ndarray | None = None,
+) -> list[ScanLine] | None:
+    """As ``"parallel"``; where no straight pieces pair, the partner read off the grey levels as ``"profile"``."""
+    return _paired(strip, along, across, limits, rng, scan_grey, ("straight", "profile"))
+
+
+Pairing = Literal["sides", "parallel", "profile", "parallel-profile"]
 """The names of :data:`PAIRINGS`."""
 
-PAIRINGS: dict[str, Callable[..., list[ScanLine] | None]] = {"sides": _by_sides, "parallel": _parallel}
-"""How the two borders are found among the straight pieces, by name: ``(strip, along, across, limits, rng)``
-to the two scan lines in order of their across-coordinate, or None."""
+PAIRINGS: dict[str, Callable[..., list[ScanLine] | None]] = {
+    "sides": _by_sides,
+    "parallel": _parallel,
+    "profile": _profile,
+    "parallel-profile": _parallel_then_profile,
+}
+"""How the two borders are found, by name: ``(strip, along, across, limits, rng, scan_grey)`` to the two scan
+lines in order of their across-coordinate, or None (``scan_grey``: the grey levels in scan coordinates, which
+the profile pairings need)."""
 
 
 def fit_borders(
@@ -347,6 +457,9 @@ def fit_borders(
     min_width_px: float,
     max_width_px: float,
     max_skew: float,
+    grey: np.ndarray | None = None,
+    partner_strength: float = MIN_STRENGTH,
+    partner_widest_share: float = WIDEST_SHARE,
 ) -> CableState | None:
     """The cable state of the straight borders along the two sides of the strip, or None.
 
@@ -373,6 +486,13 @@ def fit_borders(
         The cable-shape tests of the module docstring.
     max_skew : float
         Largest ``|beta|``, rad.
+    grey : numpy.ndarray, optional
+        ``(H, W)`` ``float32`` grey levels of the image ``straight`` belongs
+        to (lightly smoothed): needed by the profile pairings.
+    partner_strength : float
+        The profile pairings' smallest ratio of the second border's grey-level step to the first's.
+    partner_widest_share : float
+        The profile pairings take the widest candidate whose step is at least this share of the strongest's.
 
     Returns
     -------
@@ -385,8 +505,11 @@ def fit_borders(
         return None
     searched = strip.mask if region is None else strip.scan(region)
     along, across = np.divmod(np.flatnonzero(strip.scan(straight > 0) & searched), strip.mask.shape[1])
-    limits = _PairLimits(inlier_px, trials, min_inlier_share * crossed.sum(), min_width_px, max_width_px, max_skew)
-    borders = PAIRINGS[pairing](strip, along.astype(np.float64), across.astype(np.float64), limits, rng)
+    limits = _PairLimits(
+        inlier_px, trials, min_inlier_share * crossed.sum(), min_width_px, max_width_px, max_skew, partner_strength, partner_widest_share
+    )
+    scan_grey = None if grey is None else np.ascontiguousarray(strip.scan(grey), dtype=np.float32)
+    borders = PAIRINGS[pairing](strip, along.astype(np.float64), across.astype(np.float64), limits, rng, scan_grey)
     if borders is None:
         return None
     low, high = borders
@@ -401,3 +524,6 @@ def fit_borders(
     if work is None or not work.resampled:
         return state
     return cable_from_borders(*(work.frame_line(*pair) for pair in ends))
+
+PROFILE_PAIRINGS = frozenset({"profile", "parallel-profile"})
+"""The pairings that read the second border off the grey levels (and need them)."""

@@ -32,13 +32,14 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence as SequenceOf
 
+import cv2
 import numpy as np
 
 from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import Sequence, SequenceInfo
 from benchmark.tracker import Tracker
-from trackbench_texture.borders import cable_strip, fit_borders
+from trackbench_texture.borders import PROFILE_PAIRINGS, cable_strip, fit_borders
 from trackbench_texture.classes import Region
 from trackbench_texture.descriptors import PixelKinds
 from trackbench_texture.feet import border_feet
@@ -193,11 +194,18 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
             min_width_px=p.min_width_px,
             max_width_px=p.max_width_px,
             max_skew=math.radians(p.max_skew_deg),
+            grey=_smoothed(work.grey, p.smoothing_sigma) if p.border_pairing in PROFILE_PAIRINGS else None,
         )
         if state is None or p.foot_reach_px == 0:
             return state
         scale = work.frame_size[1] / work.size[1]
         return border_feet(image, state, p.foot_reach_px * scale, p.smoothing_sigma * scale, p.foot_share)
+
+
+def _smoothed(grey: np.ndarray, sigma: float) -> np.ndarray:
+    """``grey`` as ``float32``, smoothed by a Gaussian of standard deviation ``sigma`` px (0: not smoothed)."""
+    grey = grey.astype(np.float32)
+    return cv2.GaussianBlur(grey, (0, 0), sigma, borderType=cv2.BORDER_REFLECT) if sigma > 0 else grey
 
 
 def _grey(frame: CameraFrame) -> np.ndarray:
