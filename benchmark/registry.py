@@ -64,6 +64,11 @@ class TrackerEntry:
         """
         return params_key(self.name, self.version, self.params, code_digest(self.tracker_class.__module__))
 
+    @property
+    def params_key(self) -> str:
+        """Hash of name, version and parameters only: what seeds the tracker's training, whatever its code."""
+        return params_key(self.name, self.version, self.params)
+
     def create(self) -> Tracker:
         """A fresh tracker instance with these parameters."""
         return self.tracker_class(self.params)

@@ -87,6 +87,8 @@ class Training:
         Why the tracker cannot be trained; its cells end in this error.
     packages : frozenset of str
         Where the model's types may come from (:func:`benchmark.storage.packages_of` the tracker's class).
+    seed : int
+        Seeds the fit with the tracker's name (:func:`fit_model`).
     """
 
     name: str
@@ -95,15 +97,23 @@ class Training:
     model_path: Path | None = None
     error: str = ""
     packages: storage.Packages = frozenset()
+    seed: int = 0
 
     @classmethod
     def plan(cls, entry: TrackerEntry, name: str, sequences: Iterable[FrameSequence]) -> Training:
-        """The training of ``entry`` on ``sequences``, keyed by the tracker and the sequences' identities."""
+        """The training of ``entry`` on ``sequences``, keyed by the tracker (its code too) and the sequences' identities.
+
+        The fit's seed comes from the same without the code: an edit of the
+        tracker fits its model again, with the same generator.
+        """
         items = tuple(sequences)
         identities = sorted(sequence.identity.key for sequence in items)
-        payload = "\n".join([entry.cache_key, *identities]).encode()
-        key = hashlib.sha256(payload).hexdigest()[:16]
-        return cls(name, key, items, packages=storage.packages_of(entry.tracker_class))
+
+        def hashed(tracker_key: str) -> str:
+            return hashlib.sha256("\n".join([tracker_key, *identities]).encode()).hexdigest()[:16]
+
+        seed = int(hashed(entry.params_key)[:15], 16)
+        return cls(name, hashed(entry.cache_key), items, packages=storage.packages_of(entry.tracker_class), seed=seed)
 
     @classmethod
     def refused(cls, name: str, error: str) -> Training:
@@ -163,18 +173,19 @@ def overlap_error(training: Training, scored: Iterable[FrameSequence]) -> str:
     )
 
 
-def fit_model(entry: TrackerEntry, sequences: Sequence[FrameSequence], key: str) -> bytes:
+def fit_model(entry: TrackerEntry, sequences: Sequence[FrameSequence], key: str, seed: int) -> bytes:
     """Fit a fresh tracker on ``sequences`` and return its model as a record (:mod:`benchmark.storage`).
 
-    The generator is seeded by the tracker's name and the training key, so
-    the same tracker on the same training set fits the same model.
+    The generator is seeded by the tracker's name and ``seed``
+    (:attr:`Training.seed`), so the same tracker on the same training set
+    fits the same model; ``key`` names the training in the record.
 
     Raises
     ------
     benchmark.storage.StorageError
         If the model holds a value a record cannot.
     """
-    rng = np.random.default_rng([zlib.crc32(entry.name.encode()), int(key[:15], 16)])
+    rng = np.random.default_rng([zlib.crc32(entry.name.encode()), seed])
     model = entry.create().fit(list(sequences), rng)  # type: ignore[attr-defined]
     stored = {"tracker": entry.name, "key": key, "model": model}
     return storage.dumps(stored, storage.packages_of(entry.tracker_class))
@@ -247,7 +258,7 @@ def _fit_once(
             return stored
     started = time.perf_counter()
     try:
-        model = run(fit_model, (entry, training.sequences, training.key), timeout_s)
+        model = run(fit_model, (entry, training.sequences, training.key, training.seed), timeout_s)
         write_bytes_atomically(make_folder(path.parent) / path.name, model, "fitted model")
     except Exception as exc:
         message = f"training on {training.name} failed: {type(exc).__name__}: {' '.join(str(exc).split())}"

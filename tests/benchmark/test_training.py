@@ -252,3 +252,12 @@ def test_the_command_line_trains_on_what_train_names_and_the_board_says_so(
     listing = CliRunner().invoke(main, ["datasets"]).stdout
     assert "fake  from fake-trackers 9.9 (plugin fakes)  [trains on train]" in listing
     assert "train  from fake-trackers 9.9 (plugin fakes)  [training split, not scored unless named]" in listing
+
+
+def test_an_edit_of_the_tracker_s_code_fits_again_with_the_same_generator(monkeypatch: pytest.MonkeyPatch) -> None:
+    registry = registry_with_training()
+    entry, sequences = registry.trackers["learner"], registry.suites["train"].sequences
+    before = Training.plan(entry, "train", sequences)
+    monkeypatch.setattr("benchmark.registry.code_digest", lambda module: "edited")
+    after = Training.plan(entry, "train", sequences)
+    assert after.key != before.key and after.seed == before.seed
