@@ -387,59 +387,22 @@ def _paired(
     return None
 
 
-def _parallel(
-    strip: Strip,
-    along: np.ndarray,
-    across: np.ndarray,
-    limits: _PairLimits,
-    rng: np.random.Generator,
-    scan_grey: np.ndarray | None = None,
-) -> list[ScanLine] | None:
-    """The best-supported line along the strip, then the best-supported line a cable's width from it.
-
-    The second line is drawn from the points off the first, among lines
-    that make at most twice the largest skew with it and lie between the
-    smallest and the largest width from it at the middle scan line.
-    """
-    return _paired(strip, along, across, limits, rng, scan_grey, ("straight",))
-
-
-def _profile(
-    strip: Strip,
-    along: np.ndarray,
-    across: np.ndarray,
-    limits: _PairLimits,
-    rng: np.random.Generator,
-    scan_grey: np.ndarray | None = None,
-) -> list[ScanLine] | None:
-    """The best-supported line along the strip, then its partner read off the grey levels beside it."""
-    return _paired(strip, along, across, limits, rng, scan_grey, ("profile",))
-
-
-def _parallel_then_profile(
-    strip: Strip,
-    along: np.ndarray,
-    across: np.ndarray,
-    limits: _PairLimits,
-    rng: np.random.Generator,
-    scan_grey: np.ndarray | None = None,
-) -> list[ScanLine] | None:
-    """As ``"parallel"``; where no straight pieces pair, the partner read off the grey levels as ``"profile"``."""
-    return _paired(strip, along, across, limits, rng, scan_grey, ("straight", "profile"))
-
-
 Pairing = Literal["sides", "parallel", "profile", "parallel-profile"]
 """The names of :data:`PAIRINGS`."""
 
 PAIRINGS: dict[str, Callable[..., list[ScanLine] | None]] = {
     "sides": _by_sides,
-    "parallel": _parallel,
-    "profile": _profile,
-    "parallel-profile": _parallel_then_profile,
+    "parallel": functools.partial(_paired, partners=("straight",)),
+    "profile": functools.partial(_paired, partners=("profile",)),
+    "parallel-profile": functools.partial(_paired, partners=("straight", "profile")),
 }
 """How the two borders are found, by name: ``(strip, along, across, limits, rng, scan_grey)`` to the two scan
 lines in order of their across-coordinate, or None (``scan_grey``: the grey levels in scan coordinates, which
-the profile pairings need)."""
+the profile pairings need).  ``"parallel"``: the best-supported line along the strip, then the best-supported
+line a cable's width from it, drawn from the points off the first among lines that make at most twice the
+largest skew with it; ``"profile"``: its partner read off the grey levels beside it
+(:mod:`trackbench_texture.partner`); ``"parallel-profile"``: as ``"parallel"``, and where no straight pieces
+pair, as ``"profile"``."""
 
 
 def fit_borders(
