@@ -23,6 +23,7 @@ import numpy as np
 
 __all__ = [
     "WEIGHT_SUM_TOLERANCE",
+    "declares_belief",
     "GaussianBelief",
     "ParticleBelief",
     "gaussian_belief_problems",
@@ -34,6 +35,14 @@ WEIGHT_SUM_TOLERANCE = 1e-9
 
 SYMMETRY_TOLERANCE = 1e-9
 """Relative tolerance of a float64 covariance's symmetry and smallest eigenvalue; a coarser dtype gets ``10 * D * eps``."""
+
+
+def declares_belief(tracker_class: type) -> bool:
+    """Whether a tracker class has the attributes of :class:`ParticleBelief` or :class:`GaussianBelief`.
+
+    Asked of the class, since an instance may only be able to answer once it is reset.
+    """
+    return any(all(hasattr(tracker_class, name) for name in names) for names in (("particles", "weights"), ("mean", "covariance")))
 
 
 def dtype_tolerance(value: object, floor: float, terms: int) -> float:

@@ -45,6 +45,7 @@ from benchmark.runner import UserInterrupt, cell_rng, describe_exception
 from benchmark.testing.beliefs import (
     GaussianBelief,
     ParticleBelief,
+    declares_belief,
     gaussian_belief_problems,
     particle_belief_problems,
 )
@@ -745,8 +746,8 @@ def check_belief_invariants(subject: Subject) -> str:
     kinds: set[str] = set()
     held = points = 0
     runs: list[tuple[str, str, list[Frame]]] = [("", "", frames.frame_list)]
-    belief_class = subject.entry.tracker_class
-    if any(all(hasattr(belief_class, name) for name in names) for names in (("particles", "weights"), ("mean", "covariance"))):
+    declared = declares_belief(subject.entry.tracker_class)
+    if declared:
         try:
             runs += _hard_runs(subject)
         except AssertionError:  # the modality cannot make them: check_hard_observations says so
@@ -776,7 +777,7 @@ def check_belief_invariants(subject: Subject) -> str:
             if kind:  # the hard_observations check reports it
                 continue
             raise subject.fail(f"{describe_exception(exc)} ({where}, reading the belief)") from exc
-    if not (isinstance(tracker, ParticleBelief) or isinstance(tracker, GaussianBelief)) and not kinds:
+    if not declared and not kinds:
         return "exposes no belief"
     return f"{' and '.join(sorted(kinds)) or 'no'} belief held at {held} of {points} points ({len(runs)} runs: reset and each frame)"
 
