@@ -10,7 +10,10 @@ deviation of the per-seed ``correct_pct`` (empty for a single seed), so that
 a stochastic tracker's mean is read with its variation.  Every rate and
 RMSE also has its 95 % interval (``correct_lo_pct`` to ``correct_hi_pct``), a bootstrap
 over seeds (:mod:`benchmark.intervals`), and ``deterministic`` says
-whether all seeds gave the same frames (empty for a single seed).  A row with dataset
+whether all seeds gave the same frames *and* the tracker declares that it
+draws no random numbers (empty for a single seed): seeds that agree are not
+enough, since a tracker seeded from anything but its generator (the clock,
+the process) agrees with itself within a run and not with the next one.  A row with dataset
 ``(all)`` pools each tracker over every dataset of the board and comes
 first.  Where a board holds several suites (a thesis suite, a dev and a
 test split), a row ``SUITE (all)`` pools each tracker over the datasets of
@@ -183,7 +186,9 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
         summary["frames"] = int(summary["frames"])
         seeds = [pool(cells_of_seed) for _, cells_of_seed in group.groupby("seed")]
         per_seed = [summarise(frames_of_seed, errors)["correct_pct"] for frames_of_seed in seeds]
-        intervals, deterministic = seed_intervals(seeds, errors)
+        intervals, seeds_agree = seed_intervals(seeds, errors)
+        declared = bool(group["deterministic"].all()) if "deterministic" in group else False
+        deterministic = seeds_agree and declared if seeds_agree is not None else None
         return {
             "tracker": label,
             "dataset": dataset,

@@ -188,6 +188,10 @@ class CellResult:
         Pictures of the first frame of each run of failed frames, in frame
         order, at most :data:`benchmark.runner.MAX_PICTURES`; empty when the
         modality draws nothing.
+    deterministic : bool
+        The tracker declares that it draws no random numbers
+        (:attr:`benchmark.tracker.Tracker.deterministic`), which the
+        conformance kit verifies; only then may a board call it deterministic.
     """
 
     tracker: str
@@ -208,6 +212,7 @@ class CellResult:
     training: str = ""
     read_s: float = 0.0
     pictures: tuple[Picture, ...] = ()
+    deterministic: bool = False
 
     @property
     def key(self) -> CellKey:

@@ -161,6 +161,7 @@ def cell_result(cell: Cell, status: Status, message: str = "", **fields: Any) ->
         tracker_key=cell.tracker_key,
         params=dataclasses.asdict(cell.tracker.params),
         training="" if cell.training is None else cell.training.name,
+        deterministic=bool(getattr(cell.tracker.tracker_class, "deterministic", False)),
         dataset=dataset,
         dataset_key=dataset_key,
         modality=cell.modality.name,

@@ -11,7 +11,7 @@ Schema (``PRAGMA user_version`` = :data:`SCHEMA_VERSION`)::
     runs(id, started, finished, argv JSON, options JSON, version, problems JSON)
     cells(id, run_id -> runs, tracker, tracker_version, tracker_key, params JSON,
           dataset, dataset_key, modality, seed, init, status, message, detail,
-          frames, elapsed_s, finished, training)
+          frames, elapsed_s, finished, training, deterministic)
     run_cells(run_id -> runs, cell_id -> cells)
     frames(cell_id -> cells, position, frame, outcome, step_ms)
     frame_errors(cell_id, position, name, value)
@@ -19,7 +19,8 @@ Schema (``PRAGMA user_version`` = :data:`SCHEMA_VERSION`)::
     conditions(dataset_key, name, value JSON)
 
 ``training`` names the training set of a tracker that learns (empty for
-the others; :mod:`benchmark.training`).  ``problems`` lists, one line each, what went wrong in a run outside any
+the others; :mod:`benchmark.training`); ``deterministic`` is 1 when the
+tracker declares that it draws no random numbers.  ``problems`` lists, one line each, what went wrong in a run outside any
 cell, such as a plugin that failed to import.  A cell is identified by
 ``(tracker_key, dataset_key, seed, init)`` (:class:`benchmark.results.CellKey`):
 ``dataset_key`` is the key of the dataset's identity
@@ -46,8 +47,9 @@ altitude, cable contrast, ...), for the boards by condition
 and those it took over from earlier runs with ``--resume``.
 
 A database of schema version 1 (no ``problems``, no ``dataset_key``), 2
-(no ``training``), 3 (no ``pictures``) or 4 (no ``conditions``) is upgraded in place when opened,
-its cells keeping no pictures; version 1's cells get their ``dataset`` as
+(no ``training``), 3 (no ``pictures``), 4 (no ``conditions``) or 5 (no
+``deterministic``) is upgraded in place when opened, its cells keeping no
+pictures and declaring nothing; version 1's cells get their ``dataset`` as
 ``dataset_key``, which no identity's key equals, so they are shown but
 never resumed.  Any SQLite error, such as a file damaged on disk, is
 reported as a :class:`~benchmark.errors.DataError` naming the file.
@@ -73,7 +75,7 @@ from benchmark.results import Picture
 if TYPE_CHECKING:
     from benchmark.results import CellKey, CellResult
 
-SCHEMA_VERSION = 5
+SCHEMA_VERSION = 6
 DATABASE_NAME = "results.sqlite"
 
 _SCHEMA = """
@@ -104,7 +106,8 @@ CREATE TABLE IF NOT EXISTS cells (
     frames INTEGER NOT NULL,
     elapsed_s REAL NOT NULL,
     finished TEXT NOT NULL,
-    training TEXT NOT NULL DEFAULT ''
+    training TEXT NOT NULL DEFAULT '',
+    deterministic INTEGER NOT NULL DEFAULT 0
 );
 CREATE INDEX IF NOT EXISTS cells_by_key ON cells (tracker_key, dataset_key, seed, init);
 CREATE TABLE IF NOT EXISTS run_cells (
@@ -150,12 +153,15 @@ ALTER TABLE cells ADD COLUMN dataset_key TEXT NOT NULL DEFAULT '';
 UPDATE cells SET dataset_key = dataset;
 DROP INDEX cells_by_key;
 ALTER TABLE cells ADD COLUMN training TEXT NOT NULL DEFAULT '';
+ALTER TABLE cells ADD COLUMN deterministic INTEGER NOT NULL DEFAULT 0;
 """,
     2: """
 ALTER TABLE cells ADD COLUMN training TEXT NOT NULL DEFAULT '';
+ALTER TABLE cells ADD COLUMN deterministic INTEGER NOT NULL DEFAULT 0;
 """,
-    3: "",
-    4: "",
+    3: "ALTER TABLE cells ADD COLUMN deterministic INTEGER NOT NULL DEFAULT 0;",
+    4: "ALTER TABLE cells ADD COLUMN deterministic INTEGER NOT NULL DEFAULT 0;",
+    5: "ALTER TABLE cells ADD COLUMN deterministic INTEGER NOT NULL DEFAULT 0;",
 }
 """Schema version to the SQL that brings it to :data:`SCHEMA_VERSION` (``_SCHEMA`` then adds what is missing)."""
 
@@ -178,6 +184,7 @@ CELL_COLUMNS = (
     "elapsed_s",
     "finished",
     "training",
+    "deterministic",
 )
 """Columns of the table :meth:`ResultStore.cells` returns."""
 
@@ -336,8 +343,8 @@ class ResultStore:
         with self._db:
             cursor = self._db.execute(
                 "INSERT INTO cells (run_id, tracker, tracker_version, tracker_key, params, dataset, dataset_key, "
-                "modality, seed, init, status, message, detail, frames, elapsed_s, finished, training) "
-                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                "modality, seed, init, status, message, detail, frames, elapsed_s, finished, training, deterministic) "
+                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                 (
                     run_id,
                     result.tracker,
@@ -356,6 +363,7 @@ class ResultStore:
                     float(result.elapsed_s),
                     _now(),
                     result.training,
+                    int(result.deterministic),
                 ),
             )
             cell_id = int(cursor.lastrowid)
@@ -546,6 +554,7 @@ class ResultStore:
                 (run_id,),
             ).fetchall()
         table = pd.DataFrame.from_records(rows, columns=list(CELL_COLUMNS))
+        table["deterministic"] = table["deterministic"].astype(bool)
         return table.drop_duplicates(["tracker_key", "dataset_key", "seed", "init"], keep="last").reset_index(drop=True)
 
     @_reports_database_errors

@@ -64,6 +64,8 @@ class Tracker(ABC, Generic[TruthT, EstimateT]):
         True for a tracker that draws no random numbers, whose output does
         not depend on the seed; the conformance kit holds a tracker to it
         either way (:func:`benchmark.testing.checks.check_seed_matters`).
+        Only a tracker that declares it is marked ``deterministic`` on a
+        board (:mod:`benchmark.leaderboard`).
     """
 
     name: ClassVar[str]

@@ -29,7 +29,12 @@ A worker stays alive from cell to cell, so what it imports and loads once
 What a cell changes in its process is undone before the next one
 (:func:`cell_isolation`): its working folder, its environment, the names of
 the modules every tracker shares (:mod:`benchmark.shared_modules`) and, in
-a worker, every process it started, which is killed.
+a worker, every process it started, which is killed, and the worker's
+process group: a cell that moved the worker to another group of its session
+is moved back; one that started a new session (``os.setsid``), which no
+process can leave, retires the worker: it takes no further cell and exits
+with :data:`RETIRED_STATUS` when handed one, and the executor gives that
+cell to another worker (:func:`benchmark.executors.local.worker_retired`).
 """
 
 from __future__ import annotations
@@ -54,7 +59,12 @@ _PR_SET_PDEATHSIG = 1
 _PR_SET_CHILD_SUBREAPER = 36
 CHILDREN_GRACE_S = 5.0
 """How long a worker waits for the processes it killed after a cell to be gone."""
+RETIRED_STATUS = 75
+"""Exit status of a worker that refuses a cell because an earlier one left it in a session of its own."""
 _in_worker = False
+_process_group: tuple[int, int] | None = None
+"""The worker's session and process group when it started (POSIX)."""
+_retired = False
 _shared = Snapshot.take()  # before any plugin: this module is read before a cell's tracker is (see shared_modules)
 
 THREAD_VARIABLES = (
@@ -160,22 +170,36 @@ def cell_isolation() -> Iterator[None]:
     every later cell of the worker (a relative cache folder, a library
     reading the environment), and a process it starts would outlive the run.
     """
-    folder = os.getcwd()
+    if _retired:
+        os._exit(RETIRED_STATUS)  # nothing of the cell has run: the executor hands it to another worker
+    shared = _shared.in_folder_now()
     environment = dict(os.environ)
-    _shared.restore()
+    shared.restore()
     try:
         yield
     finally:
-        _shared.restore()
-        try:
-            os.chdir(folder)
-        except OSError:
-            pass
+        shared.restore()
         if dict(os.environ) != environment:
             os.environ.clear()
             os.environ.update(environment)
         if _in_worker:
             end_children()
+            _keep_process_group()
+
+
+def _keep_process_group() -> None:
+    """Move this worker back to its process group if a cell moved it; retire it if the cell left its session."""
+    global _retired
+    if _process_group is None:
+        return
+    session, group = _process_group
+    if os.getsid(0) != session:
+        _retired = True
+    elif os.getpgrp() != group:
+        try:
+            os.setpgid(0, group)
+        except OSError:  # the group is gone
+            _retired = True
 
 
 def _watch_parent(parent_pid: int) -> None:
@@ -213,6 +237,8 @@ def init_worker(parent_pid: int) -> None:
     limit_native_threads()
     quiet_stdout()
     adopt_orphans()
-    global _in_worker, _shared
+    global _in_worker, _shared, _process_group
     _in_worker = True
+    if hasattr(os, "getsid"):
+        _process_group = (os.getsid(0), os.getpgrp())
     _shared = _shared.extended()

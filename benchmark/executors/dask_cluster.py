@@ -43,9 +43,9 @@ from pathlib import Path
 from typing import Any
 
 from benchmark.errors import DataError
-from benchmark.executors.local import cell_from_future, hard_limit_s, value_from_future, worker_pool
+from benchmark.executors.local import cell_in_pool, value_from_future, worker_pool
 from benchmark.results import CellResult
-from benchmark.runner import Cell, cell_result, describe_exception, run_cell, traceback_text
+from benchmark.runner import Cell, cell_result, describe_exception, traceback_text
 
 CONNECT_TIMEOUT_S = 20.0
 """How long to wait for a scheduler before giving up."""
@@ -103,8 +103,7 @@ def run_cell_on_worker(cell: Cell, timeout_s: float | None, model: bytes | None 
         cell = _adopt_model(cell, model)
     except Exception as exc:
         return cell_result(cell, "error", f"{describe_exception(exc)} (storing the fitted model on the worker)")
-    future = _worker_pool().schedule(run_cell, args=(cell, timeout_s), timeout=hard_limit_s(timeout_s))
-    return cell_from_future(cell, future, timeout_s)
+    return cell_in_pool(_worker_pool(), cell, timeout_s)
 
 
 def call_on_worker(function: Callable[..., Any], args: tuple[Any, ...], timeout_s: float | None) -> Any:

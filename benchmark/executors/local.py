@@ -7,11 +7,14 @@ runs cell after cell, so the plugins it imported, the numba kernels it
 compiled and the models it read serve all its cells.  A worker still busy a
 grace period after a cell's time limit is killed, and one that exits or
 crashes (``os._exit``, a segmentation fault) costs only its cell: pebble
-starts another in its place.
+starts another in its place.  A worker that an earlier cell left in a
+session of its own refuses its next cell before running any of it
+(:data:`benchmark.workers.RETIRED_STATUS`), and that cell is scheduled
+again on another (:func:`worker_retired`).
 
 :func:`cell_from_future` turns whatever became of a cell's future into its
-result; the Dask executor uses it too, so that a cell fails the same way
-wherever it ran.
+result; the Dask executor runs its cells through the same function
+(:func:`cell_in_pool`), so that a cell fails the same way wherever it ran.
 """
 
 from __future__ import annotations
@@ -45,6 +48,25 @@ def _exit_reason(code: int | None) -> str:
         except ValueError:
             return f"killed by signal {-code}"
     return f"exit status {code}"
+
+
+def worker_retired(future: concurrent.futures.Future) -> bool:
+    """Whether the worker of a finished future refused its cell, untouched, and exited (:mod:`benchmark.workers`)."""
+    from pebble import ProcessExpired
+
+    from benchmark.workers import RETIRED_STATUS
+
+    error = future.exception()
+    return isinstance(error, ProcessExpired) and error.exitcode == RETIRED_STATUS
+
+
+def cell_in_pool(pool: Any, cell: Cell, timeout_s: float | None) -> CellResult:
+    """Run ``cell`` in a worker of ``pebble`` pool ``pool`` and wait for its result, or its timeout or error row."""
+    while True:
+        future = pool.schedule(run_cell, args=(cell, timeout_s), timeout=hard_limit_s(timeout_s))
+        concurrent.futures.wait([future])
+        if not worker_retired(future):
+            return cell_from_future(cell, future, timeout_s)
 
 
 def cell_from_future(cell: Cell, future: concurrent.futures.Future, timeout_s: float | None) -> CellResult:
@@ -151,12 +173,22 @@ class LocalExecutor:
         if not cells:
             return
         pool = worker_pool(min(self.jobs, len(cells)))
+        limit = hard_limit_s(timeout_s)
+
+        def schedule(cell: Cell) -> None:
+            self._futures[pool.schedule(run_cell, args=(cell, timeout_s), timeout=limit)] = cell
+
         try:
-            limit = hard_limit_s(timeout_s)
-            self._futures = {pool.schedule(run_cell, args=(cell, timeout_s), timeout=limit): cell for cell in cells}
-            for future in concurrent.futures.as_completed(self._futures):
-                cell = self._futures.pop(future)
-                yield cell_from_future(cell, future, timeout_s)
+            for cell in cells:
+                schedule(cell)
+            while self._futures:
+                done, _ = concurrent.futures.wait(self._futures, return_when=concurrent.futures.FIRST_COMPLETED)
+                for future in done:
+                    cell = self._futures.pop(future)
+                    if worker_retired(future):
+                        schedule(cell)
+                    else:
+                        yield cell_from_future(cell, future, timeout_s)
         finally:
             self._futures = {}
             pool.stop()

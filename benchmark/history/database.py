@@ -7,7 +7,7 @@ row per cell to ``cells``, copied from the run's results database
     runs(id, started, finished, version, commit, machine_key, machine JSON, argv JSON, seeds)
     cells(id, run_id -> runs, tracker, tracker_version, tracker_key, params JSON, dataset,
           dataset_key, modality, seed, init, training, status, message, frames, elapsed_s,
-          metrics JSON)
+          metrics JSON, deterministic)
     cell_frames(cell_id -> cells, frames BLOB)
     cell_pictures(cell_id -> cells, frame, outcome, png BLOB)
 
@@ -92,6 +92,7 @@ _cells = sa.Table(
     sa.Column("frames", sa.Integer, nullable=False),
     sa.Column("elapsed_s", sa.Float, nullable=False),
     sa.Column("metrics", sa.Text, nullable=False),
+    sa.Column("deterministic", sa.Boolean, nullable=False, server_default=sa.false()),
 )
 _cell_frames = sa.Table(
     "cell_frames",
@@ -174,7 +175,8 @@ class History:
         A database with tables but none of a history's is another
         program's; one whose table of a history's name lacks its columns is
         not ours either.  Only an empty database or a history (perhaps of
-        an older trackbench, missing newer tables) gets tables.
+        an older trackbench, missing newer tables, or newer columns that
+        have a default, which are added) gets tables.
         """
         inspector = sa.inspect(self._engine)
         existing = set(inspector.get_table_names())
@@ -188,11 +190,18 @@ class History:
             if table.name not in existing:
                 continue
             found = {column["name"] for column in inspector.get_columns(table.name)}
-            if not set(table.columns.keys()) <= found:
+            if any(column.server_default is None for column in table.columns if column.name not in found):
                 raise DataError(
                     f"history database {self.location}: its table {table.name!r} is not a trackbench history's "
                     "(columns missing); the database was left unchanged"
                 )
+        with self._engine.begin() as connection:
+            for table in _metadata.sorted_tables:
+                if table.name in existing:
+                    found = {column["name"] for column in inspector.get_columns(table.name)}
+                    for column in table.columns:
+                        if column.name not in found:
+                            connection.execute(sa.text(_add_column(table, column, self._engine.dialect)))
         _metadata.create_all(self._engine)
 
     def close(self) -> None:
@@ -339,6 +348,13 @@ class History:
         return [Picture(int(row["frame"]), str(row["outcome"]), bytes(row["png"])) for row in rows]
 
 
+def _add_column(table: sa.Table, column: sa.Column, dialect: sa.Dialect) -> str:
+    """The ``ALTER TABLE`` statement adding ``column``, with its default, to an older history's ``table``."""
+    kind = column.type.compile(dialect=dialect)
+    default = column.server_default.arg.compile(dialect=dialect)  # type: ignore[union-attr]
+    return f"ALTER TABLE {table.name} ADD COLUMN {column.name} {kind} NOT NULL DEFAULT {default}"
+
+
 _COPIED = (
     "tracker",
     "tracker_version",
@@ -351,5 +367,6 @@ _COPIED = (
     "training",
     "status",
     "message",
+    "deterministic",
 )
 """Columns of a results database's cells copied as they are."""

@@ -189,14 +189,43 @@ class Wanders(Faulty):
         return frame.truth.cable
 
 
+class LeavesSession(Faulty):
+    """Right on every frame, but moves its process to a session of its own, from which no process returns."""
+
+    name = "leaves-session"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        if frame.index == FAULT_AT:
+            os.setsid()
+        return frame.truth.cable
+
+
+class Regroups(Faulty):
+    """Right on every frame, but moves its process to a process group of its own."""
+
+    name = "regroups"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        if frame.index == FAULT_AT:
+            os.setpgid(0, 0)
+        return frame.truth.cable
+
+
 class Settled(Faulty):
-    """Right on every frame, as long as no earlier cell of its process changed folder, environment or numpy."""
+    """Right on every frame, as long as no earlier cell of its process changed folder, environment, numpy or group.
+
+    Its process must be in the session and process group of the process
+    that started it (the run's).
+    """
 
     name = "settled"
 
     def fault(self, frame: CameraFrame) -> Any:
         if WANDERED in os.environ or "acme-wandered" in os.getcwd() or np.mean([1.0, 3.0]) != 2.0:
             raise RuntimeError(f"an earlier cell's folder ({os.getcwd()}), environment or numpy is still here")
+        parent = os.getppid()
+        if (os.getsid(0), os.getpgrp()) != (os.getsid(parent), os.getpgid(parent)):
+            raise RuntimeError("an earlier cell's session or process group is still here")
         return frame.truth.cable
 
 
@@ -245,7 +274,8 @@ PROCESS_KILLERS = (Spins, ExitsHard, Segfaults)
 
 @hookimpl
 def trackbench_register_trackers(registry: Any) -> None:
-    for tracker in (*SAFE, *PROCESS_KILLERS, Slow, Chatty, RaisesInColour, Wanders, Settled, Daemonises, GlobalRandom):
+    for tracker in (*SAFE, *PROCESS_KILLERS, Slow, Chatty, RaisesInColour, Wanders, Settled, Daemonises, GlobalRandom,
+                    LeavesSession, Regroups):
         registry.add_tracker(tracker)
 
 

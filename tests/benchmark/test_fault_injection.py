@@ -42,6 +42,8 @@ EXPECTED = {
     "spins": ("timeout", f"no result within the {TIMEOUT_S:g} s limit", 0),
     "exits-hard": ("error", "the worker process ended (exit status 7)", 0),
     "segfaults": ("error", "the worker process ended (killed by SIGSEGV)", 0),
+    "leaves-session": ("ok", "", 6),
+    "settled": ("ok", "", 6),  # after leaves-session: in a worker of the run's session, or an error
 }
 IN_PROCESS_SAFE = ["honest", "exits", "interrupts", "raises-oddly", "returns-nan", "returns-absurd"]
 
@@ -98,7 +100,7 @@ def test_every_fault_becomes_its_cell_s_row_and_the_run_exits_1(
     result = invoke("run", "--suite", "faults", *selected, *executor, *limit, "--out", str(tmp_path))
     assert result.exit_code == 1, result.output
     assert "Traceback" not in result.output
-    assert "7 of 9 cells did not end ok" in result.output
+    assert "7 of 11 cells did not end ok" in result.output
     assert_rows_as_expected(stored_cells(tmp_path), trackers)
     board = pd.read_csv(tmp_path / "leaderboard.csv")
     absurd = board[(board.tracker == "returns-absurd") & (board.dataset == "(all)")].iloc[0]
@@ -283,18 +285,20 @@ def test_check_gives_each_fault_its_failed_checks_and_goes_on(faults_installed: 
 
 
 @linux_only
-def test_a_cell_s_folder_environment_and_daemons_do_not_outlive_it(site: Path, tmp_path: Path) -> None:
+def test_a_cell_s_folder_environment_group_session_and_daemons_do_not_outlive_it(site: Path, tmp_path: Path) -> None:
     pid_file = tmp_path / "daemon.pid"
     process = start_trackbench(
         site,
-        "run", "--suite", "faults", "--tracker", "wanders", "--tracker", "daemonises", "--tracker", "settled",
+        "run", "--suite", "faults", "--tracker", "wanders", "--tracker", "daemonises", "--tracker", "regroups",
+        "--tracker", "leaves-session", "--tracker", "settled",
         "--seeds", "2", "--jobs", "1", "--out", str(tmp_path / "out"),
         env={"ACME_FAULTS_PID_FILE": str(pid_file)},
     )
     stdout, stderr = process.communicate()
     assert process.returncode == 0, stderr
     cells = stored_cells(tmp_path / "out")
-    assert (cells["status"] == "ok").all() and len(cells) == 6, cells["message"]
+    assert (cells["status"] == "ok").all() and len(cells) == 10, cells["message"]
+    assert cells.loc["settled", "id"].min() > cells.loc["leaves-session", "id"].min()  # after a cell that left
     daemons = [int(path.read_text()) for path in tmp_path.glob("daemon.pid.*")]
     assert len(daemons) == 2
     assert not any(alive(pid) for pid in daemons)  # killed before their cells returned, so gone by now

@@ -1,6 +1,7 @@
 """Plugin discovery through entry points, with fake distributions as pluggy's own tests do."""
 
 import re
+import os
 import sys
 import types
 from dataclasses import dataclass
@@ -176,22 +177,34 @@ def test_a_plugin_that_exits_at_import_is_a_warning_and_a_failed_exit_status(mon
     assert CliRunner().invoke(main, ["--strict-plugins", "list"]).exit_code == 2
 
 
-def test_a_plugin_that_replaces_a_numpy_function_at_import_is_left_out_and_numpy_restored(monkeypatch, installed, tmp_path):
+@pytest.mark.parametrize(
+    ("source", "changed"),
+    [
+        ("import numpy\nnumpy.mean = lambda *a, **k: 0.0\n", "numpy.mean"),
+        ("import os\nos.chdir('/')\n", "the working folder"),
+    ],
+    ids=["numpy", "folder"],
+)
+def test_a_plugin_that_changes_what_trackers_share_at_import_is_left_out_and_the_process_restored(
+    monkeypatch, installed, tmp_path, request, source, changed
+):
     import numpy as np
 
     mean = np.mean
-    (tmp_path / "patching_plugin.py").write_text("import numpy\nnumpy.mean = lambda *a, **k: 0.0\n")
+    monkeypatch.chdir(tmp_path)
+    module = f"patching_{request.node.callspec.id}"
+    (tmp_path / f"{module}.py").write_text(source)
     monkeypatch.syspath_prepend(str(tmp_path))
-    installed("patching", [("patching", "patching_plugin")])
+    installed("patching", [("patching", module)])
     registry = load_registry()
-    assert np.mean is mean and np.mean([1.0, 3.0]) == 2.0
+    assert np.mean is mean and np.mean([1.0, 3.0]) == 2.0 and os.getcwd() == str(tmp_path)
     (problem,) = [problem for problem in registry.problems if "patching" in problem]
-    assert problem.startswith("plugin 'patching' (patching 0.3) changed numpy.mean when imported")
+    assert problem.startswith(f"plugin 'patching' (patching 0.3) changed {changed} when imported")
     assert "hough" in registry.trackers
-    monkeypatch.delitem(sys.modules, "patching_plugin")  # imported afresh
-    with pytest.raises(PluginError, match="changed numpy.mean"):
+    monkeypatch.delitem(sys.modules, module)  # imported afresh
+    with pytest.raises(PluginError, match=f"changed {changed}"):
         load_registry(strict=True)
-    assert np.mean is mean
+    assert np.mean is mean and os.getcwd() == str(tmp_path)
 
 
 def test_an_invalid_suite_file_costs_only_its_suite(monkeypatch, tmp_path):

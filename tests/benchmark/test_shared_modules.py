@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import os
 import sys
 
 import numpy as np
@@ -36,3 +37,13 @@ def test_an_extended_snapshot_keeps_what_it_knew_and_adds_modules_loaded_since(m
     assert "math" not in early.names
     monkeypatch.undo()
     assert "math" in early.extended().names and early.extended().names["numpy"] is early.names["numpy"]
+
+
+def test_a_changed_working_folder_is_named_and_put_back(tmp_path, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    monkeypatch.chdir(tmp_path)
+    snapshot = Snapshot.take()
+    (tmp_path / "elsewhere").mkdir()
+    os.chdir(tmp_path / "elsewhere")
+    assert snapshot.changes() == ["the working folder"]
+    assert snapshot.restore() == ["the working folder"] and os.getcwd() == str(tmp_path)
+    assert snapshot.in_folder_now().folder == str(tmp_path) and snapshot.changes() == []

@@ -333,7 +333,7 @@ def test_a_version_2_database_gets_an_empty_training_column(tmp_path: Path, resu
     with ResultStore(path) as store:
         store.add_cell(store.start_run([], {}), results["noisy"])
     connection = sqlite3.connect(path)
-    connection.executescript("ALTER TABLE cells DROP COLUMN training; PRAGMA user_version = 2;")
+    connection.executescript("ALTER TABLE cells DROP COLUMN training; ALTER TABLE cells DROP COLUMN deterministic; PRAGMA user_version = 2;")
     connection.close()
     trained = dataclasses.replace(results["noisy"], tracker_key="key+trained", training="camera-train")
     with ResultStore(path) as store:
@@ -350,7 +350,7 @@ def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, resul
     with ResultStore(path) as store:
         old_id = store.add_cell(store.start_run([], {}), results["noisy"])
     connection = sqlite3.connect(path)
-    connection.executescript("DROP TABLE pictures; PRAGMA user_version = 3;")
+    connection.executescript("DROP TABLE pictures; ALTER TABLE cells DROP COLUMN deterministic; PRAGMA user_version = 3;")
     connection.close()
     with ResultStore(path) as store:
         assert store.cells(all_runs=True)["id"].tolist() == [old_id]
@@ -359,7 +359,7 @@ def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, resul
         new_id = store.add_cell(store.start_run([], {}), dataclasses.replace(results["noisy"], pictures=PICTURES))
         assert store.pictures([old_id, new_id]) == {new_id: list(PICTURES)}
     connection = sqlite3.connect(path)
-    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 5
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 6
     columns = [(row[1], row[2], row[5]) for row in connection.execute("PRAGMA table_info(pictures)")]
     connection.close()
     assert columns == [("cell_id", "INTEGER", 1), ("frame", "INTEGER", 2), ("outcome", "TEXT", 0), ("png", "BLOB", 0)]
@@ -457,10 +457,26 @@ def test_a_version_4_database_gets_an_empty_conditions_table(tmp_path: Path, res
     with ResultStore(path) as store:
         old_id = store.add_cell(store.start_run([], {}), results["noisy"])
     connection = sqlite3.connect(path)
-    connection.executescript("DROP TABLE conditions; PRAGMA user_version = 4;")
+    connection.executescript("DROP TABLE conditions; ALTER TABLE cells DROP COLUMN deterministic; PRAGMA user_version = 4;")
     connection.close()
     with ResultStore(path) as store:
         assert store.cells(all_runs=True)["id"].tolist() == [old_id]
         assert store.conditions([results["noisy"].key.dataset_key]) == {}
         store.add_conditions({"k": {"water": "I"}})
         assert store.conditions(["k"]) == {"k": {"water": "I"}}
+
+
+def test_a_version_5_database_s_cells_declare_nothing_and_new_cells_keep_their_declaration(
+    tmp_path: Path, results: dict[str, CellResult]
+) -> None:
+    path = tmp_path / "r.sqlite"
+    with ResultStore(path) as store:
+        store.add_cell(store.start_run([], {}), results["noisy"])
+    connection = sqlite3.connect(path)
+    connection.executescript("ALTER TABLE cells DROP COLUMN deterministic; PRAGMA user_version = 5;")
+    connection.close()
+    declared = dataclasses.replace(results["noisy"], tracker_key="key+declared", deterministic=True)
+    with ResultStore(path) as store:
+        assert store.cells(all_runs=True)["deterministic"].tolist() == [False]
+        store.add_cell(store.start_run([], {}), declared)
+        assert store.cells(all_runs=True)["deterministic"].tolist() == [False, True]

@@ -107,3 +107,20 @@ def test_only_the_latest_runs_keep_frames_and_pictures(
         with pytest.raises(DataError, match=f"cell {first} "):
             history.frames(first)
         assert len(history.frames(last)) > 0 and len(cells) == 3 * len(cells[cells["run_id"] == runs[0]])
+
+
+def test_an_older_history_gets_the_declaration_column_and_keeps_its_cells(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "perfect", "--tracker", "noisy", "--in-process", "--out", str(out)).exit_code == 0
+    path = tmp_path / "history.sqlite"
+    with History(path) as history:
+        first = record(history, out)
+    connection = sqlite3.connect(path)
+    connection.execute("ALTER TABLE cells DROP COLUMN deterministic")  # as a history of trackbench 0.5 has it
+    connection.close()
+    with History(path) as history:
+        second = record(history, out)
+        cells = history.cells()
+    declared = cells.groupby(["run_id", "tracker"])["deterministic"].all()
+    assert not declared[first, "perfect"] and not declared[first, "noisy"]  # cells of old declare nothing
+    assert declared[second, "perfect"] and not declared[second, "noisy"]
