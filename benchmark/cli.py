@@ -763,7 +763,14 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
 @main.command("check")
 @click.argument("names", nargs=-1, metavar="[NAME]...")
 @click.option(
-    "--frames", type=click.IntRange(min=1), default=15, show_default=True, help="Frames each run of a check reads."
+    "--frames", type=click.IntRange(min=1), default=60, show_default=True, help="Frames each run of a check reads."
+)
+@click.option(
+    "--random-frames",
+    type=click.IntRange(min=1),
+    default=5,
+    show_default=True,
+    help="Frames of each random sequence the random_sequences check draws.",
 )
 @click.option(
     "--time-limit",
@@ -780,13 +787,21 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
 )
 @click.pass_context
 def check_command(
-    ctx: click.Context, names: tuple[str, ...], frames: int, time_limit_s: float, in_process: bool
+    ctx: click.Context,
+    names: tuple[str, ...],
+    frames: int,
+    random_frames: int,
+    time_limit_s: float,
+    in_process: bool,
 ) -> None:
     """Run the conformance kit (benchmark.testing) on installed trackers: all of them, or those NAMEd.
 
     Each check runs in a worker process, so a tracker that crashes or hangs
-    fails that check only. Prints one row per tracker and check as it ends;
-    exit status 1 if any check failed.
+    fails that check only. Prints one row per tracker and check, a tracker's
+    failures first and those that follow from an earlier one marked so;
+    `skip` for a check about a capability the tracker declares it lacks,
+    `xfail` for one it lists in expected_failed_checks. Exit status 1 if any
+    check failed (or passed while listed as expected to fail).
     """
     from benchmark.selection import select_trackers
     from benchmark.testing import check_tracker, checks
@@ -799,29 +814,36 @@ def check_command(
         results = (
             result
             for entry in entries
-            for result in check_tracker(entry, registry=registry, n_frames=frames, time_limit_s=time_limit_s)
+            for result in check_tracker(
+                entry, registry=registry, n_frames=frames, random_frames=random_frames, time_limit_s=time_limit_s
+            )
         )
     else:
-        results = check_in_workers([entry.name for entry in entries], registry, frames, time_limit_s)
+        results = check_in_workers([entry.name for entry in entries], registry, frames, time_limit_s, random_frames)
     header = ("tracker", "check", "result")
     widths = [
         max(len(header[0]), *(len(entry.name) for entry in entries)),
         max(len(header[1]), *(len(check.name) for check in checks())),
-        len("FAIL  "),
+        len("xpass "),
     ]
 
     def row(*cells: str) -> str:
         return "  ".join(cell.ljust(width) for cell, width in zip(cells, widths)) + "  " + cells[-1]
 
     click.echo(row(*header, "message"))
-    passed = failed = 0
+    counts = dict.fromkeys(CHECK_VERDICTS, 0)
     for result in results:
-        passed, failed = passed + result.ok, failed + (not result.ok)
-        verdict = "ok" if result.ok else "FAIL"
+        counts[result.outcome] += 1
+        verdict = CHECK_VERDICTS[result.outcome]
         click.echo(row(result.tracker, result.check, verdict, result.message or result.detail))
-    click.echo(f"{passed} passed, {failed} failed ({len(entries)} trackers)")
-    if failed:
+    summary = ", ".join(f"{count} {outcome}" for outcome, count in counts.items() if count or outcome == "failed")
+    click.echo(f"{summary} ({len(entries)} trackers)")
+    if counts["failed"] or counts["xpassed"]:
         ctx.exit(EXIT_FAILED)
+
+
+CHECK_VERDICTS = {"passed": "ok", "failed": "FAIL", "skipped": "skip", "xfailed": "xfail", "xpassed": "XPASS"}
+"""How ``trackbench check`` shows each outcome of a check."""
 
 
 @main.command("new-tracker")

@@ -66,6 +66,15 @@ class Tracker(ABC, Generic[TruthT, EstimateT]):
         either way (:func:`benchmark.testing.checks.check_seed_matters`).
         Only a tracker that declares it is marked ``deterministic`` on a
         board (:mod:`benchmark.leaderboard`).
+    starts_without_truth : bool
+        True (the default) for a tracker that can start from nothing
+        (``init=None``, ``--init none``); one that needs the first frame's
+        truth says False, and the kit skips its ``starts_without_truth`` check.
+    expected_failed_checks : Mapping
+        Checks of the conformance kit the tracker is known to fail, by name,
+        each with the reason; the kit reports them as expected failures
+        (``xfail``), and as a failure if one passes, so the list stays true
+        (scikit-learn's ``expected_failed_checks``).
     """
 
     name: ClassVar[str]
@@ -73,6 +82,8 @@ class Tracker(ABC, Generic[TruthT, EstimateT]):
     modality: ClassVar[str]
     Params: ClassVar[type] = NoParams
     deterministic: ClassVar[bool] = False
+    starts_without_truth: ClassVar[bool] = True
+    expected_failed_checks: ClassVar[Mapping[str, str]] = {}
 
     def __init__(self, params: Any = None) -> None:
         self.params = params if params is not None else self.Params()

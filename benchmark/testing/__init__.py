@@ -21,6 +21,16 @@ parameters, so that each check shows as its own test::
 
 Each check runs under a time limit (:mod:`benchmark.testing.time_limit`),
 so a tracker that hangs fails that check and the others still run.
+
+A result has one of five outcomes, as scikit-learn's
+``parametrize_with_checks`` reports them: ``passed``; ``failed``;
+``skipped``, for a check about a capability the tracker declares it lacks
+(``starts_without_truth = False``, no belief exposed); ``xfailed``, for a
+check the tracker lists in ``expected_failed_checks`` with its reason, and
+which failed; and ``xpassed``, for one so listed that passed, which counts
+as a failure so that the list stays true.  A failure that follows from an
+earlier one (a tracker that raises fails ``runs`` and most of the rest)
+says so and is listed after it (:func:`with_root_causes`).
 :mod:`benchmark.testing.strategies` has the modalities' hypothesis
 strategies for a tracker's own property-based tests, and
 :mod:`benchmark.testing.beliefs` the belief protocols a filter may expose.
@@ -30,14 +40,25 @@ command line.
 
 from __future__ import annotations
 
+import dataclasses
 import time
-from collections.abc import Callable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from typing import Literal
 
 from benchmark.model import Sequence
 from benchmark.registry import Registry, TrackerEntry
 from benchmark.runner import UserInterrupt, describe_exception, sigint_is_user_interrupt
-from benchmark.testing.checks import CHECKS, DEFAULT_FRAMES, Subject, global_random_state_kept, prepare
+from benchmark.testing.checks import (
+    CHECKS,
+    DEFAULT_FRAMES,
+    Check,
+    NotApplicable,
+    Subject,
+    global_random_state_kept,
+    prepare,
+    prerequisites,
+)
 from benchmark.testing.time_limit import CheckTimeout, time_limit
 from benchmark.tracker import Tracker
 
@@ -49,32 +70,17 @@ __all__ = [
     "check_tracker",
     "checks",
     "conformance_cases",
+    "expected",
     "prepare",
     "run_check",
+    "with_root_causes",
 ]
 
 DEFAULT_TIME_LIMIT_S = 60.0
 """Time one check may take by default, s: a first-party tracker needs well under one."""
 
 
-@dataclass(frozen=True)
-class Check:
-    """One named check.
-
-    Attributes
-    ----------
-    name : str
-        Its name in reports (``"pickles"``).
-    function : callable
-        ``function(subject) -> str``: a line of detail, or
-        :class:`AssertionError` naming the tracker and what broke.
-    """
-
-    name: str
-    function: Callable[[Subject], str]
-
-    def __call__(self, subject: Subject) -> str:
-        return self.function(subject)
+Outcome = Literal["passed", "failed", "skipped", "xfailed", "xpassed"]
 
 
 @dataclass(frozen=True)
@@ -87,27 +93,56 @@ class CheckResult:
         The tracker's name.
     check : str
         The check's name.
-    ok : bool
-        Whether it passed.
+    outcome : {"passed", "failed", "skipped", "xfailed", "xpassed"}
+        How it ended (see the module's description).
     message : str
-        Why it failed; empty when it passed.
+        Why it failed, was skipped or was expected to fail; empty when it passed.
     detail : str
         What it measured or saw (``step_time``: milliseconds per frame).
     elapsed_s : float
         Time the check took, in s.
+    follows : str
+        The earlier check whose failure this one's follows from; empty for a root cause.
     """
 
     tracker: str
     check: str
-    ok: bool
+    outcome: Outcome
     message: str = ""
     detail: str = ""
     elapsed_s: float = 0.0
+    follows: str = ""
+
+    @property
+    def ok(self) -> bool:
+        """Whether the tracker is fine on this check: it passed, was skipped, or failed as it declared it would."""
+        return self.outcome in ("passed", "skipped", "xfailed")
 
 
 def checks(entry: TrackerEntry | type[Tracker] | None = None) -> list[Check]:
-    """The checks that apply to ``entry`` (every tracker gets all of them), in the order they run."""
-    return [Check(name, function) for name, function in CHECKS]
+    """The checks of the kit, in the order they run (a check that does not apply to a tracker skips itself)."""
+    return list(CHECKS)
+
+
+def with_root_causes(results: Iterable[CheckResult]) -> list[CheckResult]:
+    """One tracker's results with every failure that follows from an earlier one saying so, root causes first.
+
+    A failed check one of whose prerequisites (:attr:`Check.after`, followed
+    back) also failed, or failed as expected, follows from the first of
+    them to run, the root cause: its message starts ``follows from 'runs':``.
+    The failures that follow from nothing come first, then those that
+    follow, then every other result, each group in the order they came.
+    """
+    results = list(results)
+    failed = {result.check for result in results if result.outcome in ("failed", "xfailed")}
+    marked = []
+    for result in results:
+        causes = [name for name in prerequisites(result.check) if name in failed] if result.outcome == "failed" else []
+        if causes:
+            cause = causes[0]
+            result = dataclasses.replace(result, follows=cause, message=f"follows from {cause!r}: {result.message}")
+        marked.append(result)
+    return sorted(marked, key=lambda r: 0 if not r.ok and not r.follows else 1 if not r.ok else 2)
 
 
 def entry_of(entry_or_class: TrackerEntry | type[Tracker]) -> TrackerEntry:
@@ -129,6 +164,7 @@ def check_tracker(
     modality_data: Sequence | None = None,
     registry: Registry | None = None,
     n_frames: int = DEFAULT_FRAMES,
+    random_frames: int = 0,
     time_limit_s: float | None = DEFAULT_TIME_LIMIT_S,
 ) -> list[CheckResult]:
     """Run every check on one tracker.
@@ -147,6 +183,8 @@ def check_tracker(
         (:func:`benchmark.plugins.load_registry`).
     n_frames : int
         Frames read from the sequence (and from the training sequence of a tracker that learns).
+    random_frames : int
+        Frames of each random sequence; 0 for :data:`benchmark.testing.checks.RANDOM_FRAMES`.
     time_limit_s : float or None
         Time each check may take, s; a check still running then fails as a
         hang (:mod:`benchmark.testing.time_limit`: main thread, POSIX only).
@@ -155,7 +193,9 @@ def check_tracker(
     Returns
     -------
     list of CheckResult
-        One per check, in the order of :func:`checks`.  NumPy's and Python's
+        One per check: failures that follow from nothing first, then those
+        that follow from them, then the rest, each in the order of
+        :func:`checks` (:func:`with_root_causes`).  NumPy's and Python's
         global random state are left as they were, whatever the tracker does.
     """
     if registry is None:
@@ -163,8 +203,8 @@ def check_tracker(
 
         registry = load_registry()
     entry = entry_of(entry_or_class)
-    subject = prepare_within(entry, registry, modality_data, n_frames, time_limit_s)
-    return [run_check(check, subject, time_limit_s) for check in checks(entry)]
+    subject = prepare_within(entry, registry, modality_data, n_frames, time_limit_s, random_frames)
+    return with_root_causes(run_check(check, subject, time_limit_s) for check in checks(entry))
 
 
 def prepare_within(
@@ -173,13 +213,16 @@ def prepare_within(
     modality_data: Sequence | None = None,
     n_frames: int = DEFAULT_FRAMES,
     time_limit_s: float | None = DEFAULT_TIME_LIMIT_S,
+    random_frames: int = 0,
 ) -> Subject:
     """:func:`~benchmark.testing.checks.prepare` within the time limit: a fit that hangs is the subject's problem."""
     try:
         with sigint_is_user_interrupt(), time_limit(time_limit_s), global_random_state_kept():
-            return prepare(entry, registry, modality_data, n_frames)
+            return prepare(entry, registry, modality_data, n_frames, random_frames)
     except CheckTimeout as exc:
-        return Subject(entry, dict(registry.modalities), problem=f"preparing its frames and model {exc}")
+        return Subject(
+            entry, dict(registry.modalities), problem=f"preparing its frames and model {exc}", random_frames=random_frames
+        )
 
 
 def run_check(check: Check, subject: Subject, time_limit_s: float | None = DEFAULT_TIME_LIMIT_S) -> CheckResult:
@@ -188,22 +231,43 @@ def run_check(check: Check, subject: Subject, time_limit_s: float | None = DEFAU
     NumPy's and Python's global random state are left as they were,
     whatever the tracker does; a tracker's fault, ``SystemExit`` and its own
     ``KeyboardInterrupt`` included, is a failed result, never an exception.
-    The user's Ctrl-C still stops the check.
+    The user's Ctrl-C still stops the check.  A check the tracker lists in
+    ``expected_failed_checks`` is ``xfailed`` if it fails and ``xpassed``
+    if it passes.
     """
     name = subject.name
     started = time.perf_counter()
+    outcome: Outcome
     try:
         with sigint_is_user_interrupt(), time_limit(time_limit_s), global_random_state_kept():
-            detail, ok, message = check(subject), True, ""
+            detail, outcome, message = check(subject), "passed", ""
+    except NotApplicable as exc:
+        detail, outcome, message = "", "skipped", str(exc)
     except CheckTimeout as exc:
-        detail, ok, message = "", False, f"tracker {name!r}: the check {exc}: does it hang?"
+        detail, outcome, message = "", "failed", f"tracker {name!r}: the check {exc}: does it hang?"
     except AssertionError as exc:
-        detail, ok, message = "", False, str(exc)
+        detail, outcome, message = "", "failed", str(exc)
     except UserInterrupt:
         raise
     except BaseException as exc:
-        detail, ok, message = "", False, f"tracker {name!r}: the check raised {describe_exception(exc)}"
-    return CheckResult(name, check.name, ok, message, detail, time.perf_counter() - started)
+        detail, outcome, message = "", "failed", f"tracker {name!r}: the check raised {describe_exception(exc)}"
+    result = CheckResult(name, check.name, outcome, message, detail, time.perf_counter() - started)
+    return expected(result, getattr(subject.entry.tracker_class, "expected_failed_checks", {}))
+
+
+def expected(result: CheckResult, expected_failures: Mapping[str, str]) -> CheckResult:
+    """``result`` as an expected failure (``xfailed``), or an unexpected pass (``xpassed``), where the tracker lists its check."""
+    reason = expected_failures.get(result.check) if isinstance(expected_failures, Mapping) else None
+    if reason is None or result.outcome not in ("passed", "failed"):
+        return result
+    if result.outcome == "failed":
+        return dataclasses.replace(result, outcome="xfailed", detail=f"expected to fail: {reason}")
+    return dataclasses.replace(
+        result,
+        outcome="xpassed",
+        message=f"tracker {result.tracker!r}: listed in expected_failed_checks ({reason}), but it passed: "
+        "take it off the list",
+    )
 
 
 

@@ -1,12 +1,19 @@
 """The checks of the conformance kit, one function per rule of the tracker contract.
 
-Every check takes a :class:`Subject`: the tracker's registry entry with a
-few frames of its modality (and, for a tracker that learns, a model fitted
-on a few training frames), prepared once by :func:`prepare` and shared by
-all checks.  A check returns a line of detail for the report, or raises
+Every check takes a :class:`Subject`: the tracker's registry entry with
+frames of its modality (and, for a tracker that learns, a model fitted on
+training frames), prepared once by :func:`prepare` and shared by all
+checks.  A check returns a line of detail for the report, raises
 :class:`AssertionError` with a message that names the tracker and what
-broke.  Exceptions the tracker raises become such assertion errors, naming
-the frame.
+broke, or raises :class:`NotApplicable` when the tracker declares that it
+lacks the capability the check is about.  Exceptions the tracker raises
+become assertion errors, naming the frame.
+
+A :class:`Check` names the checks it comes after (``after``): one whose
+failure would make it fail too.  A tracker that raises on every frame fails
+``runs``, and with it nearly every other check; the kit then reports
+``runs`` first and the others as following from it
+(:func:`benchmark.testing.with_root_causes`).
 
 The rules are those of :mod:`benchmark.tracker` and the design page's
 plugin contract: a tracker declares ``name``, ``version``, ``modality`` and a
@@ -53,8 +60,8 @@ from benchmark.testing.time_limit import CheckTimeout
 from benchmark.tracker import Tracker
 from benchmark.training import learns
 
-DEFAULT_FRAMES = 15
-"""Frames each run of a check reads: enough to exercise a filter, short enough for a test suite."""
+DEFAULT_FRAMES = 60
+"""Frames each run of a check reads: a bug that starts at frame 50 shows, and the middle third of hard observations is 20 frames long."""
 
 SEED = 0
 """Seed of the checks' runs, turned into a generator by the runner's convention (:func:`cell_rng`)."""
@@ -66,6 +73,10 @@ Anything else a tracker raises, ``SystemExit`` and its own
 ``KeyboardInterrupt`` included, is the failure of the check it happened in,
 as it is of its cell in a run (:func:`benchmark.runner.run_cell`).
 """
+
+
+class NotApplicable(Exception):
+    """Raised by a check that does not apply to the tracker (it declares that it lacks the capability); the reason."""
 
 
 class FrameList(Sequence):
@@ -121,6 +132,8 @@ class Subject:
         For a tracker that learns, the model it fitted on a few training frames.
     problem : str
         Why the frames or the model could not be prepared; empty when they were.
+    random_frames : int
+        Frames of each random sequence :func:`check_random_sequences` draws.
     """
 
     entry: TrackerEntry
@@ -128,6 +141,11 @@ class Subject:
     frames: FrameList | None = None
     model: Any = None
     problem: str = ""
+    random_frames: int = 0
+
+    def __post_init__(self) -> None:
+        if not self.random_frames:
+            object.__setattr__(self, "random_frames", RANDOM_FRAMES)
 
     @property
     def name(self) -> str:
@@ -137,6 +155,10 @@ class Subject:
     def fail(self, text: str) -> AssertionError:
         """An assertion error naming the tracker."""
         return AssertionError(f"tracker {self.name!r}: {text}")
+
+    def skip(self, reason: str) -> NotApplicable:
+        """The exception that says the check does not apply to this tracker, and why."""
+        return NotApplicable(reason)
 
     def ready(self) -> tuple[Modality, FrameList]:
         """The modality and the frames, or an assertion error saying why the runs cannot happen."""
@@ -232,6 +254,7 @@ def prepare(
     registry: Registry,
     sequence: Sequence | None = None,
     n_frames: int = DEFAULT_FRAMES,
+    random_frames: int = 0,
 ) -> Subject:
     """The subject of the checks of ``entry``: frames of its modality and, if it learns, a fitted model.
 
@@ -245,6 +268,8 @@ def prepare(
         The sequence to take frames from; by default a registered one (:func:`pick_sequence`).
     n_frames : int
         Frames read from it (and from the training sequence).
+    random_frames : int
+        Frames of each random sequence; 0 for :data:`RANDOM_FRAMES`.
 
     Returns
     -------
@@ -252,7 +277,7 @@ def prepare(
         With :attr:`Subject.problem` set, rather than raising, when something is missing.
     """
     modalities = dict(registry.modalities)
-    subject = Subject(entry, modalities)
+    subject = Subject(entry, modalities, random_frames=random_frames)
     modality = modalities.get(entry.modality)
     if modality is None:
         return dataclasses.replace(subject, problem=f"modality {entry.modality!r} is not registered")
@@ -346,6 +371,18 @@ def check_metadata(subject: Subject) -> str:
     params = getattr(cls, "Params", None)
     if not (isinstance(params, type) and dataclasses.is_dataclass(params) and params.__dataclass_params__.frozen):
         raise subject.fail(f"Params must be a frozen dataclass, not {params!r}")
+    for attribute in ("deterministic", "starts_without_truth"):
+        if not isinstance(getattr(cls, attribute, False), bool):
+            raise subject.fail(f"{attribute} must be True or False, not {getattr(cls, attribute)!r}")
+    expected = getattr(cls, "expected_failed_checks", {})
+    known = [check.name for check in CHECKS]
+    if not isinstance(expected, Mapping) or not all(
+        name in known and isinstance(reason, str) and reason.strip() for name, reason in expected.items()
+    ):
+        raise subject.fail(
+            f"expected_failed_checks must map names of checks ({', '.join(known)}) to the reason each fails, "
+            f"not {expected!r}"
+        )
     try:
         defaults = cls.make_params()
     except PASS_THROUGH:
@@ -381,13 +418,16 @@ def check_runs(subject: Subject) -> str:
     return f"{detected} estimates in {len(estimates)} frames of {frames.info.name}"
 
 
+def _without_truth(frames: SequenceOf[Frame]) -> list[Frame]:
+    return [dataclasses.replace(frame, truth=None) for frame in frames]
+
+
 def check_frames_without_truth(subject: Subject) -> str:
     """The tracker never reads the frames' truth.
 
-    The frames with the truth removed (and no ``init``) run and give valid
-    estimates; and with the truth removed from every frame but the first
-    (which ``init`` hands to ``reset``), the estimates are those the frames
-    with truth give.
+    With the truth removed from every frame but the first (which ``init``
+    hands to ``reset``), every estimate is valid and equal to the one the
+    frames with truth give.
 
     Raises
     ------
@@ -397,15 +437,36 @@ def check_frames_without_truth(subject: Subject) -> str:
         ``frame.truth``.
     """
     _, frames = subject.ready()
-    unlabelled = [dataclasses.replace(frame, truth=None) for frame in frames.frame_list]
-    estimates = subject.run(subject.create(), unlabelled, truth=False, label="without truth")
-    detected = _check_estimates(subject, unlabelled, estimates, "without truth")
+    blind_frames = [frames.frame_list[0], *_without_truth(frames.frame_list[1:])]
+    label = "truth only for init"
+    blind = subject.run(subject.create(), blind_frames, label=label)
+    detected = _check_estimates(subject, blind_frames, blind, label)
     with_truth = subject.run(subject.create())
-    blind = subject.run(subject.create(), [frames.frame_list[0], *unlabelled[1:]], label="truth only for init")
     difference = _difference(frames, with_truth, blind)
     if difference:
         raise subject.fail(f"its estimates change when the frames' truth is taken away {difference}: it reads frame.truth")
-    return f"{detected} valid estimates without truth; the same estimates whether frames carry truth or not"
+    return f"{detected} valid estimates without truth, the same whether frames carry truth or not"
+
+
+def check_starts_without_truth(subject: Subject) -> str:
+    """Without ``init`` and without truth on any frame, the tracker runs and every estimate is valid.
+
+    Skipped for a tracker that declares ``starts_without_truth = False``.
+
+    Raises
+    ------
+    AssertionError
+        If the tracker raises or returns an invalid estimate, naming the frame.
+    NotApplicable
+        If the tracker declares that it needs the first frame's truth.
+    """
+    _, frames = subject.ready()
+    if not getattr(subject.entry.tracker_class, "starts_without_truth", True):
+        raise subject.skip("declares starts_without_truth = False: it needs the first frame's truth")
+    unlabelled = _without_truth(frames.frame_list)
+    estimates = subject.run(subject.create(), unlabelled, truth=False, label="no init, no truth")
+    detected = _check_estimates(subject, unlabelled, estimates, "no init, no truth")
+    return f"{detected} valid estimates in {len(estimates)} frames without init or truth"
 
 
 def check_same_seed_same_output(subject: Subject) -> str:
@@ -606,7 +667,8 @@ def check_random_sequences(subject: Subject) -> str:
     """Runs on a few random sequences of the modality (its :data:`~benchmark.modality.ExampleSequences`) are valid.
 
     Hypothesis draws :data:`RANDOM_EXAMPLES` sequences of up to
-    :data:`RANDOM_FRAMES` frames from random scenes, the same ones on every
+    ``subject.random_frames`` frames (:data:`RANDOM_FRAMES` unless the
+    caller chose another length) from random scenes, the same ones on every
     call (derandomised, no example database); the tracker runs on each
     from its first frame's truth, and every estimate must be None or valid.
 
@@ -631,9 +693,9 @@ def check_random_sequences(subject: Subject) -> str:
         suppress_health_check=list(HealthCheck),
         print_blob=False,
     )
-    @given(modality.example_sequences(RANDOM_FRAMES))
+    @given(modality.example_sequences(subject.random_frames))
     def runs_on(sequence: Sequence) -> None:
-        frames = FrameList.head(sequence, RANDOM_FRAMES)
+        frames = FrameList.head(sequence, subject.random_frames)
         label = f"random sequence {_describe(frames.info)}"
         estimates = subject.run(subject.create(), frames, label=label)
         seen.append((len(estimates), _check_estimates(subject, frames.frame_list, estimates, label)))
@@ -778,24 +840,66 @@ def check_belief_invariants(subject: Subject) -> str:
                 continue
             raise subject.fail(f"{describe_exception(exc)} ({where}, reading the belief)") from exc
     if not declared and not kinds:
-        return "exposes no belief"
+        raise subject.skip("exposes no belief (neither ParticleBelief nor GaussianBelief)")
     return f"{' and '.join(sorted(kinds)) or 'no'} belief held at {held} of {points} points ({len(runs)} runs: reset and each frame)"
 
 
 CheckFunction = Callable[[Subject], str]
 
-CHECKS: tuple[tuple[str, CheckFunction], ...] = (
-    ("metadata", check_metadata),
-    ("runs", check_runs),
-    ("frames_without_truth", check_frames_without_truth),
-    ("same_seed_same_output", check_same_seed_same_output),
-    ("seed_matters", check_seed_matters),
-    ("no_global_randomness", check_no_global_randomness),
-    ("reset_leaves_no_state", check_reset_leaves_no_state),
-    ("hard_observations", check_hard_observations),
-    ("random_sequences", check_random_sequences),
-    ("pickles", check_pickles),
-    ("belief_invariants", check_belief_invariants),
-    ("step_time", check_step_time),
+
+@dataclass(frozen=True)
+class Check:
+    """One named check.
+
+    Attributes
+    ----------
+    name : str
+        Its name in reports (``"pickles"``).
+    function : callable
+        ``function(subject) -> str``: a line of detail, or
+        :class:`AssertionError` naming the tracker and what broke, or
+        :class:`NotApplicable`.
+    after : tuple of str
+        The checks whose failure makes this one fail too: where one of them
+        failed, this one's failure is reported as following from it.
+    """
+
+    name: str
+    function: CheckFunction
+    after: tuple[str, ...] = ()
+
+    def __call__(self, subject: Subject) -> str:
+        return self.function(subject)
+
+
+_RUNS = ("runs",)
+_REPEATS = ("runs", "same_seed_same_output")
+CHECKS: tuple[Check, ...] = (
+    Check("metadata", check_metadata),
+    Check("runs", check_runs, after=("metadata",)),
+    Check("frames_without_truth", check_frames_without_truth, after=_REPEATS),
+    Check("starts_without_truth", check_starts_without_truth, after=_RUNS),
+    Check("same_seed_same_output", check_same_seed_same_output, after=_RUNS),
+    Check("seed_matters", check_seed_matters, after=_REPEATS),
+    Check("no_global_randomness", check_no_global_randomness, after=_RUNS),
+    Check("reset_leaves_no_state", check_reset_leaves_no_state, after=_REPEATS),
+    Check("hard_observations", check_hard_observations, after=_RUNS),
+    Check("random_sequences", check_random_sequences, after=_RUNS),
+    Check("pickles", check_pickles, after=_REPEATS),
+    Check("belief_invariants", check_belief_invariants, after=_RUNS),
+    Check("step_time", check_step_time, after=_RUNS),
 )
-"""Every check, by name, in the order they run."""
+"""Every check, in the order they run: a check comes after every check it names in ``after``."""
+
+
+def prerequisites(name: str) -> list[str]:
+    """The checks check ``name`` comes after, directly or through others, in the order they run."""
+    after = {check.name: check.after for check in CHECKS}
+    found: set[str] = set()
+    pending = list(after.get(name, ()))
+    while pending:
+        earlier = pending.pop()
+        if earlier not in found:
+            found.add(earlier)
+            pending.extend(after.get(earlier, ()))
+    return [check.name for check in CHECKS if check.name in found]

@@ -31,8 +31,10 @@ from benchmark.testing import (
     CheckResult,
     Subject,
     checks,
+    expected,
     prepare_within,
     run_check,
+    with_root_causes,
 )
 from benchmark.testing.time_limit import WAIT_FACTOR
 
@@ -45,6 +47,7 @@ def check_in_workers(
     registry: Registry,
     n_frames: int = DEFAULT_FRAMES,
     time_limit_s: float = DEFAULT_TIME_LIMIT_S,
+    random_frames: int = 0,
 ) -> Iterator[CheckResult]:
     """Every check of every tracker named, each in a worker process; the results as they come.
 
@@ -58,12 +61,16 @@ def check_in_workers(
         Frames each run of a check reads.
     time_limit_s : float
         Time one check may take (and the preparation of a tracker's frames and model).
+    random_frames : int
+        Frames of each random sequence; 0 for the kit's default.
 
     Yields
     ------
     CheckResult
-        One per tracker and check, in order; a check whose worker died or
-        had to be stopped fails with what became of the worker.
+        One per tracker and check, a tracker's results together once its
+        last check ended, root causes first (:func:`~benchmark.testing.with_root_causes`);
+        a check whose worker died or had to be stopped fails with what
+        became of the worker.
     """
     global _REGISTRY
     _REGISTRY = registry
@@ -73,9 +80,13 @@ def check_in_workers(
     pool = worker_pool(1)
     try:
         for name in names:
+            expected_failures = getattr(registry.trackers[name].tracker_class, "expected_failed_checks", {})
+            results = []
             for check in checks():
-                future = pool.schedule(_check_here, args=(name, check.name, n_frames, time_limit_s), timeout=limit)
-                yield _result(name, check.name, future, limit)
+                arguments = (name, check.name, n_frames, time_limit_s, random_frames)
+                future = pool.schedule(_check_here, args=arguments, timeout=limit)
+                results.append(expected(_result(name, check.name, future, limit), expected_failures))
+            yield from with_root_causes(results)
     finally:
         pool.stop()
         pool.join()
@@ -92,7 +103,7 @@ def _result(name: str, check: str, future: Any, limit: float) -> CheckResult:
         reason = f"{exc} during the check: os._exit, or a crash?"
     except BaseException as exc:
         reason = f"the worker could not return the result: {describe_exception(exc)}"
-    return CheckResult(name, check, False, f"tracker {name!r}: {reason}")
+    return CheckResult(name, check, "failed", f"tracker {name!r}: {reason}")
 
 
 @functools.cache
@@ -106,13 +117,15 @@ def _registry() -> Registry:
 
 
 @functools.lru_cache(maxsize=1)
-def _subject(name: str, n_frames: int, time_limit_s: float) -> Subject:
+def _subject(name: str, n_frames: int, time_limit_s: float, random_frames: int) -> Subject:
     """The prepared subject of tracker ``name``, kept for its next checks in this worker."""
     registry = _registry()
-    return prepare_within(registry.trackers[name], registry, n_frames=n_frames, time_limit_s=time_limit_s)
+    return prepare_within(
+        registry.trackers[name], registry, n_frames=n_frames, time_limit_s=time_limit_s, random_frames=random_frames
+    )
 
 
-def _check_here(name: str, check_name: str, n_frames: int, time_limit_s: float) -> CheckResult:
+def _check_here(name: str, check_name: str, n_frames: int, time_limit_s: float, random_frames: int) -> CheckResult:
     """In a worker: run check ``check_name`` on tracker ``name``."""
     (check,) = [check for check in checks() if check.name == check_name]
-    return run_check(check, _subject(name, n_frames, time_limit_s), time_limit_s)
+    return run_check(check, _subject(name, n_frames, time_limit_s, random_frames), time_limit_s)

@@ -30,7 +30,7 @@ except ImportError:  # benchmark.testing re-exports assert_conforms, and pytest 
 
 if TYPE_CHECKING:
     from benchmark.registry import TrackerEntry
-    from benchmark.testing import Check, Subject
+    from benchmark.testing import Check, CheckResult, Subject
     from benchmark.tracker import Tracker
 
 
@@ -82,12 +82,27 @@ class ConformanceCase:
     check: Check
     subject: Callable[[], Subject]
     time_limit_s: float | None
+    run: Callable[[Check], CheckResult] | None = None
 
     def __call__(self) -> None:
-        """Run the check; raise AssertionError with its message if it fails."""
-        from benchmark.testing import run_check
+        """Run the check: skip, xfail, or raise AssertionError with its message, as its outcome says.
 
-        result = run_check(self.check, self.subject(), self.time_limit_s)
+        A failure that follows from an earlier check's says so
+        (:func:`benchmark.testing.with_root_causes`), those checks being run
+        for it (each once per tracker).
+        """
+        from benchmark.testing import checks, run_check, with_root_causes
+        from benchmark.testing.checks import prerequisites
+
+        run = self.run or (lambda check: run_check(check, self.subject(), self.time_limit_s))
+        result = run(self.check)
+        if result.outcome == "failed":
+            earlier = [run(check) for check in checks() if check.name in prerequisites(self.check.name)]
+            (result,) = [r for r in with_root_causes([*earlier, result]) if r.check == self.check.name]
+        if result.outcome == "skipped":
+            pytest.skip(result.message)
+        if result.outcome == "xfailed":
+            pytest.xfail(result.detail)
         if not result.ok:
             raise AssertionError(result.message)
 
@@ -125,10 +140,17 @@ def conformance_cases(tracker: type[Tracker] | TrackerEntry | str, **options: An
             from benchmark.plugins import load_registry
 
             registry = options.setdefault("registry", load_registry())
-        extra = {key: options[key] for key in ("modality_data", "n_frames") if key in options}
+        extra = {key: options[key] for key in ("modality_data", "n_frames", "random_frames") if key in options}
         return prepare_within(entry, registry, time_limit_s=time_limit_s, **extra)
 
-    return [pytest.param(ConformanceCase(check, subject, time_limit_s), id=check.name) for check in checks()]
+    @functools.cache
+    def run(check: Check) -> CheckResult:
+        from benchmark.testing import run_check
+
+        return run_check(check, subject(), time_limit_s)
+
+    return [pytest.param(ConformanceCase(check, subject, time_limit_s, run), id=check.name) for check in checks()]
+
 
 
 if pytest is not None:

@@ -83,7 +83,7 @@ def test_a_new_tracker_of_each_modality_passes_the_conformance_kit(tmp_path: Pat
             del sys.modules[module]
     assert [r for r in results if not r.ok] == []
     details = {r.check: r.detail for r in results}
-    assert "0 valid estimates without truth" in details["frames_without_truth"]
+    assert "0 valid estimates in 4 frames without init or truth" in details["starts_without_truth"]
     assert details["runs"].startswith("4 estimates in 4 frames")
 
 
@@ -204,7 +204,7 @@ def test_end_to_end_install_check_and_run(tmp_path: Path) -> None:
 
     check = _run(trackbench, "check", "demo", "--frames", "5")
     assert check.returncode == 0, check.stdout + check.stderr
-    assert " 0 failed (1 trackers)" in check.stdout
+    assert "12 passed, 0 failed, 1 skipped (1 trackers)" in check.stdout
     out = tmp_path / "board"
     run = _run(trackbench, "run", "--tracker", "demo", "--dataset", "camera/S2", "--in-process", "--out", out)
     assert run.returncode == 0, run.stdout + run.stderr

@@ -13,24 +13,25 @@ def test_check_prints_a_row_per_tracker_and_check_and_fails_on_a_failure(invoke:
     lines = result.output.splitlines()
     assert lines[0].split() == ["tracker", "check", "result", "message"]
     rows = [line.split()[:3] for line in lines[1:-1]]
-    assert len(rows) == 24
-    assert ["perfect", "frames_without_truth", "FAIL"] in rows
+    assert len(rows) == 26
+    assert rows[:2] == [["perfect", "frames_without_truth", "FAIL"], ["perfect", "starts_without_truth", "FAIL"]]
     assert ["blind", "frames_without_truth", "ok"] in rows
-    assert "23 passed, 1 failed (2 trackers)" in lines[-1]
+    assert ["blind", "belief_invariants", "skip"] in rows
+    assert "22 passed, 2 failed, 2 skipped (2 trackers)" in lines[-1]
 
 
 def test_check_passes_with_exit_status_0(invoke: Callable[..., Result]) -> None:
     result = invoke("check", "blind", "--frames", "4")
     assert result.exit_code == 0, result.output
-    assert "12 passed, 0 failed (1 trackers)" in result.output
+    assert "12 passed, 0 failed, 1 skipped (1 trackers)" in result.output
 
 
 def test_a_hanging_tracker_fails_each_check_at_the_time_limit(invoke: Callable[..., Result]) -> None:
-    result = invoke("check", "sleepy", "--frames", "3", "--time-limit", "0.2")
+    result = invoke("check", "sleepy", "--frames", "3", "--time-limit", "0.1")
     assert result.exit_code == 1, result.output
     rows = {line.split()[1]: line for line in result.output.splitlines()[1:-1]}
     assert " ok " in rows["metadata"]
-    assert "FAIL" in rows["runs"] and "did not finish within 2 s of waiting (0.2 s of CPU time allowed) (step, frame 1)" in rows["runs"]
+    assert "FAIL" in rows["runs"] and "did not finish within 1 s of waiting (0.1 s of CPU time allowed) (step, frame 1)" in rows["runs"]
     assert "does it hang?" in rows["runs"]
 
 
@@ -49,4 +50,4 @@ def test_in_process_gives_the_same_rows_as_the_workers(invoke: Callable[..., Res
         return [line.split()[:3] for line in output.splitlines()]
 
     assert verdicts(isolated.output) == verdicts(here.output)
-    assert "11 passed, 1 failed (1 trackers)" in here.output
+    assert "10 passed, 2 failed, 1 skipped (1 trackers)" in here.output
