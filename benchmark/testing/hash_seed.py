@@ -172,7 +172,28 @@ def importable_name(cls: type) -> str:
         found = getattr(found, part, None)
     if found is not cls:
         raise NotApplicable(f"{name} does not name its class")
+    top = cls.__module__.partition(".")[0]
+    if not _findable(top):
+        raise NotApplicable(
+            f"its module {cls.__module__!r} cannot be imported in a fresh interpreter: no finder finds {top!r}"
+        )
     return name
+
+
+def _findable(top: str) -> bool:
+    """Whether the import system finds the top-level module ``top`` afresh, as another interpreter with this ``sys.path`` would.
+
+    It asks the finders of ``sys.meta_path`` (the path, and an editable
+    install's own) and not ``sys.modules``: a module a test loaded from a
+    file, or under a name only this process gave it, is not found.
+    """
+    for finder in sys.meta_path:
+        try:
+            if getattr(finder, "find_spec", None) and finder.find_spec(top, None) is not None:
+                return True
+        except Exception:  # a finder that cannot answer is no finder for it
+            continue
+    return False
 
 
 def _packages_of(subject: Subject, *values: Any) -> storage.Packages:

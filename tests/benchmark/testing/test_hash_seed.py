@@ -95,8 +95,65 @@ def test_a_module_a_fresh_interpreter_cannot_import_is_not_checked(tmp_path: Pat
         detail = check_hash_seed(subject_of(module.Drifting, fakes))
     finally:
         del sys.modules["acme_elsewhere"]
-    assert detail.startswith("not checked: its module 'acme_elsewhere' cannot be imported in a fresh interpreter")
-    assert "ModuleNotFoundError" in detail
+    assert detail == (
+        "not checked: its module 'acme_elsewhere' cannot be imported in a fresh interpreter: no finder finds 'acme_elsewhere'"
+    )
+
+
+HOSTED = """
+import sys
+
+from acme_hash_seed import Drifting
+
+if "acme_host" not in sys.modules:
+    {without_host}
+
+
+class Hosted(Drifting):
+    name = "hosted"
+"""
+"""A plugin module that needs a module only this process has (which a test puts in ``sys.modules``)."""
+
+
+@pytest.mark.parametrize(
+    ("name", "without_host", "verdict"),
+    [
+        (
+            "acme_hosted_0",
+            "import acme_host",
+            "not checked: its module 'acme_hosted_0' cannot be imported in a fresh interpreter: "
+            "ModuleNotFoundError: No module named 'acme_host'",
+        ),
+        (
+            "acme_hosted_1",
+            "raise RuntimeError('no host')",
+            "tracker 'hosted': in a fresh interpreter (PYTHONHASHSEED={seed}), though not here: importing its "
+            "module 'acme_hosted_1' in a fresh interpreter raised RuntimeError: no host",
+        ),
+    ],
+    ids=["import error: not checked", "other error: fails"],
+)
+def test_a_module_that_imports_here_only(
+    acme: types.ModuleType,
+    fakes: types.ModuleType,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    name: str,
+    without_host: str,
+    verdict: str,
+) -> None:
+    (tmp_path / f"{name}.py").write_text(HOSTED.format(without_host=without_host))
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setitem(sys.modules, "acme_host", types.ModuleType("acme_host"))
+    hosted = importlib.import_module(name)
+    try:
+        try:
+            outcome = check_hash_seed(subject_of(hosted.Hosted, fakes))
+        except AssertionError as failure:
+            outcome = str(failure)
+    finally:
+        del sys.modules[name]
+    assert outcome == verdict.format(seed=other_seed())
 
 
 def test_a_tracker_that_raises_in_the_fresh_interpreter_fails_with_its_error(
