@@ -149,7 +149,9 @@ def seed_globals(seed: int) -> None:
 
     Both processes do so before their run, so that a tracker that draws from
     a global generator (which ``no_global_randomness`` fails) is not taken
-    for one whose output depends on the hash seed.
+    for one whose output depends on the hash seed.  The kit restores NumPy's
+    and Python's afterwards; OpenCV's stays seeded, as in a worker after a
+    cell (:func:`benchmark.runner.seed_global_generators`).
     """
     np.random.seed(seed)
     random.seed(seed)
@@ -166,7 +168,8 @@ def native_threads() -> dict[str, int]:
     """
     import threadpoolctl
 
-    counts = {Path(pool.filepath).name: pool.num_threads for pool in threadpoolctl.ThreadpoolController().lib_controllers}
+    pools = threadpoolctl.ThreadpoolController().lib_controllers
+    counts = {Path(pool.filepath).name: pool.num_threads for pool in pools}
     if "cv2" in sys.modules:
         counts["opencv"] = sys.modules["cv2"].getNumThreads()
     parallel = sys.modules.get("numba.np.ufunc.parallel")
@@ -194,7 +197,7 @@ def use_native_threads(counts: dict[str, int]) -> None:
 
 
 def _describe(exc: BaseException) -> str:
-    """``ExceptionType: message`` on one line (:func:`benchmark.runner.describe_exception`, which the child does not import)."""
+    """``ExceptionType: message`` on one line, as :func:`benchmark.runner.describe_exception` (too heavy to import here)."""
     try:
         text = " ".join(str(exc).split())
     except Exception:
@@ -223,7 +226,8 @@ def _tracker_class(name: str) -> type | dict[str, Any]:
     try:
         found: Any = importlib.import_module(module)
     except ImportError as exc:
-        return _outcome(NOT_CHECKED, f"its module {module!r} cannot be imported in a fresh interpreter: {_describe(exc)}")
+        reason = f"its module {module!r} cannot be imported in a fresh interpreter: {_describe(exc)}"
+        return _outcome(NOT_CHECKED, reason)
     except BaseException as exc:
         return _outcome(FAILED, f"importing its module {module!r} in a fresh interpreter raised {_describe(exc)}")
     try:
@@ -261,12 +265,14 @@ def run(folder: Path, job: Job) -> dict[str, Any]:
     try:
         use_native_threads(job.threads)
     except Exception as exc:
-        return _outcome(NOT_CHECKED, f"the fresh interpreter cannot take this process's thread counts: {_describe(exc)}")
+        reason = f"the fresh interpreter cannot take the checking process's thread counts: {_describe(exc)}"
+        return _outcome(NOT_CHECKED, reason)
     try:
         inputs = storage.loads((folder / INPUT).read_bytes(), packages, "the check's input")
         rng = rebuild_generator(inputs["generator"])
     except (storage.StorageError, ValueError, TypeError, KeyError) as exc:
-        return _outcome(NOT_CHECKED, f"the fresh interpreter cannot read its frames, parameters or model: {_describe(exc)}")
+        reason = f"the fresh interpreter cannot read its frames, parameters or model: {_describe(exc)}"
+        return _outcome(NOT_CHECKED, reason)
     seed_globals(inputs["global_seed"])
     frames = inputs["frames"]
     estimates: list[Any] = []

@@ -47,7 +47,6 @@ from typing import TYPE_CHECKING, Any
 
 from benchmark import storage
 from benchmark.testing.fresh_run import (
-    ESTIMATES,
     FAILED,
     HASH_PROBE,
     INPUT,
@@ -66,7 +65,7 @@ if TYPE_CHECKING:
     from benchmark.testing.checks import Subject
 
 kit = importlib.import_module("benchmark.testing.checks")
-"""The kit's checks module, whose names are read when the check runs: it may register this check, and be half-imported now."""
+"""The kit's checks module, its names read when the check runs: it may register this check, so be half-imported now."""
 
 OTHER_HASH_SEEDS = (1, 2)
 """The child's ``PYTHONHASHSEED``: the first that is not this process's."""
@@ -110,8 +109,9 @@ def check_hash_seed(subject: Subject) -> str:
     try:
         location = importable_name(subject.entry.tracker_class)
         first = frames.frame_list[0]
-        packages = _packages_of(subject, subject.entry.params, subject.model, frames.info, frames.info.calibration,
-                                first.observation, first.truth, first.navigation)  # fmt: skip
+        fields = (getattr(first, field.name) for field in dataclasses.fields(first))
+        held = (subject.entry.params, subject.model, frames.info, frames.info.calibration, *fields)
+        packages = _packages_of(subject, *held)
         stored = _stored(frames.frame_list, packages, "its frames")
         job_input = {
             "info": frames.info,
@@ -129,7 +129,8 @@ def check_hash_seed(subject: Subject) -> str:
         estimates = _stored(estimates, packages, "its estimates")
     except NotApplicable as exc:
         return f"not checked: {exc}"
-    result = _run_elsewhere(subject, Job(location, tuple(sorted(packages)), native_threads(), _cpu_left_s()), data, there)
+    job = Job(location, tuple(sorted(packages)), native_threads(), _cpu_left_s())
+    result = _run_elsewhere(subject, job, data, there)
     if result["outcome"] == NOT_CHECKED:
         return f"not checked: {result['detail']}"
     if result["outcome"] == FAILED:
@@ -143,7 +144,8 @@ def check_hash_seed(subject: Subject) -> str:
             f"(PYTHONHASHSEED={there}) they differ {difference}; does an iteration over a set of strings, or "
             "hash(), decide something?"
         )
-    return f"{len(estimates)} identical estimates here (PYTHONHASHSEED={here}) and in a fresh interpreter (PYTHONHASHSEED={there})"
+    seeds = f"here (PYTHONHASHSEED={here}) and in a fresh interpreter (PYTHONHASHSEED={there})"
+    return f"{len(estimates)} identical estimates {seeds}"
 
 
 def hash_seed_here() -> str:
@@ -164,9 +166,13 @@ def importable_name(cls: type) -> str:
     """
     name = f"{cls.__module__}:{cls.__qualname__}"
     if "<locals>" in cls.__qualname__:
-        raise NotApplicable(f"its class {cls.__qualname__} is defined inside a function, which another interpreter cannot import")
+        raise NotApplicable(
+            f"its class {cls.__qualname__} is defined inside a function, which another interpreter cannot import"
+        )
     if cls.__module__ == "__main__":
-        raise NotApplicable(f"its class {cls.__qualname__} is defined in __main__, which another interpreter does not run")
+        raise NotApplicable(
+            f"its class {cls.__qualname__} is defined in __main__, which another interpreter does not run"
+        )
     found: Any = sys.modules.get(cls.__module__)
     for part in cls.__qualname__.split("."):
         found = getattr(found, part, None)
@@ -181,7 +187,7 @@ def importable_name(cls: type) -> str:
 
 
 def _findable(top: str) -> bool:
-    """Whether the import system finds the top-level module ``top`` afresh, as another interpreter with this ``sys.path`` would.
+    """Whether the import system finds module ``top`` afresh, as an interpreter with this ``sys.path`` would.
 
     It asks the finders of ``sys.meta_path`` (the path, and an editable
     install's own) and not ``sys.modules``: a module a test loaded from a
@@ -225,7 +231,7 @@ def _wall_left_s() -> float:
     left = signal.getitimer(signal.ITIMER_REAL)[0] if can_limit() else 0.0
     if left:
         return left
-    from benchmark.testing import DEFAULT_TIME_LIMIT_S  # here: the package imports this module's registry
+    from benchmark.testing import DEFAULT_TIME_LIMIT_S  # not at the top: the package may import this module
 
     return DEFAULT_TIME_LIMIT_S * WAIT_FACTOR
 
@@ -251,18 +257,26 @@ def _run_elsewhere(subject: Subject, job: Job, data: bytes, hash_seed: int) -> d
             "PYTHONHASHSEED": str(hash_seed),
             "PYTHONPATH": os.pathsep.join(os.path.abspath(str(entry)) for entry in sys.path),
         }
-        with open(folder / LOG, "wb") as log:
-            process = subprocess.Popen(
-                command(folder), env=environment, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
-                start_new_session=True,
-            )  # fmt: skip
+        try:
+            with open(folder / LOG, "wb") as log:
+                process = subprocess.Popen(
+                    command(folder),
+                    env=environment,
+                    stdin=subprocess.DEVNULL,
+                    stdout=log,
+                    stderr=subprocess.STDOUT,
+                    start_new_session=True,
+                )
+        except OSError as exc:
+            return {"outcome": NOT_CHECKED, "detail": f"no fresh interpreter could be started: {exc}"}
         waited = _wall_left_s()
         try:
             status = process.wait(timeout=waited)
         except subprocess.TimeoutExpired:
             _kill(process)
             raise subject.fail(
-                f"a fresh interpreter running it was still busy after {waited:g} s of waiting and was killed: does it hang?"
+                f"a fresh interpreter running it was still busy after {waited:g} s of waiting and was killed: "
+                "does it hang?"
             ) from None
         except BaseException:  # the check's own time, or the user's Ctrl-C
             _kill(process)
@@ -288,7 +302,8 @@ def _kill(process: subprocess.Popen[bytes]) -> None:
 def _ended_without_result(status: int, job: Job, log: Path) -> str:
     """How the child ended, with the end of what it wrote."""
     if status < 0 and -status == getattr(signal, "SIGXCPU", None):
-        return f"a fresh interpreter running it used up the {job.cpu_limit_s:g} s of CPU time the check had left: does it hang?"
+        left = f"the {job.cpu_limit_s:g} s of CPU time the check had left"
+        return f"a fresh interpreter running it used up {left}: does it hang?"
     how = f"was killed by signal {_signal_name(-status)}" if status < 0 else f"ended with exit status {status}"
     tail = log.read_text(errors="replace")[-LOG_TAIL:].strip()
     return f"a fresh interpreter running it {how} without a result" + (f"; its output ends: {tail}" if tail else "")

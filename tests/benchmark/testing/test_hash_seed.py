@@ -96,7 +96,8 @@ def test_a_module_a_fresh_interpreter_cannot_import_is_not_checked(tmp_path: Pat
     finally:
         del sys.modules["acme_elsewhere"]
     assert detail == (
-        "not checked: its module 'acme_elsewhere' cannot be imported in a fresh interpreter: no finder finds 'acme_elsewhere'"
+        "not checked: its module 'acme_elsewhere' cannot be imported in a fresh interpreter: "
+        "no finder finds 'acme_elsewhere'"
     )
 
 
