@@ -56,6 +56,7 @@ from benchmark.testing.beliefs import (
     gaussian_belief_problems,
     particle_belief_problems,
 )
+from benchmark.testing.hash_seed import check_hash_seed
 from benchmark.testing.time_limit import CheckTimeout
 from benchmark.tracker import Tracker
 from benchmark.training import learns
@@ -342,7 +343,7 @@ def same(a: Any, b: Any) -> bool:
     return bool(a == b)
 
 
-def _difference(frames: FrameList, first: SequenceOf[Any], second: SequenceOf[Any]) -> str:
+def first_difference(frames: FrameList, first: SequenceOf[Any], second: SequenceOf[Any]) -> str:
     """Where two runs' estimates first differ (``"at frame k: a vs b"``), or ``""`` when they agree."""
     if len(first) != len(second):
         return f"in length: {len(first)} vs {len(second)} estimates"
@@ -442,7 +443,7 @@ def check_frames_without_truth(subject: Subject) -> str:
     blind = subject.run(subject.create(), blind_frames, label=label)
     detected = _check_estimates(subject, blind_frames, blind, label)
     with_truth = subject.run(subject.create())
-    difference = _difference(frames, with_truth, blind)
+    difference = first_difference(frames, with_truth, blind)
     if difference:
         raise subject.fail(f"its estimates change when the frames' truth is taken away {difference}: it reads frame.truth")
     return f"{detected} valid estimates without truth, the same whether frames carry truth or not"
@@ -480,7 +481,7 @@ def check_same_seed_same_output(subject: Subject) -> str:
     _, frames = subject.ready()
     first = subject.run(subject.create())
     second = subject.run(subject.create())
-    difference = _difference(frames, first, second)
+    difference = first_difference(frames, first, second)
     if difference:
         raise subject.fail(f"two runs with seed {SEED} differ {difference}")
     return f"{len(first)} identical estimates"
@@ -503,7 +504,7 @@ def check_seed_matters(subject: Subject) -> str:
     _, frames = subject.ready()
     first = subject.run(subject.create())
     other = subject.run(subject.create(), seed=SEED + 1)
-    difference = _difference(frames, first, other)
+    difference = first_difference(frames, first, other)
     seeds = f"seeds {SEED} and {SEED + 1}"
     if getattr(subject.entry.tracker_class, "deterministic", False):
         if difference:
@@ -576,7 +577,7 @@ def check_reset_leaves_no_state(subject: Subject) -> str:
     first = subject.run(tracker)
     subject.run(tracker, _reversed(frames.frame_list), seed=SEED + 1)
     again = subject.run(tracker)
-    difference = _difference(frames, first, again)
+    difference = first_difference(frames, first, again)
     if difference:
         raise subject.fail(f"reset keeps state from the previous sequence: a rerun differs {difference}")
     return f"{len(first)} identical estimates after another sequence"
@@ -886,6 +887,7 @@ CHECKS: tuple[Check, ...] = (
     Check("hard_observations", check_hard_observations, after=_RUNS),
     Check("random_sequences", check_random_sequences, after=_RUNS),
     Check("pickles", check_pickles, after=_REPEATS),
+    Check("hash_seed", check_hash_seed, after=_REPEATS),
     Check("belief_invariants", check_belief_invariants, after=_RUNS),
     Check("step_time", check_step_time, after=_RUNS),
 )

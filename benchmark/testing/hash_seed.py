@@ -17,8 +17,9 @@ hand them over, so they see the same arrays.
 
 A tracker that cannot run in another interpreter (its class is defined
 inside a function, a fresh interpreter cannot import its module, a value
-that records cannot hold) is not checked, with the reason: the detail starts
-``"not checked:"``.  One that raises there and not here fails.
+that records cannot hold) is not checked: the check is skipped with the
+reason (:class:`~benchmark.testing.checks.NotApplicable`).  One that raises
+there and not here fails.
 
 The child is bounded by the check's own limits: it may use the CPU time the
 check has left (``RLIMIT_CPU``), and it is killed when the check's wall-time
@@ -74,7 +75,7 @@ LOG_TAIL = 400
 """Characters of the child's output quoted when it ends without a result."""
 
 
-class NotApplicable(Exception):
+class CannotRunElsewhere(Exception):
     """The tracker cannot run in a fresh interpreter, for the reason given; not a fault of its hashing."""
 
 
@@ -92,9 +93,7 @@ def check_hash_seed(subject: Subject) -> str:
     Returns
     -------
     str
-        The number of identical estimates and the two hash seeds, or
-        ``"not checked: ..."`` with the reason the run cannot happen in
-        another interpreter.
+        The number of identical estimates and the two hash seeds.
 
     Raises
     ------
@@ -102,6 +101,8 @@ def check_hash_seed(subject: Subject) -> str:
         Naming the first frame where the estimates differ and the two hash
         seeds; or what the tracker raised in the fresh interpreter; or how
         that interpreter ended without a result.
+    NotApplicable
+        With the reason the run cannot happen in another interpreter.
     """
     _, frames = subject.ready()
     here = hash_seed_here()
@@ -127,17 +128,17 @@ def check_hash_seed(subject: Subject) -> str:
         estimates = subject.run(subject.create(), list(stored))
         packages = _packages_of(subject, *estimates) | packages
         estimates = _stored(estimates, packages, "its estimates")
-    except NotApplicable as exc:
-        return f"not checked: {exc}"
+    except CannotRunElsewhere as exc:
+        raise subject.skip(f"not checked: {exc}") from None
     job = Job(location, tuple(sorted(packages)), native_threads(), _cpu_left_s())
     result = _run_elsewhere(subject, job, data, there)
     if result["outcome"] == NOT_CHECKED:
-        return f"not checked: {result['detail']}"
+        raise subject.skip(f"not checked: {result['detail']}")
     if result["outcome"] == FAILED:
         raise subject.fail(f"in a fresh interpreter (PYTHONHASHSEED={there}), though not here: {result['detail']}")
     if result["hash_probe"] == hash(HASH_PROBE):
-        return f"not checked: a fresh interpreter with PYTHONHASHSEED={there} hashes strings as this one does"
-    difference = kit._difference(frames, estimates, result["estimates"])
+        raise subject.skip(f"not checked: a fresh interpreter with PYTHONHASHSEED={there} hashes strings as this one does")
+    difference = kit.first_difference(frames, estimates, result["estimates"])
     if difference:
         raise subject.fail(
             f"its estimates depend on the hash seed: here (PYTHONHASHSEED={here}) and in a fresh interpreter "
@@ -161,26 +162,26 @@ def importable_name(cls: type) -> str:
 
     Raises
     ------
-    NotApplicable
+    CannotRunElsewhere
         If the class lives inside a function or in ``__main__``, or the name does not lead back to it here.
     """
     name = f"{cls.__module__}:{cls.__qualname__}"
     if "<locals>" in cls.__qualname__:
-        raise NotApplicable(
+        raise CannotRunElsewhere(
             f"its class {cls.__qualname__} is defined inside a function, which another interpreter cannot import"
         )
     if cls.__module__ == "__main__":
-        raise NotApplicable(
+        raise CannotRunElsewhere(
             f"its class {cls.__qualname__} is defined in __main__, which another interpreter does not run"
         )
     found: Any = sys.modules.get(cls.__module__)
     for part in cls.__qualname__.split("."):
         found = getattr(found, part, None)
     if found is not cls:
-        raise NotApplicable(f"{name} does not name its class")
+        raise CannotRunElsewhere(f"{name} does not name its class")
     top = cls.__module__.partition(".")[0]
     if not _findable(top):
-        raise NotApplicable(
+        raise CannotRunElsewhere(
             f"its module {cls.__module__!r} cannot be imported in a fresh interpreter: no finder finds {top!r}"
         )
     return name
@@ -212,7 +213,7 @@ def _dumps(value: Any, packages: storage.Packages, what: str) -> bytes:
     try:
         return storage.dumps(value, packages)
     except storage.StorageError as exc:
-        raise NotApplicable(f"{what} cannot be stored for another interpreter: {exc}") from None
+        raise CannotRunElsewhere(f"{what} cannot be stored for another interpreter: {exc}") from None
 
 
 def _stored(value: Any, packages: storage.Packages, what: str) -> Any:

@@ -269,7 +269,7 @@ def test_check_gives_each_fault_its_failed_checks_and_goes_on(faults_installed: 
     assert result.exit_code == 1, result.output
     assert "Traceback" not in result.output
     rows = {tuple(line.split()[:2]): line for line in result.output.splitlines()[1:-1]}
-    assert len(rows) == 7 * 13
+    assert len(rows) == 7 * 14
     expected = {
         "exits": "SystemExit: 3 (step, frame 2)",
         "interrupts": "KeyboardInterrupt (step, frame 2)",

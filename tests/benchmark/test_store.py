@@ -328,13 +328,19 @@ def test_a_version_1_database_is_upgraded_in_place(tmp_path: Path, results: dict
     assert index == ["tracker_key", "dataset_key", "seed", "init"]
 
 
-def test_a_version_2_database_gets_an_empty_training_column(tmp_path: Path, results: dict[str, CellResult]) -> None:
+def older_database(tmp_path: Path, result: CellResult, version: int, downgrade: str) -> tuple[Path, int]:
+    """A database holding one cell, made as schema ``version`` had it by the SQL ``downgrade``; path and cell id."""
     path = tmp_path / "r.sqlite"
     with ResultStore(path) as store:
-        store.add_cell(store.start_run([], {}), results["noisy"])
+        cell_id = store.add_cell(store.start_run([], {}), result)
     connection = sqlite3.connect(path)
-    connection.executescript("ALTER TABLE cells DROP COLUMN training; ALTER TABLE cells DROP COLUMN deterministic; PRAGMA user_version = 2;")
+    connection.executescript(f"{downgrade} PRAGMA user_version = {version};")
     connection.close()
+    return path, cell_id
+
+
+def test_a_version_2_database_gets_an_empty_training_column(tmp_path: Path, results: dict[str, CellResult]) -> None:
+    path, _ = older_database(tmp_path, results["noisy"], 2, "ALTER TABLE cells DROP COLUMN training; ALTER TABLE cells DROP COLUMN deterministic;")
     trained = dataclasses.replace(results["noisy"], tracker_key="key+trained", training="camera-train")
     with ResultStore(path) as store:
         assert store.cells(all_runs=True)["training"].tolist() == [""]
@@ -346,12 +352,7 @@ def test_a_version_2_database_gets_an_empty_training_column(tmp_path: Path, resu
 
 
 def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, results: dict[str, CellResult]) -> None:
-    path = tmp_path / "r.sqlite"
-    with ResultStore(path) as store:
-        old_id = store.add_cell(store.start_run([], {}), results["noisy"])
-    connection = sqlite3.connect(path)
-    connection.executescript("DROP TABLE pictures; ALTER TABLE cells DROP COLUMN deterministic; PRAGMA user_version = 3;")
-    connection.close()
+    path, old_id = older_database(tmp_path, results["noisy"], 3, "DROP TABLE pictures; ALTER TABLE cells DROP COLUMN deterministic;")
     with ResultStore(path) as store:
         assert store.cells(all_runs=True)["id"].tolist() == [old_id]
         assert len(store.frame_tables([old_id])) == len(results["noisy"].scores)
@@ -453,12 +454,7 @@ def test_conditions_are_kept_per_dataset_and_replaced_by_name(tmp_path: Path) ->
 
 
 def test_a_version_4_database_gets_an_empty_conditions_table(tmp_path: Path, results: dict[str, CellResult]) -> None:
-    path = tmp_path / "r.sqlite"
-    with ResultStore(path) as store:
-        old_id = store.add_cell(store.start_run([], {}), results["noisy"])
-    connection = sqlite3.connect(path)
-    connection.executescript("DROP TABLE conditions; ALTER TABLE cells DROP COLUMN deterministic; PRAGMA user_version = 4;")
-    connection.close()
+    path, old_id = older_database(tmp_path, results["noisy"], 4, "DROP TABLE conditions; ALTER TABLE cells DROP COLUMN deterministic;")
     with ResultStore(path) as store:
         assert store.cells(all_runs=True)["id"].tolist() == [old_id]
         assert store.conditions([results["noisy"].key.dataset_key]) == {}
@@ -469,12 +465,7 @@ def test_a_version_4_database_gets_an_empty_conditions_table(tmp_path: Path, res
 def test_a_version_5_database_s_cells_declare_nothing_and_new_cells_keep_their_declaration(
     tmp_path: Path, results: dict[str, CellResult]
 ) -> None:
-    path = tmp_path / "r.sqlite"
-    with ResultStore(path) as store:
-        store.add_cell(store.start_run([], {}), results["noisy"])
-    connection = sqlite3.connect(path)
-    connection.executescript("ALTER TABLE cells DROP COLUMN deterministic; PRAGMA user_version = 5;")
-    connection.close()
+    path, _ = older_database(tmp_path, results["noisy"], 5, "ALTER TABLE cells DROP COLUMN deterministic;")
     declared = dataclasses.replace(results["noisy"], tracker_key="key+declared", deterministic=True)
     with ResultStore(path) as store:
         assert store.cells(all_runs=True)["deterministic"].tolist() == [False]

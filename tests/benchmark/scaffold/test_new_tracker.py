@@ -204,7 +204,7 @@ def test_end_to_end_install_check_and_run(tmp_path: Path) -> None:
 
     check = _run(trackbench, "check", "demo", "--frames", "5")
     assert check.returncode == 0, check.stdout + check.stderr
-    assert "12 passed, 0 failed, 1 skipped (1 trackers)" in check.stdout
+    assert "13 passed, 0 failed, 1 skipped (1 trackers)" in check.stdout
     out = tmp_path / "board"
     run = _run(trackbench, "run", "--tracker", "demo", "--dataset", "camera/S2", "--in-process", "--out", out)
     assert run.returncode == 0, run.stdout + run.stderr

@@ -113,6 +113,15 @@ class MisspeltExpected(Steady):
     expected_failed_checks = {"pickle": "typo"}
 
 
+class LateBug(Steady):
+    """Right until frame 50, then a NaN state: a bug only a long enough run shows."""
+
+    name = "late-bug"
+
+    def step(self, frame: Frame) -> Any:
+        return CableState(math.nan, 0.0, 12.0, 0.0) if frame.index >= 50 else super().step(frame)
+
+
 class OpensAFileAtFrame5(Steady):
     """Keeps a file open from frame 5 on, which pickle refuses."""
 
@@ -272,6 +281,7 @@ def test_checks_are_named_in_order() -> None:
         "hard_observations",
         "random_sequences",
         "pickles",
+        "hash_seed",
         "belief_invariants",
         "step_time",
     ]
@@ -464,3 +474,10 @@ def test_a_modality_that_cannot_make_hard_observations_is_named(fakes: types.Mod
     assert "modality 'camera' could not make hard observations (not the tracker's fault): KeyError" in failed[
         "hard_observations"
     ]
+
+
+def test_a_bug_that_starts_at_frame_50_is_caught_by_default(registry: Registry, fakes: types.ModuleType) -> None:
+    long = fakes.FakeSequence("fake/long", 80)
+    failed = failures(check_tracker(LateBug, registry=registry, modality_data=long))
+    assert "invalid estimate at frame 50: EstimateError" in failed["runs"]
+    assert failures(check_tracker(LateBug, registry=registry, modality_data=long, n_frames=15)) == {}

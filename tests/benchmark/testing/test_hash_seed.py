@@ -23,6 +23,7 @@ import pytest
 
 from benchmark.registry import TrackerEntry
 from benchmark.testing import Check, Subject, prepare, run_check
+from benchmark.testing.checks import NotApplicable
 from benchmark.testing.hash_seed import OTHER_HASH_SEEDS, check_hash_seed, hash_seed_here
 
 PLUGIN_SOURCE = Path(__file__).with_name("hash_seed_plugin.py")
@@ -80,9 +81,10 @@ def test_a_tracker_class_defined_in_a_function_is_not_checked(acme: types.Module
     class Local(acme.Drifting):
         name = "local"
 
-    detail = check_hash_seed(subject_of(Local, fakes))
-    assert detail.startswith("not checked: its class ")
-    assert "<locals>.Local is defined inside a function" in detail
+    with pytest.raises(NotApplicable) as skipped:
+        check_hash_seed(subject_of(Local, fakes))
+    assert str(skipped.value).startswith("not checked: its class ")
+    assert "<locals>.Local is defined inside a function" in str(skipped.value)
 
 
 def test_a_module_a_fresh_interpreter_cannot_import_is_not_checked(tmp_path: Path, fakes: types.ModuleType) -> None:
@@ -92,10 +94,11 @@ def test_a_module_a_fresh_interpreter_cannot_import_is_not_checked(tmp_path: Pat
     sys.modules["acme_elsewhere"] = module  # importable here only: its folder is not on sys.path
     try:
         spec.loader.exec_module(module)
-        detail = check_hash_seed(subject_of(module.Drifting, fakes))
+        with pytest.raises(NotApplicable) as skipped:
+            check_hash_seed(subject_of(module.Drifting, fakes))
     finally:
         del sys.modules["acme_elsewhere"]
-    assert detail == (
+    assert str(skipped.value) == (
         "not checked: its module 'acme_elsewhere' cannot be imported in a fresh interpreter: "
         "no finder finds 'acme_elsewhere'"
     )
@@ -150,7 +153,7 @@ def test_a_module_that_imports_here_only(
     try:
         try:
             outcome = check_hash_seed(subject_of(hosted.Hosted, fakes))
-        except AssertionError as failure:
+        except (AssertionError, NotApplicable) as failure:
             outcome = str(failure)
     finally:
         del sys.modules[name]
