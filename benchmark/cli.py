@@ -768,7 +768,7 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
 @click.option(
     "--random-frames",
     type=click.IntRange(min=1),
-    default=5,
+    default=RANDOM_FRAMES,
     show_default=True,
     help="Frames of each random sequence the random_sequences check draws.",
 )

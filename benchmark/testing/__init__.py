@@ -52,6 +52,7 @@ from benchmark.runner import UserInterrupt, describe_exception, sigint_is_user_i
 from benchmark.testing.checks import (
     CHECKS,
     DEFAULT_FRAMES,
+    RANDOM_FRAMES,
     Check,
     NotApplicable,
     Subject,
@@ -164,7 +165,7 @@ def check_tracker(
     modality_data: Sequence | None = None,
     registry: Registry | None = None,
     n_frames: int = DEFAULT_FRAMES,
-    random_frames: int = 0,
+    random_frames: int = RANDOM_FRAMES,
     time_limit_s: float | None = DEFAULT_TIME_LIMIT_S,
 ) -> list[CheckResult]:
     """Run every check on one tracker.
@@ -184,7 +185,7 @@ def check_tracker(
     n_frames : int
         Frames read from the sequence (and from the training sequence of a tracker that learns).
     random_frames : int
-        Frames of each random sequence; 0 for :data:`benchmark.testing.checks.RANDOM_FRAMES`.
+        Frames of each random sequence the ``random_sequences`` check draws.
     time_limit_s : float or None
         Time each check may take, s; a check still running then fails as a
         hang (:mod:`benchmark.testing.time_limit`: main thread, POSIX only).
@@ -213,7 +214,7 @@ def prepare_within(
     modality_data: Sequence | None = None,
     n_frames: int = DEFAULT_FRAMES,
     time_limit_s: float | None = DEFAULT_TIME_LIMIT_S,
-    random_frames: int = 0,
+    random_frames: int = RANDOM_FRAMES,
 ) -> Subject:
     """:func:`~benchmark.testing.checks.prepare` within the time limit: a fit that hangs is the subject's problem."""
     try:

@@ -64,6 +64,12 @@ from benchmark.training import learns
 DEFAULT_FRAMES = 60
 """Frames each run of a check reads: a bug that starts at frame 50 shows, and the middle third of hard observations is 20 frames long."""
 
+RANDOM_EXAMPLES = 10
+"""Random sequences :func:`check_random_sequences` runs a tracker on."""
+
+RANDOM_FRAMES = 5
+"""Frames of each random sequence, unless the caller chooses another length."""
+
 SEED = 0
 """Seed of the checks' runs, turned into a generator by the runner's convention (:func:`cell_rng`)."""
 
@@ -142,11 +148,7 @@ class Subject:
     frames: FrameList | None = None
     model: Any = None
     problem: str = ""
-    random_frames: int = 0
-
-    def __post_init__(self) -> None:
-        if not self.random_frames:
-            object.__setattr__(self, "random_frames", RANDOM_FRAMES)
+    random_frames: int = RANDOM_FRAMES
 
     @property
     def name(self) -> str:
@@ -255,7 +257,7 @@ def prepare(
     registry: Registry,
     sequence: Sequence | None = None,
     n_frames: int = DEFAULT_FRAMES,
-    random_frames: int = 0,
+    random_frames: int = RANDOM_FRAMES,
 ) -> Subject:
     """The subject of the checks of ``entry``: frames of its modality and, if it learns, a fitted model.
 
@@ -270,7 +272,7 @@ def prepare(
     n_frames : int
         Frames read from it (and from the training sequence).
     random_frames : int
-        Frames of each random sequence; 0 for :data:`RANDOM_FRAMES`.
+        Frames of each random sequence.
 
     Returns
     -------
@@ -648,12 +650,6 @@ def _hard_runs(subject: Subject) -> list[tuple[str, str, list[Frame]]]:
         runs.append((kind, f"{kind!r} observations in frames {own[start].index}-{own[stop - 1].index}", hard))
     return runs
 
-
-RANDOM_EXAMPLES = 10
-"""Random sequences :func:`check_random_sequences` runs a tracker on."""
-
-RANDOM_FRAMES = 5
-"""Frames of each random sequence."""
 
 
 def _describe(info: SequenceInfo) -> str:

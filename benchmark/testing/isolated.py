@@ -28,6 +28,7 @@ from benchmark.runner import describe_exception
 from benchmark.testing import (
     DEFAULT_FRAMES,
     DEFAULT_TIME_LIMIT_S,
+    RANDOM_FRAMES,
     CheckResult,
     Subject,
     checks,
@@ -47,7 +48,7 @@ def check_in_workers(
     registry: Registry,
     n_frames: int = DEFAULT_FRAMES,
     time_limit_s: float = DEFAULT_TIME_LIMIT_S,
-    random_frames: int = 0,
+    random_frames: int = RANDOM_FRAMES,
 ) -> Iterator[CheckResult]:
     """Every check of every tracker named, each in a worker process; the results as they come.
 
@@ -62,7 +63,7 @@ def check_in_workers(
     time_limit_s : float
         Time one check may take (and the preparation of a tracker's frames and model).
     random_frames : int
-        Frames of each random sequence; 0 for the kit's default.
+        Frames of each random sequence the ``random_sequences`` check draws.
 
     Yields
     ------
