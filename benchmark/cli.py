@@ -768,9 +768,8 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
 @click.option(
     "--random-frames",
     type=click.IntRange(min=1),
-    default=RANDOM_FRAMES,
-    show_default=True,
-    help="Frames of each random sequence the random_sequences check draws.",
+    default=None,
+    help="Frames of each random sequence the random_sequences check draws  [default: 5].",
 )
 @click.option(
     "--time-limit",
@@ -790,7 +789,7 @@ def check_command(
     ctx: click.Context,
     names: tuple[str, ...],
     frames: int,
-    random_frames: int,
+    random_frames: int | None,
     time_limit_s: float,
     in_process: bool,
 ) -> None:
@@ -804,12 +803,13 @@ def check_command(
     check failed (or passed while listed as expected to fail).
     """
     from benchmark.selection import select_trackers
-    from benchmark.testing import check_tracker, checks
+    from benchmark.testing import RANDOM_FRAMES, check_tracker, checks
     from benchmark.testing.isolated import check_in_workers
 
     session: Session = ctx.obj
     registry = session.registry
     entries = select_trackers(registry, names)
+    random_frames = RANDOM_FRAMES if random_frames is None else random_frames
     if in_process:
         results = (
             result

@@ -118,7 +118,7 @@ class Condensation:
     """Whether the last :meth:`step` resampled."""
 
     def step(self, particles: ParticleSet, observation: Any, rng: np.random.Generator) -> ParticleSet:
-        """Advance the particle set by one observation.
+        """Advance the particle set by one observation: :meth:`predict`, then :meth:`update`.
 
         Returns
         -------
@@ -126,11 +126,40 @@ class Condensation:
             The drifted, diffused and newly weighted particles, approximating
             the posterior of the new time step.
         """
+        return self.update(self.predict(particles, rng), observation)
+
+    def predict(self, particles: ParticleSet, rng: np.random.Generator) -> ParticleSet:
+        """Resample if needed, then drift and diffuse: the predicted set, before any measurement.
+
+        Returns
+        -------
+        ParticleSet
+            The moved states ``S'_t`` with the weights they carry: those of
+            ``particles``, or ``1/N`` after resampling.
+
+        References
+        ----------
+        seeds/000, Fig. 4.10 steps (a)-(b); eqs. (3.8)-(3.10).
+        """
         self.resampled = particles.effective_size < self.ess_fraction * particles.size
         if self.resampled:
             particles = particles.take(self.resample(particles.weights, rng))
-        states = self.movement.propagate(particles.states, rng)
-        raw = self.observation.likelihood(states, observation)
+        return ParticleSet(self.movement.propagate(particles.states, rng), particles.weights)
+
+    def update(self, predicted: ParticleSet, observation: Any) -> ParticleSet:
+        """Weigh the predicted set by an observation; the states stay as they are.
+
+        Returns
+        -------
+        ParticleSet
+            The states of ``predicted`` with the normalised likelihoods as
+            weights, times the weights they carried when ``carry_weights``.
+
+        References
+        ----------
+        seeds/000, Fig. 4.10 step (c), section 3.4.3, eq. (4.12); seeds/003, eq. (4).
+        """
+        raw = self.observation.likelihood(predicted.states, observation)
         if self.carry_weights:
-            raw = particles.weights * raw
-        return ParticleSet(states, normalise_weights(raw))
+            raw = predicted.weights * raw
+        return ParticleSet(predicted.states, normalise_weights(raw))

@@ -434,10 +434,15 @@ class GaussianBeliefView:
 
     Mixed into the Kalman-filter trackers, so that
     :class:`benchmark.testing.beliefs.GaussianBelief` and its invariant
-    checks see their state.
+    checks see their state.  A tracker that also keeps ``prior``, the
+    prediction its latest step's :func:`update` corrected (None when the
+    step made no update), exposes its covariance as ``prior_covariance``
+    (:class:`benchmark.testing.beliefs.GaussianUpdate`), so that the kit
+    compares prior and posterior of every update.
     """
 
     belief: Gaussian | None
+    prior: Gaussian | None = None
 
     @property
     def mean(self) -> np.ndarray | None:
@@ -450,3 +455,15 @@ class GaussianBeliefView:
         """The belief's covariance; None while there is no belief."""
         belief = self.belief
         return None if belief is None else belief.covariance
+
+    @property
+    def prior_covariance(self) -> np.ndarray | None:
+        """``Sigma_bar``, the covariance the latest step's update corrected; None when the step made no update.
+
+        References
+        ----------
+        seeds/002, Table 2, line 3 (the prior) and line 6 (the posterior,
+        :attr:`covariance`); seeds/004, eqs. (15b) and (16c).
+        """
+        prior = self.prior
+        return None if prior is None else prior.covariance

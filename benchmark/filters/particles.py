@@ -159,10 +159,15 @@ class ParticleBeliefView:
 
     Mixed into the particle-filter trackers, so that
     :class:`benchmark.testing.beliefs.ParticleBelief` and its invariant
-    checks see their state.
+    checks see their state.  A tracker that also keeps ``prior_set``, the
+    predicted set its latest step weighed (None when the step weighed
+    nothing), exposes its states as ``prior_particles``
+    (:class:`benchmark.testing.beliefs.ParticleUpdate`), so that the kit
+    checks that the update only weighed them.
     """
 
     particle_set: ParticleSet | None
+    prior_set: ParticleSet | None = None
 
     @property
     def particles(self) -> np.ndarray | None:
@@ -173,3 +178,14 @@ class ParticleBeliefView:
     def weights(self) -> np.ndarray | None:
         """The particles' weights, ``(N,)``, summing to one; None while the filter has no particles."""
         return None if self.particle_set is None else self.particle_set.weights
+
+    @property
+    def prior_particles(self) -> np.ndarray | None:
+        """The predicted states the latest step weighed, ``(N, D)``; None when the step weighed nothing.
+
+        References
+        ----------
+        seeds/000, Fig. 4.10 step (b) (the set ``S'_t`` after drift and
+        diffusion) and step (c) (its weights); seeds/003, eqs. (3)-(4).
+        """
+        return None if self.prior_set is None else self.prior_set.states

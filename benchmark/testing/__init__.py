@@ -64,6 +64,7 @@ from benchmark.testing.time_limit import CheckTimeout, time_limit
 from benchmark.tracker import Tracker
 
 __all__ = [
+    "RANDOM_FRAMES",
     "Check",
     "CheckResult",
     "Subject",

@@ -13,6 +13,36 @@ start, or while it has lost the target).  :func:`particle_belief_problems`
 and :func:`gaussian_belief_problems` list what is wrong with one belief;
 the ``belief_invariants`` check of :mod:`benchmark.testing.checks` applies
 them after ``reset`` and after every ``step``.
+
+A snapshot per frame cannot show what a measurement did to the belief, so
+a filter may also expose the belief its latest step's measurement update
+started from:
+
+* :class:`GaussianUpdate`: ``prior_covariance``, the covariance predicted
+  for the step (``Sigma_bar_t`` of seeds/002, Table 2, line 3; ``P_k^-`` of
+  seeds/004, eq. 15b), of which the exposed ``covariance`` is the
+  posterior.  An update by a measurement of the state, linear or
+  linearised, never widens a Gaussian: ``Sigma_bar - Sigma = K S K^T`` is
+  positive semi-definite (Table 2, line 6; seeds/004, eq. 16c), and
+  :func:`gaussian_update_problems` checks it;
+* :class:`ParticleUpdate`: ``prior_particles``, the predicted set the
+  update weighed (``S'_t`` of seeds/000, Fig. 4.10 step (b); the samples of
+  seeds/003, eq. 3), of which the exposed ``particles`` are the posterior.
+  The update only weighs what the prediction drew (seeds/000, section
+  3.4.3; seeds/003, eq. 4) and may resample after weighing, so every
+  posterior particle is a row of the predicted set, bit for bit
+  (:func:`particle_update_problems`).  Whatever moves particles before the
+  weighing (resampling, drift and diffusion, injected or re-detected
+  samples, a re-initialisation) belongs to the prediction: the prior is the
+  set as it stands when the first likelihood is evaluated.  A move after
+  the weighing (a local ascent of the particles, say) makes the posterior
+  something other than a weighted predicted set, and such a tracker should
+  not expose a prior.
+
+Both are None when the latest step made no measurement update (a frame
+without a measurement, a measurement the tracker refused, a start from a
+measurement) or when there is no belief; the kit then compares nothing for
+that step.
 """
 
 from __future__ import annotations
@@ -22,12 +52,17 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 
 __all__ = [
+    "UPDATE_TOLERANCE",
     "WEIGHT_SUM_TOLERANCE",
     "declares_belief",
     "GaussianBelief",
+    "GaussianUpdate",
     "ParticleBelief",
+    "ParticleUpdate",
     "gaussian_belief_problems",
+    "gaussian_update_problems",
     "particle_belief_problems",
+    "particle_update_problems",
 ]
 
 WEIGHT_SUM_TOLERANCE = 1e-9
@@ -35,6 +70,9 @@ WEIGHT_SUM_TOLERANCE = 1e-9
 
 SYMMETRY_TOLERANCE = 1e-9
 """Relative tolerance of a float64 covariance's symmetry and smallest eigenvalue; a coarser dtype gets ``10 * D * eps``."""
+
+UPDATE_TOLERANCE = 1e-9
+"""How far, on the prior's scales, a float64 posterior may exceed its prior; a coarser dtype gets ``10 D^2 eps``."""
 
 
 def declares_belief(tracker_class: type) -> bool:
@@ -88,6 +126,41 @@ class GaussianBelief(Protocol):
 
     @property
     def covariance(self) -> np.ndarray | None: ...
+
+
+@runtime_checkable
+class GaussianUpdate(GaussianBelief, Protocol):
+    """A Gaussian tracker that exposes the prior of its latest measurement update.
+
+    Attributes
+    ----------
+    prior_covariance : numpy.ndarray or None
+        The covariance predicted for the latest step, before that step's
+        measurement update, shape ``(D, D)`` and in the coordinates of
+        :attr:`covariance`, which is the update's posterior; None when the
+        step made no update or there is no belief.
+    """
+
+    @property
+    def prior_covariance(self) -> np.ndarray | None: ...
+
+
+@runtime_checkable
+class ParticleUpdate(ParticleBelief, Protocol):
+    """A particle tracker that exposes the predicted set its latest measurement update weighed.
+
+    Attributes
+    ----------
+    prior_particles : numpy.ndarray or None
+        The states of the particles as the latest step's update found them,
+        shape ``(N', D)``: after everything the step did before weighing
+        (resampling, drift, diffusion, injected or re-detected samples).
+        Every row of :attr:`particles`, the posterior, is one of these rows.
+        None when the step made no update or there is no belief.
+    """
+
+    @property
+    def prior_particles(self) -> np.ndarray | None: ...
 
 
 def _as_float(value: object, name: str, problems: list[str]) -> np.ndarray | None:
@@ -208,4 +281,132 @@ def gaussian_belief_problems(mean: object, cov: object, tol: float = SYMMETRY_TO
     smallest = float(np.min(np.linalg.eigvalsh(scaled)))
     if smallest < -tol:
         problems.append(f"covariance is not positive semi-definite: eigenvalue {smallest:.3g} on its components' scales")
+    return problems
+
+
+def _format_vector(vector: np.ndarray, digits: int = 2) -> str:
+    return "(" + ", ".join(f"{value:.{digits}g}" for value in vector) + ")"
+
+
+def gaussian_update_problems(prior_cov: object, posterior_cov: object, tol: float = UPDATE_TOLERANCE) -> list[str]:
+    """What is wrong with a measurement update that turned ``prior_cov`` into ``posterior_cov``.
+
+    Parameters
+    ----------
+    prior_cov : array_like
+        The predicted covariance ``Sigma_bar``, shape ``(D, D)``.
+    posterior_cov : array_like
+        The covariance after the update, ``Sigma``, same shape.
+    tol : float
+        Relative tolerance for float64 (:func:`dtype_tolerance` widens it to
+        ``10 D^2 eps`` of the coarser of the two dtypes): with each component
+        scaled by the prior's own standard deviation (``C_ij / sqrt(P_ii
+        P_jj)``), the smallest eigenvalue of ``Sigma_bar - Sigma``,
+        symmetrised, may be as low as ``-tol``.  The symmetrised difference
+        forgives the textbook ``(I - K H) Sigma_bar``, which is not
+        symmetric to the last bit.
+
+    Returns
+    -------
+    list of str
+        One line per broken invariant, empty when there is none: the
+        shapes match, both are finite, and the posterior does not exceed the
+        prior in the Loewner order.  A posterior that does is named by the
+        direction it grew along (on the prior's scales), the component that
+        leads it, and every component whose variance grew.
+
+    References
+    ----------
+    seeds/002, Table 2, lines 4 and 6: ``Sigma_bar - Sigma = K (H Sigma_bar
+    H^T + Q) K^T`` is positive semi-definite.  seeds/004, eqs. (16a) and
+    (16c); with no measurement the posterior is the prior, eq. (17).
+    """
+    problems: list[str] = []
+    prior = _as_float(prior_cov, "prior covariance", problems)
+    posterior = _as_float(posterior_cov, "posterior covariance", problems)
+    if prior is None or posterior is None:
+        return problems
+    if prior.ndim != 2 or prior.shape[0] != prior.shape[1]:
+        problems.append(f"prior covariance must have shape (D, D), not {prior.shape}")
+        return problems
+    if posterior.shape != prior.shape:
+        problems.append(f"posterior covariance of shape {posterior.shape} does not match the prior's {prior.shape}")
+        return problems
+    finite = _all_finite(prior, "prior covariance entries", problems)
+    if not (_all_finite(posterior, "posterior covariance entries", problems) and finite) or prior.size == 0:
+        return problems
+    dims = prior.shape[0]
+    tol = max(dtype_tolerance(value, tol, 10 * dims * dims) for value in (prior_cov, posterior_cov))
+    # On the prior's own scales, as gaussian_belief_problems judges a covariance.
+    spread = np.sqrt(np.maximum(np.abs(np.diag(prior)), 1e-300))
+    shrink = (prior - posterior) / np.outer(spread, spread)
+    shrink = 0.5 * (shrink + shrink.T)
+    values, vectors = np.linalg.eigh(shrink)
+    if values[0] >= -tol:
+        return problems
+    direction = vectors[:, 0]
+    lead = int(np.argmax(np.abs(direction)))
+    direction = direction * np.sign(direction[lead])
+    grown = [int(i) for i in np.flatnonzero(np.diag(shrink) < -tol)]
+    variances = "; ".join(
+        f"variance of component {i} grew from {prior[i, i]:.3g} to {posterior[i, i]:.3g}" for i in grown
+    )
+    problems.append(
+        f"the update widened the belief: the posterior exceeds the prior along {_format_vector(direction)} "
+        f"(on the prior's scales, component {lead} leading) by {-values[0]:.3g} of its scale"
+        + (f"; {variances}" if variances else "")
+    )
+    return problems
+
+
+def _rows(states: np.ndarray) -> np.ndarray:
+    """Each row of a float64 ``(N, D)`` array as one opaque value, ``-0.0`` taken as ``0.0``, for set membership."""
+    rows = np.ascontiguousarray(states + 0.0)
+    return rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).ravel()
+
+
+def particle_update_problems(prior_particles: object, posterior_particles: object) -> list[str]:
+    """What is wrong with a measurement update that weighed ``prior_particles`` into ``posterior_particles``.
+
+    Parameters
+    ----------
+    prior_particles : array_like
+        The predicted set, shape ``(N', D)`` with ``N' >= 1``.
+    posterior_particles : array_like
+        The particles after the update, shape ``(N, D)``.
+
+    Returns
+    -------
+    list of str
+        One line per broken invariant, empty when there is none: the shapes
+        agree on ``D``, and every posterior particle equals a row of the
+        predicted set exactly (an update weighs and may resample, copying
+        rows, but moves no particle).  A moved particle is named with its
+        index and state.
+
+    References
+    ----------
+    seeds/000, section 3.4.3 and Fig. 4.10 step (c): the new measurement
+    only assigns weights to the predicted states ``s_t``.  seeds/003,
+    eqs. (3)-(4): the samples are drawn by the importance density, then
+    weighted; SIR resampling (section 3.4) draws among them.
+    """
+    problems: list[str] = []
+    prior = _as_float(prior_particles, "prior particles", problems)
+    posterior = _as_float(posterior_particles, "particles", problems)
+    if prior is None or posterior is None:
+        return problems
+    if prior.ndim != 2 or prior.shape[0] == 0:
+        problems.append(f"prior particles must have shape (N, D) with N >= 1, not {prior.shape}")
+        return problems
+    if posterior.ndim != 2 or posterior.shape[1] != prior.shape[1]:
+        problems.append(f"particles of shape {posterior.shape} do not match prior particles of shape {prior.shape}")
+        return problems
+    moved = np.flatnonzero(~np.isin(_rows(posterior), _rows(prior)))
+    if moved.size:
+        first = int(moved[0])
+        problems.append(
+            f"the update moved particles: {moved.size} of {posterior.shape[0]} are not particles of the predicted "
+            f"set (particle {first} is {_format_vector(posterior[first], 6)}); an update only weighs and resamples"
+        )
     return problems

@@ -51,10 +51,14 @@ from benchmark.registry import Registry, TrackerEntry
 from benchmark.runner import UserInterrupt, cell_rng, describe_exception
 from benchmark.testing.beliefs import (
     GaussianBelief,
+    GaussianUpdate,
     ParticleBelief,
+    ParticleUpdate,
     declares_belief,
     gaussian_belief_problems,
+    gaussian_update_problems,
     particle_belief_problems,
+    particle_update_problems,
 )
 from benchmark.testing.hash_seed import check_hash_seed
 from benchmark.testing.time_limit import CheckTimeout
@@ -781,8 +785,36 @@ def _belief_problems(tracker: Tracker) -> tuple[list[str], list[str]]:
     return kinds, problems
 
 
+UpdateProblems = Callable[[Any, Any], list[str]]
+
+UPDATES: tuple[tuple[type, str, str, str, UpdateProblems], ...] = (
+    (ParticleUpdate, "particle", "prior_particles", "particles", particle_update_problems),
+    (GaussianUpdate, "Gaussian", "prior_covariance", "covariance", gaussian_update_problems),
+)
+"""Each kind of update the kit compares: its protocol, name, prior and posterior attributes, and what judges them."""
+
+
+def _update_problems(tracker: Tracker) -> tuple[list[str], list[str]]:
+    """The kinds of update whose prior ``tracker`` exposes for its latest step, and what is wrong with them.
+
+    A prior of None (no update this step) is not one; a prior without a
+    posterior belief is a problem.
+    """
+    kinds: list[str] = []
+    problems: list[str] = []
+    for protocol, kind, prior_name, posterior_name, judge in UPDATES:
+        prior = getattr(tracker, prior_name) if isinstance(tracker, protocol) else None
+        if prior is None:
+            continue
+        kinds.append(kind)
+        posterior = getattr(tracker, posterior_name)
+        missing = [f"it exposes {prior_name} but no {posterior_name}"]
+        problems += missing if posterior is None else judge(prior, posterior)
+    return kinds, problems
+
+
 def check_belief_invariants(subject: Subject) -> str:
-    """A belief the tracker exposes keeps its invariants after ``reset`` and after every ``step``.
+    """A belief the tracker exposes keeps its invariants after ``reset`` and every ``step``, and so do its updates.
 
     A tracker exposes its belief through :class:`~benchmark.testing.beliefs.ParticleBelief`
     (weights finite, non-negative, summing to one, effective sample size in
@@ -792,18 +824,27 @@ def check_belief_invariants(subject: Subject) -> str:
     with each kind of hard observation in their middle third, where a
     tracker loses its target and coasts (a variance that goes negative only
     while lost shows there).  A belief of None (no start yet, target lost)
-    is not checked; a tracker that satisfies neither protocol passes with
-    the detail ``"exposes no belief"``.  A run that raises on hard
+    is not checked; for a tracker that satisfies neither protocol the check
+    does not apply (:class:`NotApplicable`).  A run that raises on hard
     observations is left to :func:`check_hard_observations`.
+
+    After every step, a tracker that also exposes the prior of that step's
+    measurement update (:class:`~benchmark.testing.beliefs.GaussianUpdate`,
+    :class:`~benchmark.testing.beliefs.ParticleUpdate`) has the update
+    checked: the posterior covariance no wider than the prior in the
+    Loewner order, every posterior particle one of the predicted set.  The
+    detail says how many updates were compared.
 
     Raises
     ------
     AssertionError
-        Naming the run, and the first point (after reset, or the frame) where the belief breaks an invariant.
+        Naming the run, and the first point (after reset, or the frame) where the belief breaks an invariant
+        or the frame whose update does.
     """
     _, frames = subject.ready()
     kinds: set[str] = set()
-    held = points = 0
+    updated: set[str] = set()
+    held = points = updates = 0
     runs: list[tuple[str, str, list[Frame]]] = [("", "", frames.frame_list)]
     declared = declares_belief(subject.entry.tracker_class)
     if declared:
@@ -821,13 +862,23 @@ def check_belief_invariants(subject: Subject) -> str:
                     where = f"step, frame {frame.index}"
                     tracker.step(frame)
                 now, problems = _belief_problems(tracker)
+                among = f", {label}" if label else ""
                 if problems:
                     point = "after reset" if frame is None else f"at frame {frame.index}"
-                    among = f", {label}" if label else ""
                     raise subject.fail(f"its {' and '.join(now)} belief is broken {point}{among}: {'; '.join(problems)}")
                 kinds.update(now)
                 held += bool(now)
                 points += 1
+                if frame is None:
+                    continue
+                compared, problems = _update_problems(tracker)
+                if problems:
+                    raise subject.fail(
+                        f"its {' and '.join(compared)} measurement update is broken at frame {frame.index}{among}: "
+                        + "; ".join(problems)
+                    )
+                updated.update(compared)
+                updates += bool(compared)
         except AssertionError:
             raise
         except PASS_THROUGH:
@@ -838,7 +889,15 @@ def check_belief_invariants(subject: Subject) -> str:
             raise subject.fail(f"{describe_exception(exc)} ({where}, reading the belief)") from exc
     if not declared and not kinds:
         raise subject.skip("exposes no belief (neither ParticleBelief nor GaussianBelief)")
-    return f"{' and '.join(sorted(kinds)) or 'no'} belief held at {held} of {points} points ({len(runs)} runs: reset and each frame)"
+    checked = (
+        f"prior and posterior compared at {updates} {' and '.join(sorted(updated))} updates"
+        if updates
+        else "no update exposed its prior"
+    )
+    return (
+        f"{' and '.join(sorted(kinds)) or 'no'} belief held at {held} of {points} points "
+        f"({len(runs)} runs: reset and each frame); {checked}"
+    )
 
 
 CheckFunction = Callable[[Subject], str]

@@ -94,12 +94,17 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
     """Particle filter over ``(d, alpha, w, beta, v_d, v_alpha)`` with border-gradient weights.
 
     The belief is exposed as a :class:`~benchmark.testing.beliefs.ParticleBelief`
-    (:attr:`particles`, :attr:`weights`).
+    (:attr:`particles`, :attr:`weights`), and the set each step weighed as a
+    :class:`~benchmark.testing.beliefs.ParticleUpdate` (:attr:`prior_particles`).
 
     Attributes
     ----------
     particle_set : ParticleSet or None
         The weighted particles after the last step (None before :meth:`reset`).
+    prior_set : ParticleSet or None
+        The set the last step weighed: after re-detection or re-initialisation,
+        resampling, drift and diffusion (Fig. 4.10 steps (a)-(b)); None after
+        :meth:`reset`.
     observation : BorderObservation
         The observation model.
     lost : LostCable
@@ -175,6 +180,7 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
             else None
         )
         self.particle_set: ParticleSet | None = None
+        self.prior_set: ParticleSet | None = None
         self._rng: np.random.Generator | None = None
         self._steps = 0
         self._lost = False
@@ -240,6 +246,7 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
         self._lost = lost
         self.lost.reset()
         self.particle_set = ParticleSet.equally_weighted(states)
+        self.prior_set = None
 
     def step(self, frame: CameraFrame) -> CableState | None:
         """One condensation step on a frame and the estimate of the cable state.
@@ -278,7 +285,8 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
             self._fit_frame(image.shape[1])
         self._refresh(image)
         self._steps += 1
-        self.particle_set = self.filter.step(self.particle_set, image, self._rng)
+        self.prior_set = self.filter.predict(self.particle_set, self._rng)
+        self.particle_set = self.filter.update(self.prior_set, image)
         mean = self.particle_set.mmse()[:4]
         mean_score = float(self.observation.score(mean[None, :], image)[0])
         self._lost = self.lost.update(mean_score)

@@ -116,7 +116,10 @@ class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
 
     The belief (attribute ``belief``, a :class:`~benchmark.filters.kalman.Gaussian`)
     is exposed as a :class:`~benchmark.testing.beliefs.GaussianBelief`
-    (:attr:`mean`, :attr:`covariance`).
+    (:attr:`mean`, :attr:`covariance`), and the prediction ``P_k^-`` (eq. 15b)
+    that a frame's accepted pair corrected by eq. (16c) (attribute ``prior``;
+    None on a frame without one) as a :class:`~benchmark.testing.beliefs.GaussianUpdate`
+    (:attr:`prior_covariance`).
 
     References
     ----------
@@ -137,6 +140,7 @@ class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
         self._q = np.diag(np.r_[p.process_var, p.roll_process_var][: self._dims])
         self._r = p.measurement_var_px2 * np.eye(4)
         self.belief: Gaussian | None = None
+        self.prior: Gaussian | None = None
         self.camera: PipeCamera | None = None
         self.measurement: np.ndarray | None = None
         """The last frame's measured abscissae ``(i_1, i_2, i_3, i_4)``, None without a pair."""
@@ -169,6 +173,7 @@ class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
             mean = np.r_[p.initial_state, 0.0]
         variance = np.r_[p.initial_var, p.roll_initial_var]
         self.belief = Gaussian(mean[: self._dims], np.diag(variance[: self._dims]))
+        self.prior = None
         self._speeds = np.zeros(3)
         self._started = False
         self.measurement = None
@@ -215,6 +220,7 @@ class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
             spread = slope @ self.belief.covariance @ slope.T + self._r
             pair = self.features.measure(image, predicted, spread)
         self.measurement = None
+        self.prior = None
         abscissae = predicted
         if pair is not None:
             left, right = pair
@@ -223,6 +229,7 @@ class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
             corrected = update(self.belief, measurement, lambda _: predicted, slope, self._r)
             refitted = border_abscissae(corrected.mean, camera)
             if self._reproduces(refitted, measurement):
+                self.prior = self.belief
                 self.belief, self.measurement, abscissae = corrected, measurement, refitted
         return self._estimate(abscissae)
 

@@ -65,7 +65,9 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
         What the last frame was searched with; None for the whole image.
 
     The filter's belief is exposed as a :class:`~benchmark.testing.beliefs.GaussianBelief`
-    (:attr:`mean`, :attr:`covariance`).
+    (:attr:`mean`, :attr:`covariance`), and the prediction a frame's pair
+    corrected as a :class:`~benchmark.testing.beliefs.GaussianUpdate`
+    (:attr:`prior_covariance`).
 
     References
     ----------
@@ -91,6 +93,11 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
     def belief(self) -> Gaussian | None:
         """The filter's Gaussian belief over ``(d, alpha, w)``, or None while the cable is lost."""
         return self.filter.belief
+
+    @property
+    def prior(self) -> Gaussian | None:
+        """The prediction this frame's pair corrected (seeds/002, Table 2, line 3); None when no pair did."""
+        return self.filter.prior
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: CameraTruth | None = None) -> None:
         """Forget the previous sequence; optionally start tracking from ``init``.

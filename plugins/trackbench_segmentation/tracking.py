@@ -48,6 +48,11 @@ class CableKalman:
     belief : Gaussian or None
         The current mean and covariance; None before the first measurement
         and after :meth:`forget`.
+    prior : Gaussian or None
+        The prediction the latest :meth:`update` corrected, in the form of
+        its result (turned with it when the corrected angle was brought back
+        into range); None when there was no update since the last
+        :meth:`predict`, or the update started the filter.
 
     References
     ----------
@@ -57,6 +62,7 @@ class CableKalman:
 
     def __init__(self, process_var: tuple[float, float, float], measurement_var: tuple[float, float, float]) -> None:
         self.belief: Gaussian | None = None
+        self.prior: Gaussian | None = None
         self.use_noise(process_var, measurement_var)
 
     def use_noise(self, process_var: tuple[float, float, float], measurement_var: tuple[float, float, float]) -> None:
@@ -67,13 +73,16 @@ class CableKalman:
     def forget(self) -> None:
         """Drop the belief: the cable is lost."""
         self.belief = None
+        self.prior = None
 
     def start(self, state: CableState) -> None:
         """Start from one measured state with the measurement's covariance."""
         self.belief = Gaussian(np.array([state.d, state.alpha, state.w]), self.measurement_noise.copy())
+        self.prior = None
 
     def predict(self) -> None:
         """One random-walk step: the mean stays, the covariance grows by the process noise."""
+        self.prior = None
         if self.belief is not None:
             self.belief = predict(self.belief, _IDENTITY, None, self.process_noise)
 
@@ -112,13 +121,17 @@ class CableKalman:
         if self.belief is None:
             self.start(state)
             return
-        corrected = update(self.belief, self.aligned(state), _IDENTITY, None, self.measurement_noise)
+        prior = self.belief
+        corrected = update(prior, self.aligned(state), _IDENTITY, None, self.measurement_noise)
         mean = corrected.mean
         if not -math.pi / 2 < mean[1] <= math.pi / 2:
             flip = np.diag([-1.0, 1.0, 1.0])
-            mean = np.array([-mean[0], mean[1] - math.copysign(math.pi, mean[1]), mean[2]])
+            turn = math.copysign(math.pi, mean[1])
+            mean = np.array([-mean[0], mean[1] - turn, mean[2]])
             corrected = Gaussian(mean, flip @ corrected.covariance @ flip)
-        self.belief = corrected
+            turned = np.array([-prior.mean[0], prior.mean[1] - turn, prior.mean[2]])
+            prior = Gaussian(turned, flip @ prior.covariance @ flip)
+        self.prior, self.belief = prior, corrected
 
 
 def lateral_std(covariance: np.ndarray, reach_px: float) -> float:

@@ -186,13 +186,18 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
     """Particle filter over the pipe's across-track position, weighted by the likelihood scan.
 
     The belief is exposed as a :class:`~benchmark.testing.beliefs.ParticleBelief`
-    (:attr:`particles`, :attr:`weights`).
+    (:attr:`particles`, :attr:`weights`), and the samples each ping weighed as a
+    :class:`~benchmark.testing.beliefs.ParticleUpdate` (:attr:`prior_particles`).
 
     Attributes
     ----------
     particle_set : ParticleSet or None
         The weighted particles ``(N, 1)`` after the last step; None until
         the filter has a start.
+    prior_set : ParticleSet or None
+        The samples of eq. (3) the last ping weighed by eq. (4): walked,
+        drifted, with the injected ones (section 3.4); None when the ping
+        had no usable scan, and so no update.
 
     References
     ----------
@@ -210,6 +215,7 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
         self._rate = AcrossTrackRate(float(self.params.drift_gain))
         self._rng: np.random.Generator | None = None
         self.particle_set: ParticleSet | None = None
+        self.prior_set: ParticleSet | None = None
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: SonarTruth | None = None) -> None:
         """Set up the detector and, given a start, the particles.
@@ -240,6 +246,7 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
         limit = float(self.params.max_drift_mps) * float(interval) if known else math.inf
         self._rng = rng
         self.particle_set = None
+        self.prior_set = None
         start = init.across_m if init is not None else math.nan
         self._rate = AcrossTrackRate(float(self.params.drift_gain), limit, 0.0, start if math.isfinite(start) else None)
         if math.isfinite(start):
@@ -278,6 +285,7 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
             self.particle_set = ParticleSet.equally_weighted(uniform_positions(int(p.n_particles), extent, self._rng))
         drift = self._rate.rate_m
         lost = False
+        self.prior_set = None
         if scan.is_empty:
             movement = RandomWalkInjection(self._walk_sigma, 0.0, None, drift)
             walked = movement.walk(self.particle_set.states, self._rng)
@@ -285,14 +293,15 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
         else:
             rate = injection_rate(p.inject_fraction, p.lost_ratio, scan, self.particle_set.states[:, 0] + drift)
             lost = p.lost_ratio > 0.0 and rate > 0.0
-            update = Condensation(
+            ping = Condensation(
                 movement=RandomWalkInjection(self._walk_sigma, rate, extent, drift),
                 observation=self._observation,
                 resample=RESAMPLERS[p.resampler],
                 ess_fraction=math.inf,
                 carry_weights=True,
             )
-            self.particle_set = update.step(self.particle_set, scan, self._rng)
+            self.prior_set = ping.predict(self.particle_set, self._rng)
+            self.particle_set = ping.update(self.prior_set, scan)
         halfwidth = p.peak_halfwidth * self.detector.likelihood.section.major_m
         estimate = peak_mean(self.particle_set.states[:, 0], self.particle_set.weights, halfwidth)
         self._rate.update(estimate, trusted=not lost)

@@ -135,7 +135,9 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
     """Extended Kalman filter on ``[X, Y, X_dot, Y_dot]`` from stereo measurements and CH's navigation.
 
     The belief is exposed as a :class:`~benchmark.testing.beliefs.GaussianBelief`
-    (:attr:`mean`, :attr:`covariance`).
+    (:attr:`mean`, :attr:`covariance`), and the prediction each measurement
+    corrected (Table 2, line 3; :attr:`prior`) as a
+    :class:`~benchmark.testing.beliefs.GaussianUpdate` (:attr:`prior_covariance`).
 
     References
     ----------
@@ -154,6 +156,7 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
         self._front_end = front_end_params(self.params)
         self._info: SequenceInfo | None = None
         self._belief: Gaussian | None = None
+        self._prior: Gaussian | None = None
         self._last_index: int | None = None
         self._moving = False
 
@@ -161,6 +164,11 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
     def belief(self) -> Gaussian | None:
         """The filter's mean and covariance of ``[X, Y, X_dot, Y_dot]``, None before the first one."""
         return self._belief
+
+    @property
+    def prior(self) -> Gaussian | None:
+        """``mu_bar``, ``Sigma_bar`` (Table 2, lines 2-3) that this frame's measurement corrected; None without one."""
+        return self._prior
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: StereoTruth | None = None) -> None:
         """Start a sequence, from the first frame's truth (``init``) or from nothing.
@@ -187,6 +195,7 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
             raise DataError(f"sequence {info.name!r}: frame_interval_s must be positive, not {info.frame_interval_s}")
         self._info = info
         self._belief = None
+        self._prior = None
         self._last_index = None
         self._moving = init is not None
         if init is None:
@@ -209,6 +218,7 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
         if self._info is None:
             raise RuntimeError("reset must be called before step")
         measurement = self._measurement(frame)
+        self._prior = None
         if self._belief is None:
             if measurement is not None:
                 self._start_from(frame.index, *measurement)
@@ -216,6 +226,7 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
             self._predict_to(frame.index)
             if measurement is not None:
                 observation, z, navigation = measurement
+                self._prior = self._belief
                 self._belief = update(
                     self._belief,
                     z,

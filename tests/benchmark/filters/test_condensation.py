@@ -201,6 +201,20 @@ def test_a_seed_replays_a_run_bit_for_bit(seed: int, other: int, steps: int, sch
 
 
 @QUICK
+@given(particles=particle_sets(), carry=st.booleans(), fraction=st.floats(0.0, 1.0), seed=st.integers(0, 2**32 - 1))
+def test_a_step_is_its_prediction_weighed_and_the_weighing_moves_nothing(
+    particles: ParticleSet, carry: bool, fraction: float, seed: int
+) -> None:
+    movement = LinearDriftDiffusion(np.eye(2), np.ones(2))
+    filt = Condensation(movement, GaussianLikelihood(), ess_fraction=fraction, carry_weights=carry)
+    stepped = filt.step(particles, np.zeros(2), np.random.default_rng(seed))
+    predicted = filt.predict(particles, np.random.default_rng(seed))
+    weighed = filt.update(predicted, np.zeros(2))
+    assert np.array_equal(weighed.states, stepped.states) and np.array_equal(weighed.weights, stepped.weights)
+    assert weighed.states is predicted.states
+
+
+@QUICK
 @given(n=st.integers(1, 500), fraction=st.floats(0.0, 0.999), seed=st.integers(0, 2**32 - 1))
 def test_a_uniform_set_is_not_resampled(n: int, fraction: float, seed: int) -> None:
     resampler = CountingResampler()

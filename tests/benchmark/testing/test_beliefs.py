@@ -1,24 +1,29 @@
-"""The belief protocols, the invariants of a belief, and the ``belief_invariants`` check on fake trackers."""
+"""The belief protocols, the invariants of a belief and of an update, and the ``belief_invariants`` check on fakes."""
 
 from __future__ import annotations
 
+import re
 import types
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
 from benchmark.model import Frame, SequenceInfo
 from benchmark.registry import Registry
 from benchmark.testing import CheckResult, check_tracker
+from benchmark.filters.resampling import systematic_resample
 from benchmark.testing.beliefs import (
     GaussianBelief,
     ParticleBelief,
     gaussian_belief_problems,
+    gaussian_update_problems,
     particle_belief_problems,
+    particle_update_problems,
 )
 from benchmark.tracker import Tracker
 
@@ -344,3 +349,182 @@ def test_the_textbook_kalman_update_passes() -> None:
         gain = prior @ h.T @ np.linalg.inv(h @ prior @ h.T + np.eye(2) * 1e-3)
         posterior = (np.eye(4) - gain @ h) @ prior  # not symmetrised, as textbooks write it
         assert gaussian_belief_problems(np.zeros(4), posterior) == [], posterior
+
+
+# ---------------------------------------------------------------- Gaussian updates
+
+
+def unit(elements: float = 1.0) -> st.SearchStrategy[float]:
+    return st.floats(-elements, elements, allow_subnormal=False)
+
+
+@st.composite
+def kalman_problems(draw: st.DrawFn) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A prior ``P``, a measurement matrix ``H`` and noise ``R``, on components of scales ``1e-6`` to ``1e6``.
+
+    ``P = T P0 T`` and ``H = H0 T^-1`` with ``P0 = A A^T + c I`` and ``R =
+    B B^T + r I`` of entries at most 1, ``c, r >= 0.1``: the innovation
+    covariance ``H0 P0 H0^T + R`` is conditioned well enough for float32
+    (below ``1e4``), while the components' scales spread over twelve decades.
+    """
+    d = draw(st.integers(1, 5))
+    m = draw(st.integers(1, d))
+    factor = draw(hnp.arrays(float, (d, draw(st.integers(1, 5))), elements=unit()))
+    prior0 = factor @ factor.T + draw(st.floats(0.1, 1.0)) * np.eye(d)
+    noise = draw(hnp.arrays(float, (m, m), elements=unit()))
+    scales = 10.0 ** draw(hnp.arrays(float, (d,), elements=st.floats(-6.0, 6.0)))
+    observe0 = draw(hnp.arrays(float, (m, d), elements=unit()))
+    prior = scales[:, None] * prior0 * scales[None, :]
+    return prior, observe0 / scales[None, :], noise @ noise.T + draw(st.floats(0.1, 1.0)) * np.eye(m)
+
+
+def gain(prior: np.ndarray, observe: np.ndarray, noise: np.ndarray) -> np.ndarray:
+    """``K = P H^T (H P H^T + R)^-1``, in the dtype of its inputs."""
+    return np.linalg.solve(observe @ prior @ observe.T + noise, observe @ prior).T
+
+
+def textbook(prior: np.ndarray, observe: np.ndarray, noise: np.ndarray) -> np.ndarray:
+    """``(I - K H) P``, as seeds/002 Table 2 line 6 and seeds/004 eq. (16c) write it: not symmetric to the last bit."""
+    return (np.eye(len(prior), dtype=prior.dtype) - gain(prior, observe, noise) @ observe) @ prior
+
+
+def joseph(prior: np.ndarray, observe: np.ndarray, noise: np.ndarray) -> np.ndarray:
+    """``(I - K H) P (I - K H)^T + K R K^T``."""
+    k = gain(prior, observe, noise)
+    keep = np.eye(len(prior), dtype=prior.dtype) - k @ observe
+    return keep @ prior @ keep.T + k @ noise @ k.T
+
+
+UPDATES = [textbook, joseph]
+
+
+@given(kalman_problems(), st.sampled_from(UPDATES), st.sampled_from([np.float64, np.float32]))
+def test_a_kalman_update_never_widens_its_prior(
+    problem: tuple[np.ndarray, np.ndarray, np.ndarray], form: Callable[..., np.ndarray], dtype: type
+) -> None:
+    prior, observe, noise = (array.astype(dtype) for array in problem)
+    posterior = form(prior, observe, noise)
+    assert posterior.dtype == dtype
+    assert gaussian_update_problems(prior, posterior) == []
+
+
+@given(kalman_problems())
+def test_a_step_without_a_measurement_keeps_its_prior(problem: tuple[np.ndarray, np.ndarray, np.ndarray]) -> None:
+    prior = problem[0]
+    assert gaussian_update_problems(prior, prior.copy()) == []
+    assert gaussian_update_problems(prior.astype(np.float32), prior.astype(np.float32)) == []
+
+
+def leading_component(problems: list[str]) -> int:
+    [problem] = problems
+    found = re.search(r"component (\d+) leading", problem)
+    assert found is not None, problem
+    return int(found.group(1))
+
+
+@st.composite
+def widened(draw: st.DrawFn) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A prior, a posterior ``P + v v^T`` and ``v`` on the prior's scales (``v_i / sqrt(P_ii)``, at least 0.1 long)."""
+    prior = draw(kalman_problems())[0]
+    direction = draw(hnp.arrays(float, (len(prior),), elements=unit()))
+    assume(np.linalg.norm(direction) > 0.1)
+    spread = np.sqrt(np.diag(prior))
+    v = spread * direction
+    return prior, prior + np.outer(v, v), direction
+
+
+@given(widened())
+def test_a_posterior_wider_than_its_prior_is_named(case: tuple[np.ndarray, np.ndarray, np.ndarray]) -> None:
+    prior, posterior, direction = case
+    problems = gaussian_update_problems(prior, posterior)
+    assert problems and problems[0].startswith("the update widened the belief")
+    lead = leading_component(problems)
+    assert abs(direction[lead]) >= (1.0 - 1e-9) * np.max(np.abs(direction))
+    assert f"variance of component {lead} grew from" in problems[0]
+
+
+def rescaling(dims: int, data: st.DataObject) -> np.ndarray:
+    """``s s^T`` for a scale ``s_i`` of each component from ``1e-6`` to ``1e6``: multiplied in, it rescales."""
+    scales = 10.0 ** data.draw(hnp.arrays(float, (dims,), elements=st.floats(-6.0, 6.0)))
+    return np.outer(scales, scales)
+
+
+@given(kalman_problems(), st.data())
+def test_a_sound_update_passes_on_any_scale_of_its_components(
+    problem: tuple[np.ndarray, np.ndarray, np.ndarray], data: st.DataObject
+) -> None:
+    prior, observe, noise = problem
+    rescale = rescaling(len(prior), data)
+    assert gaussian_update_problems(prior * rescale, joseph(prior, observe, noise) * rescale) == []
+
+
+@given(widened(), st.data())
+def test_a_widened_update_fails_on_any_scale_of_its_components(
+    case: tuple[np.ndarray, np.ndarray, np.ndarray], data: st.DataObject
+) -> None:
+    prior, posterior, direction = case
+    rescale = rescaling(len(prior), data)
+    lead = leading_component(gaussian_update_problems(prior * rescale, posterior * rescale))
+    assert abs(direction[lead]) >= (1.0 - 1e-9) * np.max(np.abs(direction))
+
+
+def test_a_widened_small_component_does_not_hide_behind_a_large_one() -> None:
+    prior = np.diag([1e8, 1e-8])
+    posterior = np.diag([1e8 - 1.0, 2e-8])
+    [problem] = gaussian_update_problems(prior, posterior)
+    assert "component 1 leading" in problem and "variance of component 1 grew from 1e-08 to 2e-08" in problem
+
+
+def test_a_grown_correlation_is_named_by_its_direction() -> None:
+    prior = np.eye(2)
+    posterior = np.array([[1.0, 0.5], [0.5, 1.0]])  # no variance grew, but along (1, 1) the spread did
+    [problem] = gaussian_update_problems(prior, posterior)
+    assert "along (0.71, 0.71)" in problem and "by 0.5 of its scale" in problem and "variance" not in problem
+
+
+def test_bad_update_inputs_are_named() -> None:
+    assert mentions(gaussian_update_problems(np.eye(3), np.eye(2)), "posterior covariance of shape (2, 2) does not")
+    assert mentions(gaussian_update_problems(np.zeros(3), np.zeros(3)), "prior covariance must have shape (D, D)")
+    assert mentions(gaussian_update_problems(np.diag([1.0, np.nan]), np.eye(2)), "prior covariance entries are not")
+    assert mentions(gaussian_update_problems(np.eye(2), [[1, 0], [0, "x"]]), "posterior covariance is not an array")
+
+
+# ---------------------------------------------------------------- particle updates
+
+
+@st.composite
+def predicted_sets(draw: st.DrawFn, dtype: type = float) -> tuple[np.ndarray, np.ndarray]:
+    """Predicted particles ``(N, D)`` of ``dtype`` and normalised weights."""
+    particles, weights = draw(particle_beliefs())
+    return particles.astype(dtype), weights
+
+
+@given(predicted_sets() | predicted_sets(np.float32), st.booleans(), st.integers(0, 2**32 - 1))
+def test_weighing_and_resampling_keep_every_particle_of_the_predicted_set(
+    belief: tuple[np.ndarray, np.ndarray], resample: bool, seed: int
+) -> None:
+    particles, weights = belief
+    posterior = particles[systematic_resample(weights, np.random.default_rng(seed))] if resample else particles.copy()
+    assert particle_update_problems(particles, posterior) == []
+
+
+@given(predicted_sets(), st.data())
+def test_a_particle_the_update_moved_is_named(belief: tuple[np.ndarray, np.ndarray], data: st.DataObject) -> None:
+    particles, _ = belief
+    posterior = particles.copy()
+    row, column = data.draw(st.integers(0, len(particles) - 1)), data.draw(st.integers(0, particles.shape[1] - 1))
+    posterior[row, column] = np.nextafter(posterior[row, column], np.inf)  # by the least a float can move
+    assume(not (particles == posterior[row]).all(axis=1).any())
+    [problem] = particle_update_problems(particles, posterior)
+    assert problem.startswith(f"the update moved particles: 1 of {len(particles)} are not particles of the predicted")
+    assert f"(particle {row} is (" in problem
+
+
+def test_a_signed_zero_is_the_same_particle() -> None:
+    assert particle_update_problems(np.array([[0.0, 1.0]]), np.array([[-0.0, 1.0], [0.0, 1.0]])) == []
+
+
+def test_bad_particle_update_inputs_are_named() -> None:
+    assert mentions(particle_update_problems(np.zeros((3, 2)), np.zeros((3, 1))), "do not match prior particles")
+    assert mentions(particle_update_problems(np.zeros((0, 2)), np.zeros((3, 2))), "N >= 1")
+    assert mentions(particle_update_problems(np.zeros(3), np.zeros((3, 1))), "shape (N, D)")

@@ -14,8 +14,9 @@ import pytest
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.modalities.camera.model import CableState
 from benchmark.model import Frame, SequenceInfo
+from benchmark.filters.resampling import systematic_resample
 from benchmark.registry import Registry
-from benchmark.testing import Check, CheckResult, check_tracker, checks, conformance_cases
+from benchmark.testing import Check, CheckResult, check_tracker, checks, conformance_cases, entry_of, prepare, run_check
 from benchmark.testing.checks import same
 from benchmark.tracker import Tracker
 
@@ -214,6 +215,139 @@ class Unpicklable(Steady):
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
         super().reset(info, rng, init)
         self.scale = lambda value: value
+
+
+class FakeKalman(Steady):
+    """A Kalman filter on Steady's ``(d, w)``: ``d`` measured on every ``measured_every``-th frame, ``w`` never.
+
+    Its update is the textbook ``(I - K H) P`` (seeds/002 Table 2, line 6),
+    in the dtype ``dtype``; it exposes the prior of each update as
+    ``prior_covariance``, and None on a frame it did not measure.
+    """
+
+    name = "fake-kalman"
+    measured_every = 1
+    dtype: type = np.float64
+    mean: np.ndarray | None = None
+    covariance: np.ndarray | None = None
+    prior_covariance: np.ndarray | None = None
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        super().reset(info, rng, init)
+        self.mean = np.array([self.state.d, self.state.w], dtype=self.dtype)
+        self.covariance = np.diag([4.0, 1.0]).astype(self.dtype)
+        self.prior_covariance = None
+        self.steps = 0
+
+    def step(self, frame: Frame) -> Any:
+        estimate = super().step(frame)
+        prior = self.predicted()
+        self.mean, self.covariance, self.prior_covariance = np.array([estimate.d, estimate.w], self.dtype), prior, None
+        if self.steps % self.measured_every == 0:
+            self.covariance, self.prior_covariance = self.corrected(prior), prior
+        self.steps += 1
+        return estimate
+
+    def predicted(self) -> np.ndarray:
+        return self.covariance + np.diag([0.5, 0.1]).astype(self.dtype)
+
+    def corrected(self, prior: np.ndarray) -> np.ndarray:
+        observe = np.array([[1.0, 0.0]], dtype=self.dtype)
+        gain = prior @ observe.T / (observe @ prior @ observe.T + self.dtype(2.0))
+        return (np.eye(2, dtype=self.dtype) - gain @ observe) @ prior
+
+
+class InflatingKalman(FakeKalman):
+    """Its update has the sign of the gain's term wrong: ``(I + K H) P`` widens the belief it should narrow."""
+
+    name = "inflating-kalman"
+
+    def corrected(self, prior: np.ndarray) -> np.ndarray:
+        return 2.0 * prior - super().corrected(prior)
+
+
+class SometimesMeasured(FakeKalman):
+    """Measures every third frame; exposes a prior only then."""
+
+    name = "sometimes-measured"
+    measured_every = 3
+
+
+class PriorWhenUnmeasured(SometimesMeasured):
+    """Exposes its prediction as the prior on unmeasured frames too, where the posterior is that prior."""
+
+    name = "prior-when-unmeasured"
+
+    def step(self, frame: Frame) -> Any:
+        estimate = super().step(frame)
+        if self.prior_covariance is None:
+            self.prior_covariance = self.covariance.copy()
+        return estimate
+
+
+class Float32Kalman(FakeKalman):
+    """Filters in float32."""
+
+    name = "float32-kalman"
+    dtype = np.float32
+
+
+class ForgetsWhenBlind(FakeKalman):
+    """Holds no belief (mean, covariance and prior None) on a frame without signal; restarts after it."""
+
+    name = "forgets-when-blind"
+
+    def step(self, frame: Frame) -> Any:
+        if not frame.observation.any():
+            self.mean = self.covariance = self.prior_covariance = None
+            return super(FakeKalman, self).step(frame)
+        if self.covariance is None:
+            self.covariance = np.diag([4.0, 1.0]).astype(self.dtype)
+        return super().step(frame)
+
+
+class FakeParticles(Steady):
+    """A particle filter on Steady's ``d``: walk, then weigh by closeness to the estimate; exposes the walked set."""
+
+    name = "fake-particles"
+    particles: np.ndarray | None = None
+    weights: np.ndarray | None = None
+    prior_particles: np.ndarray | None = None
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        super().reset(info, rng, init)
+        self.particles = self.state.d + rng.normal(size=(16, 1))
+        self.weights = np.full(16, 1 / 16)
+        self.prior_particles = None
+
+    def step(self, frame: Frame) -> Any:
+        estimate = super().step(frame)
+        walked = self.particles + self.rng.normal(0.0, 0.5, size=self.particles.shape)
+        likelihood = np.exp(-0.5 * (walked[:, 0] - estimate.d) ** 2) + 1e-12
+        self.prior_particles = walked
+        self.particles, self.weights = self.posterior(walked, likelihood / likelihood.sum())
+        return estimate
+
+    def posterior(self, walked: np.ndarray, weights: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return walked, weights
+
+
+class ResamplesAfterWeighing(FakeParticles):
+    """Resamples at the end of each update (SIR): copies of the walked particles, equally weighted."""
+
+    name = "resamples-after-weighing"
+
+    def posterior(self, walked: np.ndarray, weights: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return walked[systematic_resample(weights, self.rng)], np.full(len(weights), 1 / len(weights))
+
+
+class ClimbsAfterWeighing(FakeParticles):
+    """Moves every particle half way to the estimate after weighing them, as a local ascent of the particles would."""
+
+    name = "climbs-after-weighing"
+
+    def posterior(self, walked: np.ndarray, weights: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return walked + 0.5 * (self.state.d - walked), weights
 
 
 @pytest.fixture
@@ -481,3 +615,63 @@ def test_a_bug_that_starts_at_frame_50_is_caught_by_default(registry: Registry, 
     failed = failures(check_tracker(LateBug, registry=registry, modality_data=long))
     assert "invalid estimate at frame 50: EstimateError" in failed["runs"]
     assert failures(check_tracker(LateBug, registry=registry, modality_data=long, n_frames=15)) == {}
+
+
+def belief_check(tracker: type[Tracker], registry: Registry, fakes: types.ModuleType) -> CheckResult:
+    """The ``belief_invariants`` check alone, on ten frames of the fake sequence."""
+    subject = prepare(entry_of(tracker), registry, fakes.FakeSequence("fake/S1", 10))
+    (check,) = [check for check in checks() if check.name == "belief_invariants"]
+    return run_check(check, subject)
+
+
+@pytest.mark.parametrize(
+    ("tracker", "words"),
+    [
+        (
+            InflatingKalman,
+            "its Gaussian measurement update is broken at frame 0: the update widened the belief: the posterior "
+            "exceeds the prior along (1, 0) (on the prior's scales, component 0 leading) by 0.692 of its scale; "
+            "variance of component 0 grew from 4.5 to 7.62",
+        ),
+        (ClimbsAfterWeighing, "its particle measurement update is broken at frame 0: the update moved particles: 16"),
+    ],
+)
+def test_an_update_that_widens_or_moves_the_belief_fails_exactly_belief_invariants(
+    tracker: type[Tracker], words: str, registry: Registry, fakes: types.ModuleType
+) -> None:
+    failed = failures(run_kit(tracker, registry, fakes))
+    assert list(failed) == ["belief_invariants"]
+    assert f"tracker {tracker.name!r}: {words}" in failed["belief_invariants"]
+
+
+@pytest.mark.parametrize(
+    ("tracker", "updates"),
+    [
+        (FakeKalman, "compared at 40 Gaussian updates"),  # 10 frames, 4 runs: the frames and each hard kind
+        (Float32Kalman, "compared at 40 Gaussian updates"),
+        (SometimesMeasured, "compared at 16 Gaussian updates"),  # frames 0, 3, 6, 9
+        (PriorWhenUnmeasured, "compared at 40 Gaussian updates"),
+        (ForgetsWhenBlind, "compared at 36 Gaussian updates"),  # no belief on the 4 blank frames
+        (FakeParticles, "compared at 40 particle updates"),
+        (ResamplesAfterWeighing, "compared at 40 particle updates"),
+    ],
+)
+def test_sound_updates_pass_and_are_counted(
+    tracker: type[Tracker], updates: str, registry: Registry, fakes: types.ModuleType
+) -> None:
+    result = belief_check(tracker, registry, fakes)
+    assert result.ok, result.message
+    assert result.detail.endswith(f"prior and posterior {updates}")
+
+
+def test_a_tracker_without_priors_says_no_update_was_compared(registry: Registry, fakes: types.ModuleType) -> None:
+    class NoPrior(FakeKalman):
+        name = "no-prior"
+
+        def step(self, frame: Frame) -> Any:
+            estimate = super().step(frame)
+            self.prior_covariance = None
+            return estimate
+
+    result = belief_check(NoPrior, registry, fakes)
+    assert result.ok and result.detail.endswith("; no update exposed its prior")

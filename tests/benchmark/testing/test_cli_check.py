@@ -52,3 +52,9 @@ def test_in_process_gives_the_same_rows_as_the_workers(invoke: Callable[..., Res
 
     assert verdicts(isolated.output) == verdicts(here.output)
     assert "10 passed, 2 failed, 2 skipped (1 trackers)" in here.output
+
+
+def test_the_random_sequences_length_defaults_to_the_kit_s(invoke: Callable[..., Result]) -> None:
+    from benchmark.testing import RANDOM_FRAMES
+
+    assert f"[default: {RANDOM_FRAMES}]" in invoke("check", "--help").output

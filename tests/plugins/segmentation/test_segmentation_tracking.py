@@ -13,6 +13,7 @@ from trackbench_segmentation.tracking import CableKalman, lateral_std, region_of
 from benchmark.filters.kalman import Gaussian
 from benchmark.modalities.camera.geometry import cable_borders, chord_midpoint, model_to_pixel
 from benchmark.modalities.camera.model import CableState
+from benchmark.testing.beliefs import gaussian_update_problems
 
 SIZE = (320, 240)
 PROCESS = (25.0, 0.003, 4.0)
@@ -44,6 +45,35 @@ def test_the_belief_stays_symmetric_positive_semidefinite(steps):
             assert_symmetric_psd(kalman.belief.covariance)
             assert np.all(np.isfinite(kalman.belief.mean))
             assert -math.pi / 2 < kalman.belief.mean[1] <= math.pi / 2
+
+
+@settings(max_examples=40, deadline=None)
+@given(steps=st.lists(st.one_of(st.none(), states), min_size=1, max_size=25))
+def test_each_update_exposes_its_prior_and_narrows_it(steps):
+    kalman = CableKalman(PROCESS, MEASUREMENT)
+    for measured in steps:
+        kalman.predict()
+        assert kalman.prior is None
+        had_belief = kalman.belief is not None
+        if measured is not None:
+            kalman.update(measured)
+        if measured is None or not had_belief:
+            assert kalman.prior is None
+        else:
+            assert gaussian_update_problems(kalman.prior.covariance, kalman.belief.covariance) == []
+            assert abs(kalman.prior.mean[1] - kalman.belief.mean[1]) < math.pi / 2  # the same form of the centreline
+
+
+def test_a_prior_is_turned_with_the_corrected_angle():
+    kalman = CableKalman(PROCESS, MEASUREMENT)
+    kalman.start(CableState(20.0, math.radians(89.0), 30.0, 0.0))
+    kalman.predict()
+    predicted = kalman.belief
+    kalman.update(CableState(-20.0, math.radians(-85.0), 30.0, 0.0))  # the same centreline as (20, 95 deg)
+    assert kalman.belief.mean[1] < 0  # corrected beyond 90 deg, brought back as (-d, alpha - pi)
+    flip = np.diag([-1.0, 1.0, 1.0])
+    assert np.allclose(kalman.prior.mean, [-20.0, math.radians(89.0) - math.pi, 30.0])
+    assert np.array_equal(kalman.prior.covariance, flip @ predicted.covariance @ flip)
 
 
 def test_prediction_grows_the_covariance_and_keeps_the_mean():
