@@ -655,7 +655,6 @@ def _hard_runs(subject: Subject) -> list[tuple[str, str, list[Frame]]]:
     return runs
 
 
-
 def _describe(info: SequenceInfo) -> str:
     """A sequence's name with what tells random ones apart: its seed and frame size, where it has them."""
     facts = [f"seed {info.extra['seed']}"] if "seed" in info.extra else []
