@@ -932,9 +932,9 @@ _REPEATS = ("runs", "same_seed_same_output")
 CHECKS: tuple[Check, ...] = (
     Check("metadata", check_metadata),
     Check("runs", check_runs, after=("metadata",)),
+    Check("same_seed_same_output", check_same_seed_same_output, after=_RUNS),
     Check("frames_without_truth", check_frames_without_truth, after=_REPEATS),
     Check("starts_without_truth", check_starts_without_truth, after=_RUNS),
-    Check("same_seed_same_output", check_same_seed_same_output, after=_RUNS),
     Check("seed_matters", check_seed_matters, after=_REPEATS),
     Check("no_global_randomness", check_no_global_randomness, after=_RUNS),
     Check("reset_leaves_no_state", check_reset_leaves_no_state, after=_REPEATS),

@@ -406,9 +406,9 @@ def test_checks_are_named_in_order() -> None:
     assert ALL_CHECKS == [
         "metadata",
         "runs",
+        "same_seed_same_output",
         "frames_without_truth",
         "starts_without_truth",
-        "same_seed_same_output",
         "seed_matters",
         "no_global_randomness",
         "reset_leaves_no_state",
