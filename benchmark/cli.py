@@ -56,7 +56,7 @@ import click
 
 from benchmark import plugins
 from benchmark.errors import TrackbenchError
-from benchmark.executors import EXECUTORS
+from benchmark.executors import executor_names
 from benchmark.frame_cache import CACHE_ENV
 from benchmark.registry import Registry
 from benchmark.report.display import one_line, printable
@@ -317,7 +317,7 @@ _RUN_OPTIONS = [
     ),
     click.option(
         "--executor",
-        type=click.Choice(EXECUTORS),
+        type=click.Choice(executor_names()),
         default="local",
         show_default=True,
         help="Run the cells in worker processes of this machine, or as tasks of a Dask cluster.",
@@ -385,7 +385,7 @@ def _run_benchmark(
 
     Exits with 130 on the user's Ctrl-C, after publishing the cells finished.
     """
-    from benchmark.executors import open_executor
+    from benchmark.executors import ExecutorOptions, open_executor
     from benchmark.frame_cache import FrameCache
     from benchmark.harness import run_benchmark
     from benchmark.progress import TerminalProgress
@@ -396,7 +396,7 @@ def _run_benchmark(
     cells = select_cells(registry, Selection(trackers, suites, datasets, params, seeds, init, train))
     options = {key: list(value) if isinstance(value, tuple) else value for key, value in ctx.params.items()}
     progress = TerminalProgress()
-    runner = open_executor(executor, jobs=jobs, in_process=in_process, scheduler=scheduler)  # type: ignore[arg-type]
+    runner = open_executor(executor, ExecutorOptions(jobs, in_process, scheduler))
     try:
         summary = run_benchmark(
             cells,

@@ -51,7 +51,7 @@ import pandas as pd
 
 from benchmark.by_condition import condition_board
 from benchmark.errors import DataError
-from benchmark.executors import Executor
+from benchmark.executors import DEFAULT_EXECUTOR, Executor, ExecutorOptions, open_executor, run_cells
 from benchmark.files import make_folder
 from benchmark.frame_cache import CachedSequence, FrameCache
 from benchmark.leaderboard import leaderboards
@@ -60,7 +60,7 @@ from benchmark.progress import Progress, SilentProgress
 from benchmark.report import write_condition_board, write_leaderboards
 from benchmark.report.display import one_line, printable
 from benchmark.results import CellResult
-from benchmark.runner import DEFAULT_TIMEOUT_S, Cell, run_cells
+from benchmark.runner import DEFAULT_TIMEOUT_S, Cell
 from benchmark.store import DATABASE_NAME, ResultStore
 from benchmark.training import fit_models
 
@@ -293,7 +293,7 @@ def run_benchmark(
     out : pathlib.Path
         Folder of the results database and the leaderboards; created if missing.
     jobs, timeout_s, in_process
-        As for :func:`benchmark.runner.run_cells`.
+        As for :func:`benchmark.executors.run_cells`.
     executor : Executor, optional
         Where the cells run (:mod:`benchmark.executors`); by default the
         local pool of ``jobs`` workers (or this process, ``in_process``).
@@ -327,15 +327,13 @@ def run_benchmark(
         If ``out`` cannot be written, another run holds its lock, or its
         database is not a trackbench database.
     """
-    from benchmark.executors.local import LocalExecutor
-
     todo = list(cells)
     statuses: collections.Counter[str] = collections.Counter()
     ran = rendered = 0
     step_s = read_s = 0.0
     interrupted = 0
     started, cpu_started = time.perf_counter(), _cpu_s()
-    executor = executor or LocalExecutor(jobs, in_process=in_process)
+    executor = executor or open_executor(DEFAULT_EXECUTOR, ExecutorOptions(jobs, in_process))
     progress = progress or SilentProgress()
     lock = _lock(out)
     try:

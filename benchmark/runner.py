@@ -34,7 +34,7 @@ result with status ``"error"`` and a message ``"ExceptionType: message
 (frame k)"``; a cell that runs past its time limit gets status
 ``"timeout"``.  Frames scored before the failure stay in the result.
 
-:func:`run_cells` runs every cell on an executor (:mod:`benchmark.executors`),
+:func:`benchmark.executors.run_cells` runs every cell on an executor,
 by default in a worker process of a local pool: a worker still busy a
 grace period after the limit is killed, and one that exits or crashes
 (``os._exit``, a segmentation fault) costs only its cell.
@@ -59,7 +59,7 @@ import zlib
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Literal
+from typing import Any, Literal
 
 import numpy as np
 
@@ -71,9 +71,6 @@ from benchmark.registry import TrackerEntry
 from benchmark.results import CellKey, CellResult, FrameScore, Picture, Status
 from benchmark.training import Training
 from benchmark.workers import cell_isolation
-
-if TYPE_CHECKING:
-    from benchmark.executors import Executor
 
 InitMode = Literal["truth", "none"]
 DEFAULT_TIMEOUT_S = 600.0
@@ -282,7 +279,7 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
         Time limit of the cell, checked between frames: once exceeded, the
         cell stops with status ``"timeout"`` and keeps the frames so far.
         A ``step`` or a read that never returns cannot be stopped here;
-        :func:`run_cells` kills the worker running it.
+        :func:`benchmark.executors.run_cells` kills the worker running it.
 
     Returns
     -------
@@ -385,53 +382,3 @@ def _run_cell(cell: Cell, timeout_s: float | None) -> CellResult:
         detail=detail,
         pictures=tuple(pictures),
     )
-
-
-def run_cells(
-    cells: Iterable[Cell],
-    *,
-    jobs: int | None = None,
-    timeout_s: float | None = DEFAULT_TIMEOUT_S,
-    in_process: bool = False,
-    executor: Executor | None = None,
-) -> Iterator[CellResult]:
-    """Run cells in worker processes and yield each result as it finishes.
-
-    Parameters
-    ----------
-    cells : iterable of Cell
-        The cells to run.
-    jobs : int, optional
-        Worker processes; None uses every core (``os.cpu_count()``), and 0
-        or 1 run one cell at a time in one worker.
-    timeout_s : float, optional
-        Time limit of each cell (None: no limit).  A worker still busy a
-        grace period after the limit is killed and its cell becomes a
-        ``"timeout"`` result without frames.
-    in_process : bool
-        Run the cells one after another in this process, for debuggers and
-        profilers: the limit is then checked between frames only, and a
-        tracker that ends the process ends the run.
-    executor : Executor, optional
-        Where to run them (:mod:`benchmark.executors`); by default a local
-        pool of ``jobs`` workers, or this process with ``in_process``.
-
-    Yields
-    ------
-    CellResult
-        One per cell, in order of completion (input order in process).
-
-    Raises
-    ------
-    UserInterrupt
-        On the user's Ctrl-C; the workers are stopped first.
-
-    Notes
-    -----
-    Closing the generator early stops the workers.
-    """
-    from benchmark.executors.local import LocalExecutor
-
-    todo = list(cells)
-    with sigint_is_user_interrupt():
-        yield from (executor or LocalExecutor(jobs, in_process=in_process)).run(todo, timeout_s)

@@ -1,6 +1,6 @@
 """Worker processes that belong to the run that started them.
 
-Cells run in worker processes (:func:`benchmark.runner.run_cells`).  Each
+Cells run in worker processes (:func:`benchmark.executors.run_cells`).  Each
 worker is prepared by :func:`init_worker` before its first cell:
 
 * it ignores ``SIGINT`` and ``SIGTERM``: a Ctrl-C in the terminal, or a

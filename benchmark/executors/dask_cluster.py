@@ -43,6 +43,7 @@ from pathlib import Path
 from typing import Any
 
 from benchmark.errors import DataError
+from benchmark.executors import ExecutorOptions
 from benchmark.executors.local import cell_in_pool, value_from_future, worker_pool
 from benchmark.results import CellResult
 from benchmark.runner import Cell, cell_result, describe_exception, traceback_text
@@ -158,6 +159,19 @@ class DaskExecutor:
                 self._client = Client(scheduler, timeout=CONNECT_TIMEOUT_S)
             except (OSError, TimeoutError, ValueError) as exc:
                 raise DataError(f"--scheduler {scheduler}: cannot reach the Dask scheduler: {exc}") from None
+
+    @classmethod
+    def open(cls, options: ExecutorOptions) -> DaskExecutor:
+        """A client of the scheduler at ``options.scheduler``, or of a local cluster of ``options.jobs`` workers.
+
+        Raises
+        ------
+        benchmark.errors.DataError
+            For ``in_process``, which a cluster cannot do, and as the constructor does.
+        """
+        if options.in_process:
+            raise DataError("--in-process runs cells in this process; it does not go with --executor dask")
+        return cls(options.scheduler, options.jobs)
 
     @property
     def address(self) -> str:

@@ -27,6 +27,8 @@ import sys
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
+from benchmark.errors import DataError
+from benchmark.executors import ExecutorOptions
 from benchmark.results import CellResult
 from benchmark.runner import Cell, cell_result, describe_exception, run_cell, traceback_text
 
@@ -156,6 +158,19 @@ class LocalExecutor:
         self.in_process = in_process
         self._futures: dict[concurrent.futures.Future, Cell] = {}
         self._current: Cell | None = None
+
+    @classmethod
+    def open(cls, options: ExecutorOptions) -> LocalExecutor:
+        """A pool of ``options.jobs`` workers, or this process with ``options.in_process``.
+
+        Raises
+        ------
+        benchmark.errors.DataError
+            For a scheduler, which a local pool has not.
+        """
+        if options.scheduler is not None:
+            raise DataError("--scheduler needs --executor dask")
+        return cls(options.jobs, in_process=options.in_process)
 
     def run(self, cells: Sequence[Cell], timeout_s: float | None) -> Iterator[CellResult]:
         """Yield the result of each cell, in order of completion (input order in process)."""

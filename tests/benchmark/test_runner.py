@@ -24,7 +24,8 @@ from benchmark.modalities.sonar.model import SonarTruth
 from benchmark.model import Frame, Outcome, Sequence, SequenceInfo
 from benchmark.registry import Registry
 from benchmark.results import CellResult, Picture
-from benchmark.runner import MAX_PICTURES, Cell, cell_result, cell_rng, run_cell, run_cells
+from benchmark.executors import run_cells
+from benchmark.runner import MAX_PICTURES, Cell, cell_result, cell_rng, run_cell
 
 MakeCell = Callable[..., Cell]
 
