@@ -49,9 +49,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
-import random
 import signal
-import sys
 import threading
 import time
 import traceback
@@ -63,6 +61,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from benchmark import shared_modules
 from benchmark.drawing import encode_png
 from benchmark.identity import DatasetIdentity
 from benchmark.modality import Drawer, EstimateError, Modality
@@ -196,11 +195,7 @@ def seed_global_generators(seed: int, tracker_name: str, dataset: DatasetIdentit
     instead of whatever state its worker process inherited.
     """
     words = np.random.SeedSequence([seed, zlib.crc32(tracker_name.encode()), dataset.seed_material, GLOBAL_STREAM])
-    state = words.generate_state(4)
-    np.random.seed(state)
-    random.seed(int.from_bytes(state.tobytes(), "little"))
-    if "cv2" in sys.modules:
-        sys.modules["cv2"].setRNGSeed(int(state[0] & 0x7FFFFFFF))
+    shared_modules.seed_global_generators(words.generate_state(4))
 
 
 class UserInterrupt(KeyboardInterrupt):

@@ -26,8 +26,9 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import random
 import sys
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from types import ModuleType
 from typing import Any
@@ -115,6 +116,25 @@ class Snapshot:
             for name, value in names.items():
                 if now.get(name, _MISSING) is not value:
                     yield module_name, module, name, value
+
+
+def seed_global_generators(words: Sequence[int]) -> None:
+    """Seed NumPy's legacy global generator, Python's ``random`` and OpenCV's (where loaded) from ``words``.
+
+    Parameters
+    ----------
+    words : sequence of int
+        32-bit words (a ``SeedSequence``'s state): NumPy's generator takes
+        them all, Python's their bytes as one integer, OpenCV's the first
+        word's low 31 bits.
+    """
+    import numpy as np
+
+    state = np.asarray(words, dtype=np.uint32)
+    np.random.seed(state)
+    random.seed(int.from_bytes(state.tobytes(), "little"))
+    if "cv2" in sys.modules:
+        sys.modules["cv2"].setRNGSeed(int(state[0] & 0x7FFFFFFF))
 
 
 def _working_folder() -> str | None:

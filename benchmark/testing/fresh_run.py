@@ -42,7 +42,6 @@ import dataclasses
 import importlib
 import json
 import math
-import random
 import sys
 from pathlib import Path
 from typing import Any
@@ -50,6 +49,7 @@ from typing import Any
 import numpy as np
 
 from benchmark import storage
+from benchmark.shared_modules import seed_global_generators
 
 JOB = "job.json"
 INPUT = "input.rec"
@@ -145,18 +145,16 @@ def rebuild_generator(record: dict[str, Any]) -> np.random.Generator:
 
 
 def seed_globals(seed: int) -> None:
-    """Seed NumPy's and Python's global generators, and OpenCV's when it is loaded, with ``seed``.
+    """Seed NumPy's and Python's global generators, and OpenCV's when it is loaded, from ``seed``.
 
     Both processes do so before their run, so that a tracker that draws from
     a global generator (which ``no_global_randomness`` fails) is not taken
     for one whose output depends on the hash seed.  The kit restores NumPy's
     and Python's afterwards; OpenCV's stays seeded, as in a worker after a
-    cell (:func:`benchmark.runner.seed_global_generators`).
+    cell (:func:`benchmark.shared_modules.seed_global_generators`, which
+    both use).
     """
-    np.random.seed(seed)
-    random.seed(seed)
-    if "cv2" in sys.modules:
-        sys.modules["cv2"].setRNGSeed(seed)
+    seed_global_generators([seed])
 
 
 def native_threads() -> dict[str, int]:
