@@ -448,3 +448,14 @@ def test_diagnose_refuses_what_it_cannot_diagnose(
     for word in words:
         assert word in result.stderr
     assert not (tmp_path / "diagnose_peaked.md").exists()
+
+
+def test_the_module_s_list_of_commands_is_the_command_line_s() -> None:
+    import re
+
+    import benchmark.cli
+
+    block = benchmark.cli.__doc__.split("::", 1)[1].split("\n\n")[2]  # after the usage line
+    listed = re.findall(r"^    ([a-z][a-z-]*) {2,}\S", block, flags=re.MULTILINE)
+    assert len(listed) == len(block.splitlines())
+    assert sorted(listed) == sorted(main.commands)
