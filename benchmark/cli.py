@@ -770,8 +770,9 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
 @click.option(
     "--random-frames",
     type=click.IntRange(min=1),
-    default=None,
-    help="Frames of each random sequence the random_sequences check draws  [default: 5].",
+    default=5,
+    show_default=True,
+    help="Frames of each random sequence the random_sequences check draws.",
 )
 @click.option(
     "--time-limit",
@@ -791,7 +792,7 @@ def check_command(
     ctx: click.Context,
     names: tuple[str, ...],
     frames: int,
-    random_frames: int | None,
+    random_frames: int,
     time_limit_s: float,
     in_process: bool,
 ) -> None:
@@ -805,13 +806,12 @@ def check_command(
     check failed (or passed while listed as expected to fail).
     """
     from benchmark.selection import select_trackers
-    from benchmark.testing import RANDOM_FRAMES, check_tracker, checks
+    from benchmark.testing import check_tracker, checks
     from benchmark.testing.isolated import check_in_workers
 
     session: Session = ctx.obj
     registry = session.registry
     entries = select_trackers(registry, names)
-    random_frames = RANDOM_FRAMES if random_frames is None else random_frames
     if in_process:
         results = (
             result

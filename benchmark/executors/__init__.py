@@ -106,8 +106,7 @@ def _entry_points() -> dict[str, importlib.metadata.EntryPoint]:
 
 def executor_names() -> tuple[str, ...]:
     """The names of the installed executors, the default first."""
-    names = sorted(_entry_points())
-    return tuple(sorted(names, key=lambda name: name != DEFAULT_EXECUTOR))
+    return tuple(sorted(_entry_points(), key=lambda name: (name != DEFAULT_EXECUTOR, name)))
 
 
 def open_executor(name: str = DEFAULT_EXECUTOR, options: ExecutorOptions | None = None) -> Executor:

@@ -399,16 +399,26 @@ def check_metadata(subject: Subject) -> str:
     return f"{cls.name} {cls.version}, {cls.modality}, {len(dataclasses.fields(defaults))} parameters"
 
 
-def _check_estimates(subject: Subject, frames: SequenceOf[Frame], estimates: SequenceOf[Any], label: str = "") -> int:
-    """Raise unless every estimate is None or valid for the modality; the number of estimates that are not None."""
-    modality, _ = subject.ready()
+def _valid_run(
+    subject: Subject, frames: FrameList | SequenceOf[Frame] | None = None, *, truth: bool = True, label: str = ""
+) -> tuple[list[Any], int]:
+    """A fresh instance's estimates over ``frames`` (as :meth:`Subject.run`), and how many are not None.
+
+    Raises
+    ------
+    AssertionError
+        Unless every estimate is None or valid for the modality, naming the frame and ``label``.
+    """
+    modality, own = subject.ready()
+    estimates = subject.run(subject.create(), frames, truth=truth, label=label)
+    steps = own.frame_list if frames is None else frames.frame_list if isinstance(frames, FrameList) else frames
     suffix = f", {label}" if label else ""
-    for frame, estimate in zip(frames, estimates):
+    for frame, estimate in zip(steps, estimates):
         try:
             modality.check_estimate(estimate)
         except Exception as exc:
             raise subject.fail(f"invalid estimate at frame {frame.index}{suffix}: {describe_exception(exc)}") from exc
-    return sum(estimate is not None for estimate in estimates)
+    return estimates, sum(estimate is not None for estimate in estimates)
 
 
 def check_runs(subject: Subject) -> str:
@@ -420,8 +430,7 @@ def check_runs(subject: Subject) -> str:
         If the tracker raises or returns an invalid estimate, naming the frame.
     """
     _, frames = subject.ready()
-    estimates = subject.run(subject.create())
-    detected = _check_estimates(subject, frames.frame_list, estimates)
+    estimates, detected = _valid_run(subject)
     return f"{detected} estimates in {len(estimates)} frames of {frames.info.name}"
 
 
@@ -445,9 +454,7 @@ def check_frames_without_truth(subject: Subject) -> str:
     """
     _, frames = subject.ready()
     blind_frames = [frames.frame_list[0], *_without_truth(frames.frame_list[1:])]
-    label = "truth only for init"
-    blind = subject.run(subject.create(), blind_frames, label=label)
-    detected = _check_estimates(subject, blind_frames, blind, label)
+    blind, detected = _valid_run(subject, blind_frames, label="truth only for init")
     with_truth = subject.run(subject.create())
     difference = first_difference(frames, with_truth, blind)
     if difference:
@@ -470,9 +477,7 @@ def check_starts_without_truth(subject: Subject) -> str:
     _, frames = subject.ready()
     if not getattr(subject.entry.tracker_class, "starts_without_truth", True):
         raise subject.skip("declares starts_without_truth = False: it needs the first frame's truth")
-    unlabelled = _without_truth(frames.frame_list)
-    estimates = subject.run(subject.create(), unlabelled, truth=False, label="no init, no truth")
-    detected = _check_estimates(subject, unlabelled, estimates, "no init, no truth")
+    estimates, detected = _valid_run(subject, _without_truth(frames.frame_list), truth=False, label="no init, no truth")
     return f"{detected} valid estimates in {len(estimates)} frames without init or truth"
 
 
@@ -610,8 +615,7 @@ def check_hard_observations(subject: Subject) -> str:
     own = frames.frame_list
     counts = []
     for kind, label, hard in _hard_runs(subject):
-        estimates = subject.run(subject.create(), hard, label=label)
-        counts.append(f"{kind} {_check_estimates(subject, hard, estimates, label)}")
+        counts.append(f"{kind} {_valid_run(subject, hard, label=label)[1]}")
     start, stop = _hard_stretch(own)
     return f"estimates with each kind in the middle {stop - start} of {len(own)} frames: {', '.join(counts)}"
 
@@ -697,8 +701,8 @@ def check_random_sequences(subject: Subject) -> str:
     def runs_on(sequence: Sequence) -> None:
         frames = FrameList.head(sequence, subject.random_frames)
         label = f"random sequence {_describe(frames.info)}"
-        estimates = subject.run(subject.create(), frames, label=label)
-        seen.append((len(estimates), _check_estimates(subject, frames.frame_list, estimates, label)))
+        estimates, detected = _valid_run(subject, frames, label=label)
+        seen.append((len(estimates), detected))
 
     runs_on()
     return f"{sum(n for n, _ in seen)} frames of {len(seen)} random sequences: {sum(d for _, d in seen)} estimates"

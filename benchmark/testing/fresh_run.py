@@ -144,19 +144,6 @@ def rebuild_generator(record: dict[str, Any]) -> np.random.Generator:
     return np.random.Generator(bits)
 
 
-def seed_globals(seed: int) -> None:
-    """Seed NumPy's and Python's global generators, and OpenCV's when it is loaded, from ``seed``.
-
-    Both processes do so before their run, so that a tracker that draws from
-    a global generator (which ``no_global_randomness`` fails) is not taken
-    for one whose output depends on the hash seed.  The kit restores NumPy's
-    and Python's afterwards; OpenCV's stays seeded, as in a worker after a
-    cell (:func:`benchmark.shared_modules.seed_global_generators`, which
-    both use).
-    """
-    seed_global_generators([seed])
-
-
 def native_threads() -> dict[str, int]:
     """The thread count of every native pool of this process: threadpoolctl's by library file, OpenCV's, numba's.
 
@@ -271,7 +258,7 @@ def run(folder: Path, job: Job) -> dict[str, Any]:
     except (storage.StorageError, ValueError, TypeError, KeyError) as exc:
         reason = f"the fresh interpreter cannot read its frames, parameters or model: {_describe(exc)}"
         return _outcome(NOT_CHECKED, reason)
-    seed_globals(inputs["global_seed"])
+    seed_global_generators([inputs["global_seed"]])
     frames = inputs["frames"]
     estimates: list[Any] = []
     where = "creating an instance"

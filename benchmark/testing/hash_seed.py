@@ -58,8 +58,8 @@ from benchmark.testing.fresh_run import (
     command,
     generator_record,
     native_threads,
-    seed_globals,
 )
+from benchmark.shared_modules import seed_global_generators
 from benchmark.testing.time_limit import WAIT_FACTOR, can_limit
 
 if TYPE_CHECKING:
@@ -124,7 +124,9 @@ def check_hash_seed(subject: Subject) -> str:
             "global_seed": kit.SEED,
         }
         data = _dumps(job_input, packages, "its parameters or model")
-        seed_globals(kit.SEED)
+        # As the fresh interpreter does: a tracker drawing from a global generator (which no_global_randomness
+        # fails) must not pass for one whose output follows the hash seed.
+        seed_global_generators([kit.SEED])
         estimates = subject.run(subject.create(), list(stored))
         packages = _packages_of(subject, *estimates) | packages
         estimates = _stored(estimates, packages, "its estimates")

@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import math
+import random
 import os
 import sys
 
 import numpy as np
 import pytest
 
-from benchmark.shared_modules import Snapshot
+from benchmark.shared_modules import Snapshot, seed_global_generators
 
 
 def test_replaced_and_removed_names_and_numpy_s_error_handling_are_named_and_put_back() -> None:
@@ -47,3 +48,17 @@ def test_a_changed_working_folder_is_named_and_put_back(tmp_path, monkeypatch) -
     assert snapshot.changes() == ["the working folder"]
     assert snapshot.restore() == ["the working folder"] and os.getcwd() == str(tmp_path)
     assert snapshot.in_folder_now().folder == str(tmp_path) and snapshot.changes() == []
+
+
+def test_seeding_the_globals_twice_gives_the_same_draws() -> None:
+    numpy_state, python_state = np.random.get_state(), random.getstate()
+    try:
+        seed_global_generators([11])
+        first = (np.random.random(3), random.random())
+        np.random.random(5)
+        seed_global_generators([11])
+        again = (np.random.random(3), random.random())
+    finally:
+        np.random.set_state(numpy_state)
+        random.setstate(python_state)
+    assert np.array_equal(first[0], again[0]) and first[1] == again[1]

@@ -28,11 +28,11 @@ def test_check_passes_with_exit_status_0(invoke: Callable[..., Result]) -> None:
 
 
 def test_a_hanging_tracker_fails_each_check_at_the_time_limit(invoke: Callable[..., Result]) -> None:
-    result = invoke("check", "sleepy", "--frames", "3", "--time-limit", "0.1")
+    result = invoke("check", "sleepy", "--frames", "3", "--time-limit", "0.2")
     assert result.exit_code == 1, result.output
     rows = {line.split()[1]: line for line in result.output.splitlines()[1:-1]}
     assert " ok " in rows["metadata"]
-    assert "FAIL" in rows["runs"] and "did not finish within 1 s of waiting (0.1 s of CPU time allowed) (step, frame 1)" in rows["runs"]
+    assert "FAIL" in rows["runs"] and "did not finish within 2 s of waiting (0.2 s of CPU time allowed) (step, frame 1)" in rows["runs"]
     assert "does it hang?" in rows["runs"]
 
 
@@ -54,7 +54,16 @@ def test_in_process_gives_the_same_rows_as_the_workers(invoke: Callable[..., Res
     assert "10 passed, 2 failed, 2 skipped (1 trackers)" in here.output
 
 
-def test_the_random_sequences_length_defaults_to_the_kit_s(invoke: Callable[..., Result]) -> None:
-    from benchmark.testing import RANDOM_FRAMES
+def test_the_command_s_defaults_are_the_kit_s(invoke: Callable[..., Result]) -> None:
+    """The command line does not import the kit (and pytest with it) to show its help, so it repeats its defaults."""
+    from benchmark.cli import main
+    from benchmark.testing import DEFAULT_TIME_LIMIT_S, RANDOM_FRAMES
+    from benchmark.testing.checks import DEFAULT_FRAMES
 
-    assert f"[default: {RANDOM_FRAMES}]" in invoke("check", "--help").output
+    assert f"[default: {RANDOM_FRAMES}" in invoke("check", "--help").output
+    defaults = {option.name: option.default for option in main.commands["check"].params}
+    assert (defaults["frames"], defaults["random_frames"], defaults["time_limit_s"]) == (
+        DEFAULT_FRAMES,
+        RANDOM_FRAMES,
+        DEFAULT_TIME_LIMIT_S,
+    )

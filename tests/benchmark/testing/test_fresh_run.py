@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import random
 
 import numpy as np
 import pytest
@@ -10,7 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from benchmark import storage
-from benchmark.testing.fresh_run import generator_record, rebuild_generator, seed_globals
+from benchmark.testing.fresh_run import generator_record, rebuild_generator
 
 BIT_GENERATORS = ["PCG64", "PCG64DXSM", "MT19937", "Philox", "SFC64"]
 
@@ -42,17 +41,3 @@ def test_a_generator_record_naming_no_bit_generator_is_refused() -> None:
     record = {**generator_record(np.random.default_rng(3)), "kind": "Generator"}
     with pytest.raises(ValueError, match="'Generator' is not a bit generator of numpy.random"):
         rebuild_generator(record)
-
-
-def test_seeding_the_globals_twice_gives_the_same_draws() -> None:
-    numpy_state, python_state = np.random.get_state(), random.getstate()
-    try:
-        seed_globals(11)
-        first = (np.random.random(3), random.random())
-        np.random.random(5)
-        seed_globals(11)
-        again = (np.random.random(3), random.random())
-    finally:
-        np.random.set_state(numpy_state)
-        random.setstate(python_state)
-    assert np.array_equal(first[0], again[0]) and first[1] == again[1]
