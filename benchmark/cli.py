@@ -65,6 +65,7 @@ from benchmark.report.display import one_line, printable
 from benchmark.runner import DEFAULT_TIMEOUT_S
 
 if TYPE_CHECKING:
+    from benchmark.metrics import Metrics
     from benchmark.harness import Publication, RunSummary
     from benchmark.history.regressions import Thresholds
     from benchmark.store import ResultStore
@@ -214,10 +215,10 @@ def list_datasets(session: Session) -> None:
             click.echo(f"{line}  {description}" if description else line)
 
 
-def _show(publication: Publication) -> None:
+def _show(publication: Publication, metrics: Metrics) -> None:
     from benchmark.report import to_text
 
-    click.echo(to_text(publication.boards, problems=publication.problems))
+    click.echo(to_text(publication.boards, problems=publication.problems, metrics=metrics))
     for path in publication.files:
         click.echo(f"wrote {path}", err=True)
 
@@ -413,10 +414,11 @@ def _run_benchmark(
             problems=registry.problems,
             log=progress.write,
             progress=progress,
+            metrics=registry.metrics,
         )
     finally:
         runner.close()
-    _show(summary.publication)
+    _show(summary.publication, registry.metrics)
     click.echo(summary.describe(), err=True)
     if summary.interrupted:
         ctx.exit(128 + summary.interrupted)  # 130 for Ctrl-C, 143 for SIGTERM
@@ -528,9 +530,10 @@ def nightly(
             started=started,
             argv=sys.argv,
             seeds=options["seeds"],
+            metrics=registry.metrics,
         )
-        changes = find_changes(database.cells(), run_id, thresholds)
-        index = build_site(database, site, registry.modalities, thresholds=thresholds)
+        changes = find_changes(database.cells(), run_id, thresholds, metrics=registry.metrics)
+        index = build_site(database, site, registry.modalities, thresholds=thresholds, metrics=registry.metrics)
     click.echo(describe_changes(changes, f"Changes of nightly run {run_id}"))
     click.echo(f"history {history}: run {run_id}; site {index}", err=True)
     if (changes["verdict"] == "regression").any():
@@ -544,7 +547,8 @@ def nightly(
 @click.argument("run_b", type=int)
 @history_option
 @threshold_options
-def compare(run_a: int, run_b: int, history: str, min_effects: tuple[str, ...], window: int) -> None:
+@click.pass_obj
+def compare(session: Session, run_a: int, run_b: int, history: str, min_effects: tuple[str, ...], window: int) -> None:
     """Print what changed from nightly run RUN_A to RUN_B of the history.
 
     Speeds are compared only when both ran on the same machine.
@@ -560,7 +564,8 @@ def compare(run_a: int, run_b: int, history: str, min_effects: tuple[str, ...], 
     missing = sorted({run_a, run_b} - set(cells["run_id"]))
     if missing:
         raise DataError(f"history database {history}: no run {', '.join(map(str, missing))}")
-    click.echo(describe_changes(find_changes(cells, run_b, thresholds, against=[run_a]), f"Run {run_a} -> {run_b}"))
+    changes = find_changes(cells, run_b, thresholds, against=[run_a], metrics=session.registry.metrics)
+    click.echo(describe_changes(changes, f"Run {run_a} -> {run_b}"))
 
 
 @main.command("report")
@@ -577,7 +582,13 @@ def report_command(session: Session, history: str, site: Path, min_effects: tupl
     with History(history, must_exist=True) as database:
         if database.runs().empty:
             raise DataError(f"history database {history}: no runs yet (run 'trackbench nightly' first)")
-        index = build_site(database, site, session.registry.modalities, thresholds=_thresholds(min_effects, window))
+        index = build_site(
+            database,
+            site,
+            session.registry.modalities,
+            thresholds=_thresholds(min_effects, window),
+            metrics=session.registry.metrics,
+        )
     click.echo(f"wrote {index}")
 
 
@@ -618,7 +629,8 @@ def leaderboard_command(session: Session, out: Path, all_runs: bool) -> None:
     from benchmark.harness import publish
 
     with _results_store(out) as store:
-        _show(publish(store, session.registry.modalities, out, all_runs=all_runs))
+        metrics = session.registry.metrics
+        _show(publish(store, session.registry.modalities, out, all_runs=all_runs, metrics=metrics), metrics)
 
 
 @main.command("tables")
@@ -644,7 +656,9 @@ def tables_command(session: Session, suite: str, out: Path, metrics: tuple[str, 
         raise SelectionError(f"unknown suite {suite!r} (known: {', '.join(sorted(suites)) or 'none'})")
     order = [sequence.identity.name for sequence in suites[suite].sequences]
     with _results_store(out) as store:
-        boards = load_leaderboards(store, session.registry.modalities, store.latest_run())
+        boards = load_leaderboards(
+            store, session.registry.modalities, store.latest_run(), metrics=session.registry.metrics
+        )
     rows = [board[board["dataset"].isin(order)] for board in boards.values()]
     board = next((part for part in rows if not part.empty), None)
     if board is None:

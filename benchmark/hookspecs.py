@@ -11,6 +11,7 @@ A plugin is a module (or object) registered under the entry-point group
         registry.add_tracker(MyTracker)
 
 The harness calls the hooks through pluggy, in this order: modalities,
+then metrics (each for every modality or for one),
 then trackers (each names a modality), then datasets (whose scene kinds
 belong to modalities).  Pluggy's ``tryfirst``, ``trylast`` and wrappers
 order and wrap the implementations of one hook.  The built-in modalities,
@@ -44,6 +45,22 @@ def trackbench_register_modalities(registry: Registry) -> None:
     its frame and estimate types, scorer, file readers, exporter, scene
     kinds and, optionally, how to draw a frame for the reports.  Trackers
     and sequences name a modality by its ``name``.
+
+    Parameters
+    ----------
+    registry : Registry
+        The registry of this session; errors raised here name the plugin.
+    """
+
+
+@hookspec
+def trackbench_register_metrics(registry: Registry) -> None:
+    """Add metrics, numbers reported about every cell, to the registry.
+
+    Call :meth:`Registry.add_metric` with a :class:`benchmark.metrics.Metric`
+    (and optionally the modality it is for): it then stands on the boards,
+    with its interval over seeds, in the history and the nightly site, and
+    is judged by the regressions, like the core metrics.
 
     Parameters
     ----------

@@ -49,7 +49,12 @@ from benchmark.shared_modules import Snapshot
 
 ENTRY_POINT_GROUP = "trackbench"
 DISABLE_ENV = "TRACKBENCH_DISABLE_PLUGINS"
-REGISTER_HOOKS = ("trackbench_register_modalities", "trackbench_register_trackers", "trackbench_register_datasets")
+REGISTER_HOOKS = (
+    "trackbench_register_modalities",
+    "trackbench_register_metrics",
+    "trackbench_register_trackers",
+    "trackbench_register_datasets",
+)
 """The hooks that fill a registry, in the order they are called."""
 
 

@@ -1,4 +1,4 @@
-"""The registry that plugins fill with modalities, trackers and suites.
+"""The registry that plugins fill with modalities, metrics, trackers and suites.
 
 Plugins receive a :class:`Registry` in their ``trackbench_register_*`` hooks
 (the pattern of tox's ``tox_register_tox_env``).  The registry checks every
@@ -20,6 +20,7 @@ from typing import Any
 
 from benchmark.errors import ParameterError, PluginError
 from benchmark.identity import code_digest
+from benchmark.metrics import CORE, Metric, Metrics
 from benchmark.modality import Modality, SceneFactory
 from benchmark.model import Sequence
 from benchmark.parameters import params_key
@@ -101,7 +102,7 @@ class SuiteEntry:
 
 
 class Registry:
-    """Modalities, trackers and suites contributed by plugins.
+    """Modalities, metrics, trackers and suites contributed by plugins.
 
     Examples
     --------
@@ -115,6 +116,8 @@ class Registry:
         self.modalities: dict[str, Modality] = {}
         self.trackers: dict[str, TrackerEntry] = {}
         self.suites: dict[str, SuiteEntry] = {}
+        self.metrics: Metrics = CORE
+        """The metrics of every board: the core ones, the modalities' errors and those plugins added."""
         self.problems: list[str] = []
         """Plugins that could not be loaded, one line each (naming plugin, distribution and exception)."""
         self._origin: Origin | None = None
@@ -186,6 +189,24 @@ class Registry:
                 raise self._fail(f"modality {modality.name!r}: scene kind {kind!r} belongs to modality {other!r}")
         self.modalities[modality.name] = modality
         return modality
+
+    def add_metric(self, metric: Metric, modality: str | None = None) -> Metric:
+        """Register a metric, for every modality or for ``modality`` alone.
+
+        Raises
+        ------
+        PluginError
+            If ``metric`` is not a :class:`~benchmark.metrics.Metric`,
+            ``modality`` is not registered, or the metric's name (or a
+            column derived from it) is already taken.
+        """
+        if modality is not None and modality not in self.modalities:
+            raise self._fail(f"metric for unknown modality {modality!r}")
+        try:
+            self.metrics = self.metrics.adding(metric, modality)
+        except ValueError as exc:
+            raise self._fail(str(exc)) from None
+        return metric
 
     @property
     def scene_kinds(self) -> dict[str, SceneFactory]:

@@ -16,6 +16,7 @@ import pandas as pd
 from benchmark import __version__
 from benchmark.history.database import History
 from benchmark.history.machine import describe_machine, git_commit, machine_key
+from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
 from benchmark.report.display import alignment, display_table
 from benchmark.store import DATABASE_NAME, ResultStore
@@ -30,6 +31,7 @@ def record_nightly(
     started: str,
     argv: Sequence[str],
     seeds: int,
+    metrics: Metrics = CORE,
 ) -> int:
     """Append run ``run_id`` of the results database in ``out`` to ``history``, with this machine and commit.
 
@@ -51,6 +53,7 @@ def record_nightly(
             machine_key=machine_key(machine),
             argv=argv,
             seeds=seeds,
+            metrics=metrics,
         )
 
 

@@ -16,7 +16,7 @@ from click.testing import CliRunner
 import benchmark.plugins
 from benchmark.cli import main
 from benchmark.errors import PluginError
-from benchmark.leaderboard import interval_columns
+from benchmark.metrics import derived_column, robustness
 from benchmark.modalities.camera.model import CableState
 from benchmark.model import Frame, SequenceInfo
 from benchmark.registry import Registry
@@ -326,7 +326,9 @@ def test_leaderboard_boards_a_modality_whose_plugin_is_gone_by_its_name(
     out = tmp_path / "out"
     assert invoke("run", "--tracker", "noisy", "--in-process", "--out", str(out)).exit_code == 0
     expected = board(out)
-    monkeypatch.setattr(benchmark.plugins, "load_registry", lambda disable=(), strict=False: Registry())
+    without_modalities = Registry()
+    robustness.trackbench_register_metrics(without_modalities)
+    monkeypatch.setattr(benchmark.plugins, "load_registry", lambda disable=(), strict=False: without_modalities)
     result = invoke("leaderboard", "--out", str(out))
     assert result.exit_code == 0, result.output
     assert result.stdout.startswith("camera\n")
@@ -334,7 +336,8 @@ def test_leaderboard_boards_a_modality_whose_plugin_is_gone_by_its_name(
     # columns no frame had a value for (the pose errors of a tracker that reports no pose).
     again = board(out)
     pose = {"rmse_cx_m", "rmse_cy_m", "rmse_theta_deg", "rmse_phi_deg"}
-    assert set(expected.columns) - set(again.columns) == pose | {c for m in pose for c in interval_columns(m)}
+    ends = {derived_column(metric, end) for metric in pose for end in ("lo", "hi")}
+    assert set(expected.columns) - set(again.columns) == pose | ends
     assert expected.drop(columns=again.columns).isna().all().all()
     pd.testing.assert_frame_equal(again, expected[again.columns])
 

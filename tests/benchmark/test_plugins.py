@@ -378,6 +378,7 @@ def test_hooks_run_modalities_then_trackers_then_datasets(monkeypatch, installed
     registry = load_registry()
     assert REGISTER_HOOKS == (
         "trackbench_register_modalities",
+        "trackbench_register_metrics",
         "trackbench_register_trackers",
         "trackbench_register_datasets",
     )
