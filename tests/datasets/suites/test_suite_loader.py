@@ -59,7 +59,7 @@ def test_sequences_get_the_defaults_and_the_suite_prefix(kinds) -> None:
         (GOOD.replace('name = "B"\n', ""), r"\[\[sequence\]\] number 2 needs a non-empty name"),
         (
             GOOD.replace("n_frames = 4", "n_frames = 4\nfocal = 1.0"),
-            r"bad\.toml \[sequence A\]: unknown key\(s\) 'focal'",
+            r"bad\.toml \[sequence A\]: unknown key 'focal' \(known: name, n_frames, ",
         ),
         (GOOD + "\n[extra]\n", r"unknown top-level key"),
         (GOOD.replace('name = "demo"\n', ""), r"needs a \[suite\] table with a non-empty name"),
