@@ -203,7 +203,7 @@ def _type_at(kind: Any, location: Sequence[Any]) -> Any:
         if isinstance(part, int):
             args = typing.get_args(kind)
             kind = args[0] if len(args) == 2 and args[1] is Ellipsis else args[part] if part < len(args) else None
-        elif dataclasses.is_dataclass(kind):
+        elif dataclasses.is_dataclass(kind) or hasattr(kind, "model_fields"):
             kind = typing.get_type_hints(kind, include_extras=True).get(part)
         else:
             return None
@@ -219,7 +219,9 @@ def _bare(kind: Any) -> Any:
 
 def _known_keys(kind: Any, location: Sequence[Any]) -> str:
     table = _type_at(kind, location)
-    return ", ".join(field.name for field in dataclasses.fields(table)) if dataclasses.is_dataclass(table) else ""
+    if dataclasses.is_dataclass(table):
+        return ", ".join(field.name for field in dataclasses.fields(table))
+    return ", ".join(getattr(table, "model_fields", {}))
 
 
 def _tuple_length(kind: Any, location: Sequence[Any]) -> int | str:
