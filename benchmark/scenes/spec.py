@@ -218,7 +218,11 @@ def _bare(kind: Any) -> Any:
 
 
 def _known_keys(kind: Any, location: Sequence[Any]) -> str:
-    table = _type_at(kind, location)
+    """The keys the table at ``location`` declares, or "" where its type cannot be told (the message goes without)."""
+    try:
+        table = _type_at(kind, location)
+    except (NameError, TypeError, IndexError):
+        return ""
     if dataclasses.is_dataclass(table):
         return ", ".join(field.name for field in dataclasses.fields(table))
     return ", ".join(getattr(table, "model_fields", {}))

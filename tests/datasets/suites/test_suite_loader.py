@@ -68,6 +68,10 @@ def test_sequences_get_the_defaults_and_the_suite_prefix(kinds) -> None:
             GOOD.replace("n_frames = 4", "n_frames = 4\nfocal = 1.0"),
             r"^bad\.toml \[sequence A\]: unknown key 'focal' \(known: name, n_frames, ",
         ),
+        (
+            GOOD.replace("noise_grey = 2.0", "noise_grey = 2.0\nwater = { lamps = [{}, { cone_deg = 40.0, hotspot = -1 }] }"),
+            r"^bad\.toml \[sequence A\]: optics\.water\.lamps\[1\]\.hotspot: must be >= 0, got -1$",
+        ),
         (GOOD + "\n[extra]\n", r"^bad\.toml: unknown key 'extra' \(known: suite, sequence, defaults\)$"),
         (GOOD.replace('name = "demo"\n', ""), r"^bad\.toml: suite: missing required key 'name'$"),
         (GOOD.replace('kind = "camera"', 'kind = "camera"\ntraining = 3'), r"^bad\.toml: suite\.training: expected a string"),
