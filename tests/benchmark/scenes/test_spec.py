@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import pickle
+import typing
 from dataclasses import field
 from typing import Annotated
 
@@ -12,6 +13,9 @@ import pytest
 from annotated_types import Ge
 
 from benchmark.errors import DataError
+from benchmark.modalities.camera.modality import CAMERA
+from benchmark.modalities.sonar.modality import SONAR
+from benchmark.modalities.stereo.modality import STEREO
 from benchmark.scenes.spec import (
     SPEC_CONFIG,
     Finite,
@@ -106,3 +110,33 @@ def test_specs_made_in_python_are_checked_too() -> None:
         Inner(size=-1.0)
     with pytest.raises(ValueError, match="flag needs a limit"):
         Outer("a", flag=True)
+
+
+def _nested_classes(root: type) -> set[type]:
+    """``root`` and every dataclass its fields hold, at any depth (inside tuples and optionals too)."""
+    found: set[type] = set()
+    pending = [root]
+    while pending:
+        kind = pending.pop()
+        if dataclasses.is_dataclass(kind) and kind not in found:
+            found.add(kind)
+            pending.extend(typing.get_type_hints(kind).values())
+        else:
+            pending.extend(arg for arg in typing.get_args(kind) if isinstance(arg, type) or typing.get_args(arg))
+    return found
+
+
+def _spec_types() -> list[type]:
+    """The spec classes of every scene kind of the built-in modalities."""
+    factories = [factory for modality in (CAMERA, SONAR, STEREO) for factory in modality.scene_kinds.values()]
+    return sorted({factory.__self__.spec_type for factory in factories}, key=lambda kind: kind.__name__)
+
+
+@pytest.mark.parametrize("root", _spec_types(), ids=lambda kind: kind.__name__)
+def test_every_class_of_a_registered_spec_is_a_frozen_pydantic_dataclass_that_refuses_unknown_keys(root: type) -> None:
+    classes = _nested_classes(root)
+    assert len(classes) > 3
+    for kind in classes:
+        assert pydantic.dataclasses.is_pydantic_dataclass(kind), kind
+        assert kind.__dataclass_params__.frozen, kind
+        assert kind.__pydantic_config__.get("extra") == "forbid", kind
