@@ -10,6 +10,12 @@ loudly, and each ``trackbench_register_*`` hook is one pluggy hook call, so
 ``tryfirst``, ``trylast``, wrappers and pluggy's tracing work as they do
 for pytest's plugins.
 
+The same machinery loads the plugins of another entry-point group with
+its own hooks (:class:`PluginGroup`): the commands of the command line come
+from the group ``trackbench.commands`` (:mod:`benchmark.cli.discovery`), so
+that listing them imports no tracker.  A plugin implementing a hook that is
+called only on another group's plugins fails like a misspelt hook.
+
 Two distributions that offer an entry point of the same name are an error
 naming both: one would otherwise silently shadow the other.  A plugin that
 fails to import or does not validate against the hook specifications is

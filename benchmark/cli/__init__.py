@@ -41,8 +41,8 @@ Exit status, as pytest's:
 
 * 0: done, every cell ``ok``;
 * 1: done, the board written, but some cell ended in ``error`` or
-  ``timeout``, or a plugin could not be loaded (its trackers are
-  unavailable; ``--strict-plugins`` makes that an error instead);
+  ``timeout``, or a plugin could not be loaded (its trackers or commands
+  are unavailable; ``--strict-plugins`` makes that an error instead);
 * 2: nothing ran: a usage or data error (an unknown name, a bad parameter,
   an unreadable file, a broken plugin, a results folder in use), reported
   as one line ``Error: ...`` without a traceback;
