@@ -61,7 +61,7 @@ from benchmark.cli.boards import leaderboard_command, tables_command
 from benchmark.cli.cache import cache_group
 from benchmark.cli.check import check_command
 from benchmark.cli.discovery import CommandRegistry, load_commands
-from benchmark.cli.history import compare, nightly, report_command
+from benchmark.cli.history import EXIT_REGRESSION, compare, nightly, report_command
 from benchmark.cli.listing import list_datasets, list_trackers
 from benchmark.cli.make_dataset import make_dataset
 from benchmark.cli.new_tracker import new_tracker_command
@@ -69,6 +69,8 @@ from benchmark.cli.run import run
 from benchmark.cli.session import EXIT_FAILED, EXIT_INTERRUPTED, ReportedError, Session
 from benchmark.errors import TrackbenchError
 from benchmark.report.display import one_line, printable
+
+__all__ = ["EXIT_FAILED", "EXIT_INTERRUPTED", "EXIT_REGRESSION", "TrackbenchGroup", "main"]
 
 BUILT_IN_COMMANDS = (
     list_trackers,

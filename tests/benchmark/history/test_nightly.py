@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from benchmark.cli.history import EXIT_REGRESSION
+from benchmark.cli import EXIT_REGRESSION
 from benchmark.history.database import History
 
 from ..conftest import Invoke
