@@ -89,6 +89,8 @@ class Publication:
         Correct, false and missed per cent per suite, condition and bin
         (:func:`benchmark.by_condition.condition_board`); empty when no
         sequence of the run records its conditions.
+    metrics : Metrics
+        The catalogue the boards were made with, which rounds them for reading.
     """
 
     run_id: int | None
@@ -96,6 +98,7 @@ class Publication:
     files: list[Path]
     problems: list[str] = field(default_factory=list)
     by_condition: pd.DataFrame = field(default_factory=pd.DataFrame)
+    metrics: Metrics = CORE
 
 
 @dataclass(frozen=True)
@@ -207,7 +210,7 @@ def publish(
     )
     files = write_leaderboards(boards, out, caption, problems=problems, metrics=metrics)
     files += write_condition_board(by_condition, out, caption)
-    return Publication(None if all_runs else run_id, boards, files, problems, by_condition)
+    return Publication(None if all_runs else run_id, boards, files, problems, by_condition, metrics)
 
 
 def record_conditions(store: ResultStore, cells: Iterable[Cell], log: Log) -> None:

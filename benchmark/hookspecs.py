@@ -17,6 +17,11 @@ belong to modalities).  Pluggy's ``tryfirst``, ``trylast`` and wrappers
 order and wrap the implementations of one hook.  The built-in modalities,
 the first-party trackers and the shared suites are plugins of exactly this
 kind.
+
+Commands of the command line come from a second entry-point group,
+``trackbench.commands``, whose plugins implement
+:func:`trackbench_register_commands` only: ``trackbench --help`` lists them
+without importing every tracker and its dependencies.
 """
 
 from __future__ import annotations
@@ -26,6 +31,7 @@ from typing import TYPE_CHECKING
 import pluggy
 
 if TYPE_CHECKING:
+    from benchmark.cli.discovery import CommandRegistry
     from benchmark.registry import Registry
 
 PROJECT_NAME = "trackbench"
@@ -95,4 +101,26 @@ def trackbench_register_datasets(registry: Registry) -> None:
     ----------
     registry : Registry
         The registry of this session; errors raised here name the plugin.
+    """
+
+
+@hookspec
+def trackbench_register_commands(registry: CommandRegistry) -> None:
+    """Add commands to the ``trackbench`` command line.
+
+    Called only on the plugins of the entry-point group
+    ``trackbench.commands``, and only when the command line needs them (to
+    list the commands, or to run one that is not built in).  Call
+    :meth:`CommandRegistry.add_command` with a :class:`click.Command`; the
+    command gets the session (:class:`benchmark.cli.session.Session`, with
+    the plugin ``registry``) through ``click.pass_obj``, and its
+    :class:`~benchmark.errors.TrackbenchError` is shown as one line
+    ``Error: ...`` with exit status 2, as for the built-in commands.  Keep
+    the module light: import what a command needs inside the command.
+
+    Parameters
+    ----------
+    registry : CommandRegistry
+        The commands of this session; a name already taken (by a built-in
+        command or another plugin) is an error naming the plugin.
     """

@@ -101,23 +101,16 @@ class SuiteEntry:
     scored: bool = True
 
 
-class Registry:
-    """Modalities, metrics, trackers and suites contributed by plugins.
+class PluginRecords:
+    """What plugins add through their hooks, each addition attributed to the plugin that made it.
 
-    Examples
-    --------
-    >>> registry = Registry()
-    >>> registry.add_modality(CAMERA)                                    # doctest: +SKIP
-    >>> registry.add_tracker(MyTracker)                                  # doctest: +SKIP
-    >>> registry.add_tracker(MyTracker, name="mine-fast", params={"n": 10})  # doctest: +SKIP
+    The base of every registry a plugin manager fills (:class:`Registry`
+    here, :class:`benchmark.cli.discovery.CommandRegistry` for commands):
+    it knows which plugin is adding something, notes the problems of
+    plugins, and words their errors.
     """
 
     def __init__(self) -> None:
-        self.modalities: dict[str, Modality] = {}
-        self.trackers: dict[str, TrackerEntry] = {}
-        self.suites: dict[str, SuiteEntry] = {}
-        self.metrics: Metrics = CORE
-        """The metrics of every board: the core ones, the modalities' errors and those plugins added."""
         self.problems: list[str] = []
         """Plugins that could not be loaded, one line each (naming plugin, distribution and exception)."""
         self._origin: Origin | None = None
@@ -156,6 +149,26 @@ class Registry:
     def _fail(self, message: str) -> PluginError:
         origin = self.origin
         return PluginError(f"plugin {origin.plugin!r} ({origin.distribution}): {message}", plugin=origin.plugin)
+
+
+class Registry(PluginRecords):
+    """Modalities, metrics, trackers and suites contributed by plugins.
+
+    Examples
+    --------
+    >>> registry = Registry()
+    >>> registry.add_modality(CAMERA)                                    # doctest: +SKIP
+    >>> registry.add_tracker(MyTracker)                                  # doctest: +SKIP
+    >>> registry.add_tracker(MyTracker, name="mine-fast", params={"n": 10})  # doctest: +SKIP
+    """
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.modalities: dict[str, Modality] = {}
+        self.trackers: dict[str, TrackerEntry] = {}
+        self.suites: dict[str, SuiteEntry] = {}
+        self.metrics: Metrics = CORE
+        """The metrics of every board: the core ones, the modalities' errors and those plugins added."""
 
     def add_modality(self, modality: Modality) -> Modality:
         """Register a modality: a kind of sensor data, its types, scorer, readers and scene kinds.
