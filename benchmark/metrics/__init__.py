@@ -39,14 +39,16 @@ import functools
 import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
-from typing import Annotated, Literal
+from typing import TYPE_CHECKING, Annotated, Literal
 
 import numpy as np
-import pandas as pd
 from pydantic import ConfigDict, Field, NonNegativeFloat, NonNegativeInt
 from pydantic.dataclasses import dataclass as pydantic_dataclass
 
 from benchmark.model import Outcome
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 Kind = Literal["detection", "accuracy", "speed", "robustness"]
 KINDS: tuple[Kind, ...] = ("detection", "accuracy", "speed", "robustness")
@@ -55,12 +57,12 @@ KINDS: tuple[Kind, ...] = ("detection", "accuracy", "speed", "robustness")
 NAME_PATTERN = r"^[a-z][a-z0-9]*(_[a-z0-9]+)*$"
 """A metric's name: lower-case words joined by ``_``, the unit last (``rmse_d_px``)."""
 
-Sums = Callable[[pd.DataFrame, float], Sequence[float]]
-"""A metric's sums of a frame table, given the scale of the tables pooled with it."""
+Sums = Callable[..., Sequence[float]]
+"""``sums(frames, scale)``: a metric's sums of a frame table, given the scale of the tables pooled with it."""
 Value = Callable[[np.ndarray, float], np.ndarray]
 """A metric's value from its pooled sums (the last axis; any leading axes are kept) and the scale."""
-Scale = Callable[[Sequence[pd.DataFrame]], float]
-"""The scale of a metric's sums over all the tables that are pooled together."""
+Scale = Callable[..., float]
+"""``scale(tables)``: the scale of a metric's sums over all the tables that are pooled together."""
 
 
 def unit_scale(tables: Sequence[pd.DataFrame]) -> float:
@@ -201,10 +203,15 @@ def outcomes(frames: pd.DataFrame) -> np.ndarray:
     return frames["outcome"].to_numpy(dtype=object) if "outcome" in frames else np.array([], dtype=object)
 
 
+def scored(values: np.ndarray) -> np.ndarray:
+    """Which of an ``outcome`` array's frames have an outcome (a truth to be scored against)."""
+    return np.logical_or.reduce([values == str(outcome) for outcome in Outcome], initial=False)
+
+
 def _outcome_sums(outcome: Outcome, frames: pd.DataFrame, scale: float) -> tuple[float, float]:
     """Scored frames, and those with ``outcome``."""
     values = outcomes(frames)
-    return float(np.count_nonzero(pd.notna(values))), float(np.count_nonzero(values == str(outcome)))
+    return float(np.count_nonzero(scored(values))), float(np.count_nonzero(values == str(outcome)))
 
 
 def percentage(sums: np.ndarray, scale: float) -> np.ndarray:
@@ -415,6 +422,7 @@ __all__ = [
     "error_columns_of",
     "error_metric",
     "outcomes",
+    "scored",
     "percentage",
     "ratio",
     "unit_scale",

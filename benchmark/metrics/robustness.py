@@ -32,13 +32,14 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
-import pandas as pd
 
 from benchmark.hookspecs import hookimpl
-from benchmark.metrics import Effect, Metric, outcomes, percentage, ratio
+from benchmark.metrics import Effect, Metric, outcomes, percentage, ratio, scored
 from benchmark.model import Outcome
 
 if TYPE_CHECKING:
+    import pandas as pd
+
     from benchmark.registry import Registry
 
 
@@ -63,17 +64,17 @@ class FailureRuns(NamedTuple):
 def failure_runs(frames: pd.DataFrame) -> FailureRuns:
     """The failure runs of a frame table (of one cell, or of several one after another)."""
     values = outcomes(frames)
-    scored = pd.notna(values)
-    wrong = values[scored] != str(Outcome.CORRECT)
+    with_truth = scored(values)
+    wrong = values[with_truth] != str(Outcome.CORRECT)
     count = wrong.size
     starts_sequence = np.zeros(count, dtype=bool)
     if count:
         starts_sequence[0] = True
         if "cell_id" in frames:
-            cells = frames["cell_id"].to_numpy()[scored]
+            cells = frames["cell_id"].to_numpy()[with_truth]
             starts_sequence[1:] |= cells[1:] != cells[:-1]
         if "frame" in frames:
-            indices = frames["frame"].to_numpy(dtype=float)[scored]
+            indices = frames["frame"].to_numpy(dtype=float)[with_truth]
             starts_sequence[1:] |= ~(indices[1:] > indices[:-1])
     follows_wrong = np.r_[False, wrong[:-1]] & ~starts_sequence
     precedes_wrong = np.r_[wrong[1:], False] & ~np.r_[starts_sequence[1:], True]
