@@ -363,7 +363,7 @@ def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, resul
     assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 6
     columns = [(row[1], row[2], row[5]) for row in connection.execute("PRAGMA table_info(pictures)")]
     connection.close()
-    assert columns == [("cell_id", "INTEGER", 1), ("frame", "INTEGER", 2), ("outcome", "TEXT", 0), ("png", "BLOB", 0)]
+    assert columns == [("cell_id", "INTEGER", 1), ("frame", "INTEGER", 2), ("outcome", "VARCHAR(16)", 0), ("png", "BLOB", 0)]
 
 
 def test_a_database_damaged_mid_file_is_a_data_error_naming_it(tmp_path: Path) -> None:
@@ -416,7 +416,7 @@ def test_a_database_that_cannot_be_opened_or_used_is_a_data_error(tmp_path: Path
         ResultStore(missing)
     store = ResultStore(tmp_path / "r.sqlite")
     store.close()
-    with pytest.raises(DataError, match=r"r\.sqlite: cannot use the results database \(Cannot operate on a closed"):
+    with pytest.raises(DataError, match=r"r\.sqlite: cannot use the results database \(This Connection is closed\)"):
         store.start_run([], {})
 
 
