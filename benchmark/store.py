@@ -6,7 +6,10 @@ transaction, so a run that is killed keeps every cell it finished and loses
 only those in flight.  Only the main process writes; worker processes hand their results
 back to it.
 
-Schema (``PRAGMA user_version`` = :data:`SCHEMA_VERSION`)::
+The tables are those of :data:`benchmark.schema.RESULTS`, whose cells and
+pictures share their columns with the nightly history's
+(:mod:`benchmark.schema`); the file stays a plain SQLite file.  Schema
+(``PRAGMA user_version`` = :data:`SCHEMA_VERSION`)::
 
     runs(id, started, finished, argv JSON, options JSON, version, problems JSON)
     cells(id, run_id -> runs, tracker, tracker_version, tracker_key, params JSON,
@@ -51,7 +54,7 @@ A database of schema version 1 (no ``problems``, no ``dataset_key``), 2
 ``deterministic``) is upgraded in place when opened, its cells keeping no
 pictures and declaring nothing; version 1's cells get their ``dataset`` as
 ``dataset_key``, which no identity's key equals, so they are shown but
-never resumed.  Any SQLite error, such as a file damaged on disk, is
+never resumed.  Any database error, such as a file damaged on disk, is
 reported as a :class:`~benchmark.errors.DataError` naming the file.
 """
 
@@ -62,13 +65,18 @@ import json
 import math
 import os
 import sqlite3
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Concatenate, ParamSpec, TypeVar
 
 import pandas as pd
+import sqlalchemy as sa
+from sqlalchemy.dialects import sqlite
+from sqlalchemy.exc import DBAPIError, SQLAlchemyError
 
+from benchmark import schema
 from benchmark.errors import DataError
 from benchmark.results import Picture
 
@@ -78,92 +86,28 @@ if TYPE_CHECKING:
 SCHEMA_VERSION = 6
 DATABASE_NAME = "results.sqlite"
 
-_SCHEMA = """
-CREATE TABLE IF NOT EXISTS runs (
-    id INTEGER PRIMARY KEY,
-    started TEXT NOT NULL,
-    finished TEXT,
-    argv TEXT NOT NULL,
-    options TEXT NOT NULL,
-    version TEXT NOT NULL,
-    problems TEXT NOT NULL DEFAULT '[]'
-);
-CREATE TABLE IF NOT EXISTS cells (
-    id INTEGER PRIMARY KEY,
-    run_id INTEGER NOT NULL REFERENCES runs(id),
-    tracker TEXT NOT NULL,
-    tracker_version TEXT NOT NULL,
-    tracker_key TEXT NOT NULL,
-    params TEXT NOT NULL,
-    dataset TEXT NOT NULL,
-    dataset_key TEXT NOT NULL,
-    modality TEXT NOT NULL,
-    seed INTEGER NOT NULL,
-    init TEXT NOT NULL,
-    status TEXT NOT NULL CHECK (status IN ('ok', 'error', 'timeout')),
-    message TEXT NOT NULL,
-    detail TEXT NOT NULL,
-    frames INTEGER NOT NULL,
-    elapsed_s REAL NOT NULL,
-    finished TEXT NOT NULL,
-    training TEXT NOT NULL DEFAULT '',
-    deterministic INTEGER NOT NULL DEFAULT 0
-);
-CREATE INDEX IF NOT EXISTS cells_by_key ON cells (tracker_key, dataset_key, seed, init);
-CREATE TABLE IF NOT EXISTS run_cells (
-    run_id INTEGER NOT NULL REFERENCES runs(id),
-    cell_id INTEGER NOT NULL REFERENCES cells(id),
-    PRIMARY KEY (run_id, cell_id)
-);
-CREATE TABLE IF NOT EXISTS frames (
-    cell_id INTEGER NOT NULL REFERENCES cells(id),
-    position INTEGER NOT NULL,
-    frame INTEGER NOT NULL,
-    outcome TEXT,
-    step_ms REAL NOT NULL,
-    PRIMARY KEY (cell_id, position)
-);
-CREATE TABLE IF NOT EXISTS frame_errors (
-    cell_id INTEGER NOT NULL,
-    position INTEGER NOT NULL,
-    name TEXT NOT NULL,
-    value REAL NOT NULL,
-    PRIMARY KEY (cell_id, position, name),
-    FOREIGN KEY (cell_id, position) REFERENCES frames(cell_id, position)
-);
-CREATE TABLE IF NOT EXISTS pictures (
-    cell_id INTEGER NOT NULL REFERENCES cells(id),
-    frame INTEGER NOT NULL,
-    outcome TEXT NOT NULL,
-    png BLOB NOT NULL,
-    PRIMARY KEY (cell_id, frame)
-);
-CREATE TABLE IF NOT EXISTS conditions (
-    dataset_key TEXT NOT NULL,
-    name TEXT NOT NULL,
-    value TEXT NOT NULL,
-    PRIMARY KEY (dataset_key, name)
-);
-"""
+_runs = schema.results_runs
+_cells = schema.results_cells
+_run_cells = schema.results_run_cells
+_frames = schema.results_frames
+_frame_errors = schema.results_frame_errors
+_pictures = schema.results_pictures
+_conditions = schema.results_conditions
+_ROWID = sa.literal_column("rowid")
+_ADD_FRAMES = _frames.insert()
+_ADD_FRAME_ERRORS = _frame_errors.insert()
+_ADD_PICTURES = _pictures.insert().prefix_with("OR IGNORE")
+_ADD_RUN_CELLS = _run_cells.insert()
 
-_UPGRADES = {
-    1: """
-ALTER TABLE runs ADD COLUMN problems TEXT NOT NULL DEFAULT '[]';
-ALTER TABLE cells ADD COLUMN dataset_key TEXT NOT NULL DEFAULT '';
-UPDATE cells SET dataset_key = dataset;
-DROP INDEX cells_by_key;
-ALTER TABLE cells ADD COLUMN training TEXT NOT NULL DEFAULT '';
-ALTER TABLE cells ADD COLUMN deterministic INTEGER NOT NULL DEFAULT 0;
-""",
-    2: """
-ALTER TABLE cells ADD COLUMN training TEXT NOT NULL DEFAULT '';
-ALTER TABLE cells ADD COLUMN deterministic INTEGER NOT NULL DEFAULT 0;
-""",
-    3: "ALTER TABLE cells ADD COLUMN deterministic INTEGER NOT NULL DEFAULT 0;",
-    4: "ALTER TABLE cells ADD COLUMN deterministic INTEGER NOT NULL DEFAULT 0;",
-    5: "ALTER TABLE cells ADD COLUMN deterministic INTEGER NOT NULL DEFAULT 0;",
-}
-"""Schema version to the SQL that brings it to :data:`SCHEMA_VERSION` (``_SCHEMA`` then adds what is missing)."""
+_UPGRADED = range(1, SCHEMA_VERSION)
+"""The schema versions that :func:`_upgrade` brings to :data:`SCHEMA_VERSION`."""
+
+_FROM_VERSION_1 = (
+    # Version 2 keyed cells by their dataset's identity and its index by that key.
+    "ALTER TABLE cells ADD COLUMN dataset_key VARCHAR(200) NOT NULL DEFAULT ''",
+    "UPDATE cells SET dataset_key = dataset",
+    "DROP INDEX cells_by_key",
+)
 
 CELL_COLUMNS = (
     "id",
@@ -193,8 +137,8 @@ def _now() -> str:
     return datetime.now(UTC).isoformat(timespec="seconds")
 
 
-def _database_error(path: Path, exc: sqlite3.DatabaseError) -> DataError:
-    """The error to report for an SQLite error on the database ``path``."""
+def _database_error(path: Path, exc: BaseException) -> DataError:
+    """The error to report for the database error ``exc`` (SQLAlchemy's, or the driver's it wraps) on ``path``."""
     code = (getattr(exc, "sqlite_errorcode", None) or 0) & 0xFF  # the primary code of an extended one
     if code in (sqlite3.SQLITE_CORRUPT, sqlite3.SQLITE_NOTADB):
         return DataError(f"{path}: the results database is damaged ({exc}); move it aside to start a new one")
@@ -212,14 +156,18 @@ _T = TypeVar("_T")
 def _reports_database_errors(
     method: Callable[Concatenate[ResultStore, _P], _T],
 ) -> Callable[Concatenate[ResultStore, _P], _T]:
-    """``method`` with any :class:`sqlite3.DatabaseError` raised as a :class:`DataError` naming the file."""
+    """``method`` with any database error raised as a :class:`DataError` naming the file.
+
+    The driver's own error, when SQLAlchemy wraps one, is the cause.
+    """
 
     @functools.wraps(method)
     def wrapper(self: ResultStore, /, *args: _P.args, **kwargs: _P.kwargs) -> _T:
         try:
             return method(self, *args, **kwargs)
-        except sqlite3.DatabaseError as exc:
-            raise _database_error(self.path, exc) from exc
+        except (SQLAlchemyError, sqlite3.DatabaseError) as exc:
+            cause = exc.orig if isinstance(exc, DBAPIError) else exc
+            raise _database_error(self.path, cause) from cause
 
     return wrapper
 
@@ -227,6 +175,60 @@ def _reports_database_errors(
 def _chunks(values: Sequence[_T], size: int = 500) -> Iterable[Sequence[_T]]:
     for start in range(0, len(values), size):
         yield values[start : start + size]
+
+
+@functools.cache
+def _driver_sql(statement: sa.Insert) -> str:
+    """``statement`` as SQLite's driver reads it, taking a tuple of values in the order of the table's columns."""
+    return str(statement.compile(dialect=sqlite.dialect()))
+
+
+def _insert_rows(connection: sa.Connection, statement: sa.Insert, rows: list[tuple[Any, ...]]) -> None:
+    """Insert ``rows``, tuples of values the driver takes as they are, in one ``executemany``.
+
+    A cell's frame and error rows go to the driver without SQLAlchemy's
+    handling of each row's parameters, which costs about as much as
+    SQLite's insert itself; the statement is still the table's own.
+    """
+    if rows:
+        connection.exec_driver_sql(_driver_sql(statement), rows)
+
+
+def _rows(result: sa.Result[Any]) -> list[tuple[Any, ...]]:
+    """The rows of ``result`` as plain tuples, which pandas reads many times faster than SQLAlchemy's rows."""
+    return list(map(tuple, result))
+
+
+def _sqlite_engine(path: Path) -> sa.Engine:
+    """An engine on the SQLite file ``path`` that enforces foreign keys and begins every transaction itself.
+
+    The driver's own transaction handling is switched off, so that a
+    transaction holds schema changes too and the store's reads see one
+    snapshot (SQLAlchemy's recipe for pysqlite).
+    """
+    engine = sa.create_engine(sa.URL.create("sqlite", database=str(path)))
+
+    @sa.event.listens_for(engine, "connect")
+    def connect(dbapi_connection: sqlite3.Connection, _record: object) -> None:
+        dbapi_connection.isolation_level = None
+        dbapi_connection.execute("PRAGMA foreign_keys = ON")
+
+    @sa.event.listens_for(engine, "begin")
+    def begin(connection: sa.Connection) -> None:
+        connection.exec_driver_sql("BEGIN")
+
+    return engine
+
+
+def _upgrade(connection: sa.Connection, version: int) -> None:
+    """Bring a database of schema ``version`` (0: empty) to :data:`SCHEMA_VERSION`, within the caller's transaction."""
+    if version == 1:
+        for statement in _FROM_VERSION_1:
+            connection.exec_driver_sql(statement)
+    schema.add_missing_columns(connection, schema.RESULTS)
+    schema.RESULTS.create_all(connection)
+    schema.cells_by_key.create(connection, checkfirst=True)
+    connection.exec_driver_sql(f"PRAGMA user_version = {SCHEMA_VERSION}")
 
 
 class ResultStore:
@@ -242,7 +244,7 @@ class ResultStore:
     DataError
         If the file cannot be opened, is damaged, is another program's
         database, or has a schema version this trackbench does not know;
-        every method raises it, naming the file, for any SQLite error.
+        every method raises it, naming the file, for any database error.
 
     Examples
     --------
@@ -254,38 +256,49 @@ class ResultStore:
     @_reports_database_errors
     def __init__(self, path: str | os.PathLike[str]) -> None:
         self.path = Path(path)
-        self._db = sqlite3.connect(self.path)
+        self._engine = _sqlite_engine(self.path)
+        connection = self._engine.connect()
         try:
-            self._prepare()
+            self._prepare(connection)
         except BaseException:
-            self._db.close()
+            connection.close()
+            self._engine.dispose()
             raise
+        self._connection = connection
 
-    def _prepare(self) -> None:
+    def _prepare(self, connection: sa.Connection) -> None:
         """Refuse a file that is not ours, then upgrade or create the schema in one transaction."""
-        self._db.execute("PRAGMA foreign_keys = ON")
-        version = self._db.execute("PRAGMA user_version").fetchone()[0]
-        if version == 0:
-            tables = [row[0] for row in self._db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")]
-            if tables:
+        with connection.begin():
+            version = connection.exec_driver_sql("PRAGMA user_version").scalar_one()
+            if version == 0:
+                tables = sa.inspect(connection).get_table_names()
+                if tables:
+                    raise DataError(
+                        f"{self.path}: not a trackbench results database (it holds the tables "
+                        f"{', '.join(tables)}) and was left unchanged; move it or write the results elsewhere"
+                    )
+            elif version != SCHEMA_VERSION and version not in _UPGRADED:
                 raise DataError(
-                    f"{self.path}: not a trackbench results database (it holds the tables {', '.join(tables)}) "
-                    "and was left unchanged; move it or write the results elsewhere"
+                    f"{self.path}: results database of schema version {version}; "
+                    f"this trackbench reads versions up to {SCHEMA_VERSION}"
                 )
-        elif version != SCHEMA_VERSION and version not in _UPGRADES:
-            raise DataError(
-                f"{self.path}: results database of schema version {version}; "
-                f"this trackbench reads versions up to {SCHEMA_VERSION}"
-            )
-        self._db.execute("PRAGMA journal_mode = WAL")
-        self._db.executescript(
-            f"BEGIN; {_UPGRADES.get(version, '')} {_SCHEMA} PRAGMA user_version = {SCHEMA_VERSION}; COMMIT;"
-        )
+        # The journal mode changes outside any transaction, on the driver's connection.
+        connection.connection.driver_connection.execute("PRAGMA journal_mode = WAL")  # type: ignore[union-attr]
+        if version != SCHEMA_VERSION:
+            with connection.begin():
+                _upgrade(connection, version)
+
+    @contextmanager
+    def _transaction(self) -> Iterator[sa.Connection]:
+        """The store's connection inside one transaction, committed at the end (rolled back on an error)."""
+        with self._connection.begin():
+            yield self._connection
 
     @_reports_database_errors
     def close(self) -> None:
         """Close the connection; everything written is already committed."""
-        self._db.close()
+        self._connection.close()
+        self._engine.dispose()
 
     def __enter__(self) -> ResultStore:
         return self
@@ -317,78 +330,64 @@ class ResultStore:
         """
         if version is None:
             from benchmark import __version__ as version
-        with self._db:
-            cursor = self._db.execute(
-                "INSERT INTO runs (started, argv, options, version, problems) VALUES (?, ?, ?, ?, ?)",
-                (
-                    _now(),
-                    json.dumps(list(argv)),
-                    json.dumps(dict(options), default=repr),
-                    version,
-                    json.dumps([str(problem) for problem in problems]),
-                ),
-            )
-        return int(cursor.lastrowid)
+        row = {
+            "started": _now(),
+            "argv": json.dumps(list(argv)),
+            "options": json.dumps(dict(options), default=repr),
+            "version": version,
+            "problems": json.dumps([str(problem) for problem in problems]),
+        }
+        with self._transaction() as connection:
+            inserted = connection.execute(_runs.insert(), row).inserted_primary_key
+        return int(inserted[0])
 
     @_reports_database_errors
     def finish_run(self, run_id: int) -> None:
         """Mark a run as finished (a run killed early keeps ``finished`` NULL)."""
-        with self._db:
-            self._db.execute("UPDATE runs SET finished = ? WHERE id = ?", (_now(), run_id))
+        with self._transaction() as connection:
+            connection.execute(_runs.update().where(_runs.c.id == run_id).values(finished=_now()))
 
     @_reports_database_errors
     def add_cell(self, run_id: int, result: CellResult) -> int:
         """Store a cell and all its frames in one transaction; return the cell id."""
-        n_frames = len(result.scores)
-        with self._db:
-            cursor = self._db.execute(
-                "INSERT INTO cells (run_id, tracker, tracker_version, tracker_key, params, dataset, dataset_key, "
-                "modality, seed, init, status, message, detail, frames, elapsed_s, finished, training, deterministic) "
-                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                (
-                    run_id,
-                    result.tracker,
-                    result.tracker_version,
-                    result.tracker_key,
-                    json.dumps(result.params, sort_keys=True, default=repr),
-                    result.dataset,
-                    result.dataset_key,
-                    result.modality,
-                    int(result.seed),
-                    result.init,
-                    result.status,
-                    result.message,
-                    result.detail,
-                    n_frames,
-                    float(result.elapsed_s),
-                    _now(),
-                    result.training,
-                    int(result.deterministic),
-                ),
-            )
-            cell_id = int(cursor.lastrowid)
-            self._db.executemany(
-                "INSERT INTO frames (cell_id, position, frame, outcome, step_ms) VALUES (?, ?, ?, ?, ?)",
-                (
-                    (cell_id, position, int(score.index), None if score.outcome is None else str(score.outcome),
-                     1000.0 * float(score.step_s))
-                    for position, score in enumerate(result.scores)
-                ),
-            )
-            self._db.executemany(
-                "INSERT INTO frame_errors (cell_id, position, name, value) VALUES (?, ?, ?, ?)",
-                (
-                    (cell_id, position, name, float(value))
-                    for position, score in enumerate(result.scores)
-                    for name, value in score.errors.items()
-                    if math.isfinite(float(value))
-                ),
-            )
-            self._db.executemany(
-                "INSERT OR IGNORE INTO pictures (cell_id, frame, outcome, png) VALUES (?, ?, ?, ?)",
-                ((cell_id, int(shot.frame), str(shot.outcome), bytes(shot.png)) for shot in result.pictures),
-            )
-            self._db.execute("INSERT INTO run_cells (run_id, cell_id) VALUES (?, ?)", (run_id, cell_id))
+        cell = {
+            "run_id": run_id,
+            "tracker": result.tracker,
+            "tracker_version": result.tracker_version,
+            "tracker_key": result.tracker_key,
+            "params": json.dumps(result.params, sort_keys=True, default=repr),
+            "dataset": result.dataset,
+            "dataset_key": result.dataset_key,
+            "modality": result.modality,
+            "seed": int(result.seed),
+            "init": result.init,
+            "status": result.status,
+            "message": result.message,
+            "detail": result.detail,
+            "frames": len(result.scores),
+            "elapsed_s": float(result.elapsed_s),
+            "finished": _now(),
+            "training": result.training,
+            "deterministic": bool(result.deterministic),
+        }
+        with self._transaction() as connection:
+            cell_id = int(connection.execute(_cells.insert(), cell).inserted_primary_key[0])
+            frames = [
+                (cell_id, position, int(score.index), None if score.outcome is None else str(score.outcome),
+                 1000.0 * float(score.step_s))
+                for position, score in enumerate(result.scores)
+            ]
+            errors = [
+                (cell_id, position, name, float(value))
+                for position, score in enumerate(result.scores)
+                for name, value in score.errors.items()
+                if math.isfinite(float(value))
+            ]
+            pictures = [(cell_id, int(shot.frame), str(shot.outcome), bytes(shot.png)) for shot in result.pictures]
+            _insert_rows(connection, _ADD_FRAMES, frames)
+            _insert_rows(connection, _ADD_FRAME_ERRORS, errors)
+            _insert_rows(connection, _ADD_PICTURES, pictures)
+            _insert_rows(connection, _ADD_RUN_CELLS, [(run_id, cell_id)])
         return cell_id
 
     @_reports_database_errors
@@ -407,14 +406,15 @@ class ResultStore:
         """
         ids = sorted({int(cell_id) for cell_id in cell_ids})
         found: dict[int, list[Picture]] = {}
-        for chunk in _chunks(ids):
-            marks = ", ".join("?" * len(chunk))
-            rows = self._db.execute(
-                f"SELECT cell_id, frame, outcome, png FROM pictures WHERE cell_id IN ({marks}) ORDER BY cell_id, frame",
-                chunk,
-            )
-            for cell_id, frame, outcome, png in rows:
-                found.setdefault(int(cell_id), []).append(Picture(int(frame), str(outcome), bytes(png)))
+        with self._transaction() as connection:
+            for chunk in _chunks(ids):
+                query = (
+                    sa.select(_pictures.c.cell_id, _pictures.c.frame, _pictures.c.outcome, _pictures.c.png)
+                    .where(_pictures.c.cell_id.in_(chunk))
+                    .order_by(_pictures.c.cell_id, _pictures.c.frame)
+                )
+                for cell_id, frame, outcome, png in connection.execute(query):
+                    found.setdefault(int(cell_id), []).append(Picture(int(frame), str(outcome), bytes(png)))
         return found
 
     @_reports_database_errors
@@ -428,12 +428,13 @@ class ResultStore:
             (numbers, strings, lists, tables).
         """
         rows = [
-            (key, str(name), json.dumps(value, allow_nan=False))
+            {"dataset_key": key, "name": str(name), "value": json.dumps(value, allow_nan=False)}
             for key, found in conditions.items()
             for name, value in found.items()
         ]
-        with self._db:
-            self._db.executemany("INSERT OR REPLACE INTO conditions (dataset_key, name, value) VALUES (?, ?, ?)", rows)
+        if rows:
+            with self._transaction() as connection:
+                connection.execute(_conditions.insert().prefix_with("OR REPLACE"), rows)
 
     @_reports_database_errors
     def conditions(self, dataset_keys: Iterable[str]) -> dict[str, dict[str, Any]]:
@@ -447,13 +448,15 @@ class ResultStore:
         """
         keys = sorted(set(dataset_keys))
         found: dict[str, dict[str, Any]] = {}
-        for chunk in _chunks(keys):
-            marks = ", ".join("?" * len(chunk))
-            rows = self._db.execute(
-                f"SELECT dataset_key, name, value FROM conditions WHERE dataset_key IN ({marks}) ORDER BY rowid", chunk
-            )
-            for key, name, value in rows:
-                found.setdefault(str(key), {})[str(name)] = json.loads(value)
+        with self._transaction() as connection:
+            for chunk in _chunks(keys):
+                query = (
+                    sa.select(_conditions.c.dataset_key, _conditions.c.name, _conditions.c.value)
+                    .where(_conditions.c.dataset_key.in_(chunk))
+                    .order_by(_ROWID)
+                )
+                for key, name, value in connection.execute(query):
+                    found.setdefault(str(key), {})[str(name)] = json.loads(value)
         return found
 
     @_reports_database_errors
@@ -470,33 +473,47 @@ class ResultStore:
         dict
             Key to cell id, for the keys already computed successfully.
         """
+        wanted = list(keys)
+        key_columns = (_cells.c.tracker_key, _cells.c.dataset_key, _cells.c.seed, _cells.c.init)
+        latest: dict[tuple[str, str, int, str], int] = {}
+        with self._transaction() as connection:
+            for chunk in _chunks(sorted({key.tracker_key for key in wanted})):
+                query = (
+                    sa.select(*key_columns, sa.func.max(_cells.c.id))
+                    .where(_cells.c.status == "ok", _cells.c.tracker_key.in_(chunk))
+                    .group_by(*key_columns)
+                )
+                latest.update({(tracker, dataset, seed, init): cell_id
+                               for tracker, dataset, seed, init, cell_id in connection.execute(query)})
         found: dict[CellKey, int] = {}
-        for key in keys:
-            row = self._db.execute(
-                "SELECT max(id) FROM cells WHERE tracker_key = ? AND dataset_key = ? AND seed = ? AND init = ? "
-                "AND status = 'ok'",
-                (key.tracker_key, key.dataset_key, int(key.seed), key.init),
-            ).fetchone()
-            if row[0] is not None:
-                found[key] = int(row[0])
+        for key in wanted:
+            cell_id = latest.get((key.tracker_key, key.dataset_key, int(key.seed), key.init))
+            if cell_id is not None:
+                found[key] = int(cell_id)
         return found
 
     @_reports_database_errors
     def reuse_cells(self, run_id: int, cell_ids: Iterable[int]) -> None:
         """Make earlier cells part of a run's results (``--resume``)."""
-        with self._db:
-            self._db.executemany(
-                "INSERT OR IGNORE INTO run_cells (run_id, cell_id) VALUES (?, ?)",
-                ((run_id, int(cell_id)) for cell_id in cell_ids),
-            )
+        rows = [{"run_id": run_id, "cell_id": int(cell_id)} for cell_id in cell_ids]
+        if rows:
+            with self._transaction() as connection:
+                connection.execute(_run_cells.insert().prefix_with("OR IGNORE"), rows)
 
     @_reports_database_errors
     def runs(self) -> pd.DataFrame:
         """All runs, oldest first, with the number of cells in each (``problems`` as stored, JSON)."""
-        rows = self._db.execute(
-            "SELECT runs.id, started, finished, argv, options, version, problems, count(run_cells.cell_id) "
-            "FROM runs LEFT JOIN run_cells ON run_cells.run_id = runs.id GROUP BY runs.id ORDER BY runs.id"
-        ).fetchall()
+        query = (
+            sa.select(
+                _runs.c.id, _runs.c.started, _runs.c.finished, _runs.c.argv, _runs.c.options, _runs.c.version,
+                _runs.c.problems, sa.func.count(_run_cells.c.cell_id),
+            )
+            .select_from(_runs.outerjoin(_run_cells, _run_cells.c.run_id == _runs.c.id))
+            .group_by(_runs.c.id)
+            .order_by(_runs.c.id)
+        )
+        with self._transaction() as connection:
+            rows = _rows(connection.execute(query))
         return pd.DataFrame.from_records(
             rows, columns=["id", "started", "finished", "argv", "options", "version", "problems", "cells"]
         )
@@ -504,8 +521,9 @@ class ResultStore:
     @_reports_database_errors
     def latest_run(self) -> int | None:
         """Id of the latest run that has at least one cell, or None."""
-        row = self._db.execute("SELECT max(run_id) FROM run_cells").fetchone()
-        return None if row[0] is None else int(row[0])
+        with self._transaction() as connection:
+            latest = connection.execute(sa.select(sa.func.max(_run_cells.c.run_id))).scalar_one()
+        return None if latest is None else int(latest)
 
     @_reports_database_errors
     def run_problems(self, run_id: int | None = None) -> list[str]:
@@ -522,8 +540,9 @@ class ResultStore:
             One line each; empty for a run without problems or no run at all.
         """
         run_id = self.latest_run() if run_id is None else run_id
-        row = self._db.execute("SELECT problems FROM runs WHERE id = ?", (run_id,)).fetchone()
-        return [] if row is None else [str(problem) for problem in json.loads(row[0])]
+        with self._transaction() as connection:
+            problems = connection.execute(sa.select(_runs.c.problems).where(_runs.c.id == run_id)).scalar()
+        return [] if problems is None else [str(problem) for problem in json.loads(problems)]
 
     @_reports_database_errors
     def cells(self, run_id: int | None = None, *, all_runs: bool = False) -> pd.DataFrame:
@@ -543,16 +562,12 @@ class ResultStore:
             Columns :data:`CELL_COLUMNS`; for each ``(tracker_key,
             dataset_key, seed, init)`` only the latest cell, whatever its status.
         """
-        select = ", ".join(f"cells.{column}" for column in CELL_COLUMNS)
-        if all_runs:
-            rows = self._db.execute(f"SELECT {select} FROM cells ORDER BY cells.id").fetchall()
-        else:
+        query = sa.select(*(_cells.c[column] for column in CELL_COLUMNS)).order_by(_cells.c.id)
+        if not all_runs:
             run_id = self.latest_run() if run_id is None else run_id
-            rows = self._db.execute(
-                f"SELECT {select} FROM cells JOIN run_cells ON run_cells.cell_id = cells.id "
-                "WHERE run_cells.run_id = ? ORDER BY cells.id",
-                (run_id,),
-            ).fetchall()
+            query = query.join(_run_cells, _run_cells.c.cell_id == _cells.c.id).where(_run_cells.c.run_id == run_id)
+        with self._transaction() as connection:
+            rows = _rows(connection.execute(query))
         table = pd.DataFrame.from_records(rows, columns=list(CELL_COLUMNS))
         table["deterministic"] = table["deterministic"].astype(bool)
         return table.drop_duplicates(["tracker_key", "dataset_key", "seed", "init"], keep="last").reset_index(drop=True)
@@ -569,17 +584,16 @@ class ResultStore:
             not stored); rows in processing order.
         """
         ids = sorted({int(cell_id) for cell_id in cell_ids})
-        frame_rows: list[tuple] = []
-        error_rows: list[tuple] = []
-        for chunk in _chunks(ids):
-            marks = ", ".join("?" * len(chunk))
-            frame_rows += self._db.execute(
-                f"SELECT cell_id, position, frame, outcome, step_ms FROM frames WHERE cell_id IN ({marks})", chunk
-            ).fetchall()
-            error_rows += self._db.execute(
-                f"SELECT cell_id, position, name, value FROM frame_errors WHERE cell_id IN ({marks}) ORDER BY rowid",
-                chunk,
-            ).fetchall()
+        frame_rows: list[tuple[Any, ...]] = []
+        error_rows: list[tuple[Any, ...]] = []
+        frame_columns = (_frames.c.cell_id, _frames.c.position, _frames.c.frame, _frames.c.outcome, _frames.c.step_ms)
+        error_columns = (_frame_errors.c.cell_id, _frame_errors.c.position, _frame_errors.c.name, _frame_errors.c.value)
+        with self._transaction() as connection:
+            for chunk in _chunks(ids):
+                frame_rows += _rows(connection.execute(sa.select(*frame_columns).where(_frames.c.cell_id.in_(chunk))))
+                error_rows += _rows(
+                    connection.execute(sa.select(*error_columns).where(_frame_errors.c.cell_id.in_(chunk)).order_by(_ROWID))
+                )
         frames = pd.DataFrame.from_records(
             frame_rows, columns=["cell_id", "position", "frame", "outcome", "step_ms"]
         ).astype({"cell_id": "int64", "position": "int64", "frame": "int64", "step_ms": "float64"})

@@ -11,6 +11,9 @@ row per cell to ``cells``, copied from the run's results database
     cell_frames(cell_id -> cells, frames BLOB)
     cell_pictures(cell_id -> cells, frame, outcome, png BLOB)
 
+These are the tables of :data:`benchmark.schema.HISTORY`, whose cells and
+pictures share their columns with the results database's.
+
 ``metrics`` holds the cell's value of every metric of its board
 (:func:`benchmark.results.summarise`; a metric added later is empty in
 earlier runs); ``cell_frames`` its frame table
@@ -46,6 +49,7 @@ import pandas as pd
 import sqlalchemy as sa
 from sqlalchemy.exc import SQLAlchemyError
 
+from benchmark import schema
 from benchmark.errors import DataError
 from benchmark.files import resolved
 from benchmark.leaderboard import board_metrics
@@ -60,56 +64,11 @@ DETAILED_RUNS = 30
 SERIES = ["tracker", "dataset_key", "seed", "init"]
 """The columns of :meth:`History.cells` that identify a series of comparable cells."""
 
-_metadata = sa.MetaData()
-_runs = sa.Table(
-    "runs",
-    _metadata,
-    sa.Column("id", sa.Integer, primary_key=True),
-    sa.Column("started", sa.String(32), nullable=False),
-    sa.Column("finished", sa.String(32), nullable=False),
-    sa.Column("version", sa.String(64), nullable=False),
-    sa.Column("commit", sa.String(64), nullable=False),
-    sa.Column("machine_key", sa.String(32), nullable=False),
-    sa.Column("machine", sa.Text, nullable=False),
-    sa.Column("argv", sa.Text, nullable=False),
-    sa.Column("seeds", sa.Integer, nullable=False),
-)
-_cells = sa.Table(
-    "cells",
-    _metadata,
-    sa.Column("id", sa.Integer, primary_key=True),
-    sa.Column("run_id", sa.Integer, sa.ForeignKey("runs.id"), nullable=False, index=True),
-    sa.Column("tracker", sa.String(200), nullable=False),
-    sa.Column("tracker_version", sa.String(64), nullable=False),
-    sa.Column("tracker_key", sa.String(200), nullable=False),
-    sa.Column("params", sa.Text, nullable=False),
-    sa.Column("dataset", sa.Text, nullable=False),
-    sa.Column("dataset_key", sa.String(200), nullable=False),
-    sa.Column("modality", sa.String(64), nullable=False),
-    sa.Column("seed", sa.Integer, nullable=False),
-    sa.Column("init", sa.String(16), nullable=False),
-    sa.Column("training", sa.Text, nullable=False),
-    sa.Column("status", sa.String(16), nullable=False),
-    sa.Column("message", sa.Text, nullable=False),
-    sa.Column("frames", sa.Integer, nullable=False),
-    sa.Column("elapsed_s", sa.Float, nullable=False),
-    sa.Column("metrics", sa.Text, nullable=False),
-    sa.Column("deterministic", sa.Boolean, nullable=False, server_default=sa.false()),
-)
-_cell_frames = sa.Table(
-    "cell_frames",
-    _metadata,
-    sa.Column("cell_id", sa.Integer, sa.ForeignKey("cells.id"), primary_key=True),
-    sa.Column("frames", sa.LargeBinary, nullable=False),
-)
-_cell_pictures = sa.Table(
-    "cell_pictures",
-    _metadata,
-    sa.Column("cell_id", sa.Integer, sa.ForeignKey("cells.id"), primary_key=True),
-    sa.Column("frame", sa.Integer, primary_key=True),
-    sa.Column("outcome", sa.String(16), nullable=False),
-    sa.Column("png", sa.LargeBinary, nullable=False),
-)
+_metadata = schema.HISTORY
+_runs = schema.history_runs
+_cells = schema.history_cells
+_cell_frames = schema.history_cell_frames
+_cell_pictures = schema.history_cell_pictures
 
 _P = ParamSpec("_P")
 _T = TypeVar("_T")
@@ -198,12 +157,7 @@ class History:
                     "(columns missing); the database was left unchanged"
                 )
         with self._engine.begin() as connection:
-            for table in _metadata.sorted_tables:
-                if table.name in existing:
-                    found = {column["name"] for column in inspector.get_columns(table.name)}
-                    for column in table.columns:
-                        if column.name not in found:
-                            connection.execute(sa.text(_add_column(table, column, self._engine.dialect)))
+            schema.add_missing_columns(connection, _metadata)
         _metadata.create_all(self._engine)
 
     def close(self) -> None:
@@ -351,13 +305,6 @@ class History:
         with self._engine.connect() as connection:
             rows = connection.execute(query).mappings().all()
         return [Picture(int(row["frame"]), str(row["outcome"]), bytes(row["png"])) for row in rows]
-
-
-def _add_column(table: sa.Table, column: sa.Column, dialect: sa.Dialect) -> str:
-    """The ``ALTER TABLE`` statement adding ``column``, with its default, to an older history's ``table``."""
-    kind = column.type.compile(dialect=dialect)
-    default = column.server_default.arg.compile(dialect=dialect)  # type: ignore[union-attr]
-    return f"ALTER TABLE {table.name} ADD COLUMN {column.name} {kind} NOT NULL DEFAULT {default}"
 
 
 _COPIED = (

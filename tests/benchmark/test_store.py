@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from benchmark import schema
 from benchmark.errors import DataError
 from benchmark.model import Outcome
 from benchmark.results import CellKey, CellResult, FrameScore, Picture
@@ -363,7 +364,7 @@ def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, resul
     assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 6
     columns = [(row[1], row[2], row[5]) for row in connection.execute("PRAGMA table_info(pictures)")]
     connection.close()
-    assert columns == [("cell_id", "INTEGER", 1), ("frame", "INTEGER", 2), ("outcome", "TEXT", 0), ("png", "BLOB", 0)]
+    assert columns == [("cell_id", "INTEGER", 1), ("frame", "INTEGER", 2), ("outcome", "VARCHAR(16)", 0), ("png", "BLOB", 0)]
 
 
 def test_a_database_damaged_mid_file_is_a_data_error_naming_it(tmp_path: Path) -> None:
@@ -416,7 +417,7 @@ def test_a_database_that_cannot_be_opened_or_used_is_a_data_error(tmp_path: Path
         ResultStore(missing)
     store = ResultStore(tmp_path / "r.sqlite")
     store.close()
-    with pytest.raises(DataError, match=r"r\.sqlite: cannot use the results database \(Cannot operate on a closed"):
+    with pytest.raises(DataError, match=r"r\.sqlite: cannot use the results database \(This Connection is closed\)"):
         store.start_run([], {})
 
 
@@ -471,3 +472,109 @@ def test_a_version_5_database_s_cells_declare_nothing_and_new_cells_keep_their_d
         assert store.cells(all_runs=True)["deterministic"].tolist() == [False]
         store.add_cell(store.start_run([], {}), declared)
         assert store.cells(all_runs=True)["deterministic"].tolist() == [False, True]
+
+
+DOWNGRADES = {
+    5: "ALTER TABLE cells DROP COLUMN deterministic;",
+    4: "DROP TABLE conditions; ALTER TABLE cells DROP COLUMN deterministic;",
+    3: "DROP TABLE conditions; DROP TABLE pictures; ALTER TABLE cells DROP COLUMN deterministic;",
+    2: "DROP TABLE conditions; DROP TABLE pictures; ALTER TABLE cells DROP COLUMN deterministic; "
+    "ALTER TABLE cells DROP COLUMN training;",
+}
+"""SQL that turns a database of this schema into one as schema version ``N`` had it (see the module docstring)."""
+
+
+def contents(store: ResultStore, keys: list[CellKey]) -> dict[str, object]:
+    """Everything a store reads back, for runs, cells, frames, pictures and the resume lookup."""
+    cells = store.cells(all_runs=True)
+    return {
+        "runs": store.runs(),
+        "latest": store.latest_run(),
+        "problems": [store.run_problems(run) for run in store.runs()["id"]],
+        "cells": [store.cells(run) for run in store.runs()["id"]],
+        "all cells": cells,
+        "frames": store.frame_tables(cells["id"]),
+        "pictures": store.pictures(cells["id"]),
+        "resumable": store.find_ok_cells(keys),
+    }
+
+
+@pytest.mark.parametrize("version", sorted(DOWNGRADES, reverse=True))
+def test_an_older_database_is_upgraded_in_place_with_its_data_intact(
+    tmp_path: Path, results: dict[str, CellResult], version: int
+) -> None:
+    noisy = dataclasses.replace(results["noisy"], pictures=PICTURES, training="camera-train", deterministic=True)
+    cells = [noisy, results["raising"], results["blind"]]
+    path = tmp_path / "results.sqlite"
+    with ResultStore(path) as store:
+        first = store.start_run(["trackbench", "run"], {"seeds": 1}, problems=["plugin 'acme' failed to import"])
+        ids = [store.add_cell(first, cell) for cell in cells]
+        store.finish_run(first)
+        second = store.start_run(["trackbench", "run", "--resume"], {})
+        store.reuse_cells(second, [ids[0], ids[2]])
+        store.add_cell(second, results["raising"])
+        before = contents(store, [cell.key for cell in cells])
+    connection = sqlite3.connect(path)
+    connection.executescript(f"{DOWNGRADES[version]} PRAGMA user_version = {version};")
+    connection.close()
+    # What the older schema could not keep comes back as its default: no pictures, no training, nothing declared.
+    expected = dict(before, pictures={} if version <= 3 else before["pictures"])
+    for table in (expected["all cells"], *expected["cells"]):
+        table["deterministic"] = False
+        if version == 2:
+            table["training"] = ""
+
+    with ResultStore(path) as store:
+        after = contents(store, [cell.key for cell in cells])
+        new_id = store.add_cell(store.start_run([], {}), noisy)
+        store.add_conditions({DATASET_KEY: {"water": "I"}})
+        grown = store.cells(all_runs=True)
+        assert store.pictures([new_id]) == {new_id: list(PICTURES)}
+        assert store.conditions([DATASET_KEY]) == {DATASET_KEY: {"water": "I"}}
+
+    for name, value in expected.items():
+        if isinstance(value, pd.DataFrame):
+            pd.testing.assert_frame_equal(after[name], value, check_exact=True)
+        elif name == "cells":
+            for found, wanted in zip(after[name], value, strict=True):
+                pd.testing.assert_frame_equal(found, wanted, check_exact=True)
+        else:
+            assert after[name] == value, name
+    assert grown["id"].tolist()[-1] == new_id and bool(grown["deterministic"].iloc[-1])
+    assert grown["training"].tolist()[-1] == "camera-train"
+    connection = sqlite3.connect(path)
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION
+    assert connection.execute("PRAGMA integrity_check").fetchall() == [("ok",)]
+    assert connection.execute("PRAGMA foreign_key_check").fetchall() == []
+    connection.close()
+
+
+def test_an_upgrade_that_fails_leaves_the_older_schema_as_it_was(
+    tmp_path: Path, results: dict[str, CellResult], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    path, old_id = older_database(tmp_path, results["noisy"], 4, DOWNGRADES[4])
+
+    def interrupted(*args: object, **kwargs: object) -> None:
+        raise RuntimeError("interrupted")
+
+    monkeypatch.setattr(schema.RESULTS, "create_all", interrupted)  # after the new columns were added
+    with pytest.raises(RuntimeError, match="interrupted"):
+        ResultStore(path)
+    connection = sqlite3.connect(path)
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == 4
+    assert "deterministic" not in [row[1] for row in connection.execute("PRAGMA table_info(cells)")]
+    connection.close()
+    monkeypatch.undo()
+    with ResultStore(path) as store:
+        assert store.cells(all_runs=True)["id"].tolist() == [old_id]
+        assert store.conditions([DATASET_KEY]) == {}
+
+
+def test_a_status_the_store_does_not_know_is_refused_naming_the_file(
+    tmp_path: Path, results: dict[str, CellResult]
+) -> None:
+    with ResultStore(tmp_path / "r.sqlite") as store:
+        run = store.start_run([], {})
+        with pytest.raises(DataError, match=r"r\.sqlite: cannot use the results database \(CHECK constraint failed"):
+            store.add_cell(run, dataclasses.replace(results["noisy"], status="crashed"))  # type: ignore[arg-type]
+        assert store.cells(all_runs=True).empty
