@@ -32,7 +32,10 @@ class (``SystemExit`` and ``KeyboardInterrupt`` included), whatever invalid
 estimate it returns, and any error reading a frame, turns the cell into a
 result with status ``"error"`` and a message ``"ExceptionType: message
 (frame k)"``; a cell that runs past its time limit gets status
-``"timeout"``.  Frames scored before the failure stay in the result.
+``"timeout"``.  Frames scored before the failure stay in the result.  Each
+phase of a cell (reading its info, creating the tracker, reset, each frame,
+each read) is a :class:`benchmark.faults.Call`, and the first that fails
+is the cell's ending: its message names the phase.
 
 :func:`benchmark.executors.run_cells` runs every cell on an executor,
 by default in a worker process of a local pool: a worker still busy a
@@ -41,7 +44,7 @@ grace period after the limit is killed, and one that exits or crashes
 ``in_process=True`` runs the cells in the calling process instead, for
 debuggers and profilers: there a ``step`` that never returns cannot be
 stopped, and a tracker that ends the process ends the run.  Only the
-user's own Ctrl-C (:class:`UserInterrupt`) stops a run.
+user's own Ctrl-C (:class:`~benchmark.faults.UserInterrupt`) stops a run.
 """
 
 from __future__ import annotations
