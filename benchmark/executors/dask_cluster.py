@@ -217,11 +217,9 @@ class DaskExecutor:
         return self._client.submit(call_on_worker, function, args, timeout_s, pure=False).result()
 
     def running(self) -> list[str]:
-        """Labels of the cells the workers are processing now."""
-        try:
-            processing = {key for keys in self._client.processing().values() for key in keys}
-        except Exception:
-            return []
+        """Labels of the cells the workers are processing now; none while the scheduler does not answer."""
+        asked = Call.of(self._client.processing, "asking the scheduler", reraise=(KeyboardInterrupt,))
+        processing = {key for keys in (asked.value() if asked.ok else {}).values() for key in keys}
         return [cell.label() for future, cell in list(self._futures.items()) if future.key in processing]
 
     def close(self) -> None:

@@ -317,10 +317,9 @@ def prepare(
             modality.check_frame(frame, f"sequence {frames.info.name!r}, frame {frame.index}")
         return frames
 
-    reading = Call.of(read, "reading", reraise=PASS_THROUGH)
-    if not reading.ok:
-        return dataclasses.replace(subject, problem=f"reading {source!r}: {reading.summary}")
-    frames = reading.value()
+    frames, problem = _value_or_problem(read, f"reading {source!r}: ")
+    if frames is None:
+        return dataclasses.replace(subject, problem=problem)
     if not frames.frame_list:
         return dataclasses.replace(subject, problem=f"sequence {frames.info.name!r} has no frames")
     subject = dataclasses.replace(subject, frames=frames)
@@ -335,16 +334,21 @@ def prepare(
         rng = np.random.default_rng([zlib.crc32(entry.name.encode()), head.identity.seed_material])
         return entry.create().fit([head], rng)  # type: ignore[attr-defined]
 
-    fitting = Call.of(fit, "fitting", reraise=PASS_THROUGH)
-    if not fitting.ok:
-        return dataclasses.replace(subject, problem=f"fit on {training!r} raised {fitting.summary}")
-    model = fitting.value()
+    model, problem = _value_or_problem(fit, f"fit on {training!r} raised ")
+    if problem:
+        return dataclasses.replace(subject, problem=problem)
     packages = storage.packages_of(entry.tracker_class)
     try:  # as a run stores the model and every cell reads it back
         model = storage.loads(storage.dumps(model, packages), packages, "the fitted model")
     except storage.StorageError as exc:
         return dataclasses.replace(subject, problem=f"its fitted model cannot be stored: {exc}")
     return dataclasses.replace(subject, model=model)
+
+
+def _value_or_problem(function: Callable[[], T], saying: str) -> tuple[T | None, str]:
+    """``function()``'s value and no problem, or None and ``saying`` followed by the fault (the kit's pass-through goes through)."""
+    call = Call.of(function, saying, reraise=PASS_THROUGH)
+    return (call.value(), "") if call.ok else (None, f"{saying}{call.summary}")
 
 
 def same(a: Any, b: Any) -> bool:
