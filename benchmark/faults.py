@@ -31,6 +31,7 @@ import time
 import traceback
 from collections.abc import Callable
 from dataclasses import dataclass
+from types import TracebackType
 from typing import Any, Generic, Literal, TypeVar
 
 Ending = Literal["ok", "error", "timeout", "died", "retired"]
@@ -80,6 +81,11 @@ def death(exit_code: int | None) -> str:
     return f"exit status {exit_code}"
 
 
+def _below_this_frame(exc: BaseException) -> TracebackType | None:
+    """``exc``'s traceback without its first frame, :meth:`Call.of`'s own, which says nothing of the fault."""
+    return exc.__traceback__.tb_next if exc.__traceback__ is not None else None
+
+
 def _qualified(kind: type) -> str:
     return f"{kind.__module__}.{kind.__qualname__}"
 
@@ -107,12 +113,13 @@ class Fault:
     lineage: tuple[str, ...] = ()
 
     @classmethod
-    def of(cls, exc: BaseException) -> Fault:
-        """The fault of a caught exception."""
+    def of(cls, exc: BaseException, frames: TracebackType | None | Literal["own"] = "own") -> Fault:
+        """The fault of a caught exception; its traceback from ``frames`` on (by default its own, whole)."""
+        start = exc.__traceback__ if frames == "own" else frames
         return cls(
             type(exc).__name__,
             safe_text(str, exc),
-            safe_text(lambda e: "".join(traceback.format_exception(e)), exc),
+            safe_text(lambda e: "".join(traceback.format_exception(type(e), e, start)), exc),
             tuple(_qualified(kind) for kind in type(exc).__mro__),
         )
 
@@ -220,7 +227,8 @@ class Call(Generic[T]):
         except timeouts as exc:
             return cls(phase, "timeout", frame=frame, note=safe_text(str, exc), duration_s=time.perf_counter() - started)
         except BaseException as exc:  # whatever the work raises, SystemExit included, is its own ending
-            return cls(phase, "error", frame=frame, fault=Fault.of(exc), duration_s=time.perf_counter() - started)
+            fault = Fault.of(exc, _below_this_frame(exc))
+            return cls(phase, "error", frame=frame, fault=fault, duration_s=time.perf_counter() - started)
         return cls(phase, "ok", result=result, frame=frame, duration_s=time.perf_counter() - started)
 
     @classmethod

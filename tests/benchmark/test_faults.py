@@ -43,6 +43,7 @@ def test_whatever_a_function_raises_is_an_error_naming_its_phase_and_frame(exc: 
     assert (call.ending, call.status, call.frame, call.result) == ("error", "error", 2, None)
     assert call.summary == text and call.message == f"{text} (frame 2)"
     assert call.detail.startswith("Traceback") and type(exc).__name__ in call.detail
+    assert call.detail.count("  File ") == 1 and "in function" in call.detail  # the fault's frame, not the machinery's
 
 
 def test_a_function_that_returns_is_ok_with_its_value_and_no_message() -> None:
