@@ -129,7 +129,7 @@ class Fault:
 
     @property
     def text(self) -> str:
-        """``ExceptionType: message`` on one line, runs of whitespace made one space (the type alone without a message)."""
+        """``ExceptionType: message`` on one line, whitespace runs made one space (no message: the type alone)."""
         line = " ".join(self.message.split())
         return f"{self.type_name}: {line}" if line else self.type_name
 
@@ -225,7 +225,8 @@ class Call(Generic[T]):
         except reraise:
             raise
         except timeouts as exc:
-            return cls(phase, "timeout", frame=frame, note=safe_text(str, exc), duration_s=time.perf_counter() - started)
+            note = safe_text(str, exc)
+            return cls(phase, "timeout", frame=frame, note=note, duration_s=time.perf_counter() - started)
         except BaseException as exc:  # whatever the work raises, SystemExit included, is its own ending
             fault = Fault.of(exc, _below_this_frame(exc))
             return cls(phase, "error", frame=frame, fault=fault, duration_s=time.perf_counter() - started)

@@ -223,7 +223,7 @@ def sigint_is_user_interrupt() -> Iterator[None]:
 
 
 def _picture(draw: Drawer, frame: Frame, estimate: Any, outcome: Outcome) -> Picture | None:
-    """The frame drawn with ``estimate`` as a PNG, or None when drawing or encoding it fails (a picture is never worth a cell)."""
+    """The frame drawn with ``estimate`` as a PNG, or None when drawing or encoding it fails: never worth a cell."""
     drawn = Call.of(lambda: Picture(int(frame.index), str(outcome), encode_png(draw(frame, estimate))), "drawing")
     return drawn.result
 

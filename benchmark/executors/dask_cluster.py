@@ -206,7 +206,8 @@ class DaskExecutor:
                 self._futures[future] = cell
             for future in as_completed(list(self._futures)):
                 cell = self._futures.pop(future)
-                yield cell_from_call(cell, Call.of(future.result, "Dask worker", reraise=(KeyboardInterrupt,)), timeout_s)
+                ended = Call.of(future.result, "Dask worker", reraise=(KeyboardInterrupt,))  # the user's, here
+                yield cell_from_call(cell, ended, timeout_s)
         finally:
             if self._futures:
                 self._client.cancel(list(self._futures))

@@ -152,7 +152,8 @@ def entry_of(entry_or_class: TrackerEntry | type[Tracker]) -> TrackerEntry:
     """The entry itself, or a class's entry with its default parameters (None if they cannot be made)."""
     if isinstance(entry_or_class, TrackerEntry):
         return entry_or_class
-    params = Call.of(entry_or_class.make_params, "making the default parameters").result  # None: the metadata check says why
+    made = Call.of(entry_or_class.make_params, "making the default parameters")
+    params = made.result  # None when they cannot be made: the metadata check says why
     return TrackerEntry(str(getattr(entry_or_class, "name", entry_or_class.__name__)), entry_or_class, params)
 
 

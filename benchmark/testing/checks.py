@@ -229,7 +229,8 @@ class Subject:
         def played() -> list[Any]:
             Call.of(lambda: tracker.reset(source.info, rng, init=init), f"reset{suffix}", **_TRACKER_CALL).value()
             return [
-                Call.of(lambda: tracker.step(frame), f"step, frame {frame.index}{suffix}", frame.index, **_TRACKER_CALL).value()
+                Call.of(lambda: tracker.step(frame), f"step, frame {frame.index}{suffix}", frame.index, **_TRACKER_CALL)
+                .value()
                 for frame in steps
             ]
 
@@ -346,7 +347,7 @@ def prepare(
 
 
 def _value_or_problem(function: Callable[[], T], saying: str) -> tuple[T | None, str]:
-    """``function()``'s value and no problem, or None and ``saying`` followed by the fault (the kit's pass-through goes through)."""
+    """``function()``'s value and no problem, or None and ``saying`` followed by the fault (see :meth:`Subject.attempt`)."""
     call = Call.of(function, saying, reraise=PASS_THROUGH)
     return (call.value(), "") if call.ok else (None, f"{saying}{call.summary}")
 
@@ -737,7 +738,8 @@ def check_pickles(subject: Subject) -> str:
         Naming what could not be pickled and after which frame, or the frame where the copy differs.
     """
     _, frames = subject.ready()
-    subject.attempt(lambda: pickle.loads(pickle.dumps(subject.entry)), "pickling", saying="its registry entry does not pickle: ")
+    saying = "its registry entry does not pickle: "
+    subject.attempt(lambda: pickle.loads(pickle.dumps(subject.entry)), "pickling", saying=saying)
     steps = frames.frame_list
     points = sorted({1, len(steps) // 2, len(steps) - 1} - {0}) or [1]
     for point in points:

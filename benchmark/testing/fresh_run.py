@@ -257,7 +257,9 @@ def run(folder: Path, job: Job) -> dict[str, Any]:
         if inputs["model"] is not None:
             Call.of(lambda: tracker.use_model(inputs["model"]), "use_model").value()
         Call.of(lambda: tracker.reset(inputs["info"], rng, init=inputs["init"]), "reset").value()
-        return [Call.of(lambda: tracker.step(frame), f"step, frame {frame.index}", frame.index).value() for frame in frames]
+        return [
+            Call.of(lambda: tracker.step(frame), f"step, frame {frame.index}", frame.index).value() for frame in frames
+        ]
 
     ran = Call.of(played, "creating an instance")
     if not ran.ok:
