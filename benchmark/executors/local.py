@@ -30,8 +30,8 @@ from typing import Any
 
 from benchmark.errors import DataError
 from benchmark.executors import ExecutorOptions
-from benchmark.results import CellResult
 from benchmark.faults import Call
+from benchmark.results import CellResult
 from benchmark.runner import Cell, cell_result, run_cell
 
 

@@ -46,9 +46,9 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Literal
 
+from benchmark.faults import Call
 from benchmark.model import Sequence
 from benchmark.registry import Registry, TrackerEntry
-from benchmark.faults import Call
 from benchmark.runner import sigint_is_user_interrupt
 from benchmark.testing.checks import (
     CHECKS,

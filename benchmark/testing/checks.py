@@ -44,11 +44,11 @@ from typing import Any, TypeVar
 import numpy as np
 
 from benchmark import storage
+from benchmark.faults import Call, UserInterrupt
 from benchmark.identity import DatasetIdentity
 from benchmark.modality import Modality
 from benchmark.model import Frame, Sequence, SequenceInfo
 from benchmark.registry import Registry, TrackerEntry
-from benchmark.faults import Call, UserInterrupt
 from benchmark.runner import cell_rng
 from benchmark.testing.beliefs import (
     GaussianBelief,
