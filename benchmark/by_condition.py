@@ -30,11 +30,11 @@ from typing import Any
 import pandas as pd
 
 from benchmark.leaderboard import key_labels, suite_of
-from benchmark.model import Outcome
+from benchmark.metrics import RATES
 from benchmark.results import summarise
 from benchmark.scenes.draws import condition_label
 
-RATE_COLUMNS = tuple(f"{outcome}_pct" for outcome in Outcome)
+RATE_COLUMNS = tuple(metric.name for metric in RATES)
 COLUMNS = ("modality", "suite", "condition", "bin", "order", "tracker", "init", "sequences", "frames", *RATE_COLUMNS)
 """Columns of a board by condition, one row per tracker and bin."""
 
@@ -126,7 +126,7 @@ def condition_board(
             for (order, label, tracker, init), group in binned.groupby(["order", "bin", "label", "init"], sort=True):
                 parts = [by_cell[int(i)] for i in group["id"] if int(i) in by_cell]
                 pooled = pd.concat(parts, ignore_index=True) if parts else frames.iloc[0:0]
-                summary = summarise(pooled, ())
+                summary = summarise(pooled, RATES)
                 rows.append(
                     {
                         "modality": modality,

@@ -55,6 +55,7 @@ from benchmark.executors import DEFAULT_EXECUTOR, Executor, ExecutorOptions, ope
 from benchmark.files import make_folder
 from benchmark.frame_cache import CachedSequence, FrameCache
 from benchmark.leaderboard import leaderboards
+from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
 from benchmark.progress import Progress, SilentProgress
 from benchmark.report import write_condition_board, write_leaderboards
@@ -88,6 +89,8 @@ class Publication:
         Correct, false and missed per cent per suite, condition and bin
         (:func:`benchmark.by_condition.condition_board`); empty when no
         sequence of the run records its conditions.
+    metrics : Metrics
+        The catalogue the boards were made with, which rounds them for reading.
     """
 
     run_id: int | None
@@ -95,6 +98,7 @@ class Publication:
     files: list[Path]
     problems: list[str] = field(default_factory=list)
     by_condition: pd.DataFrame = field(default_factory=pd.DataFrame)
+    metrics: Metrics = CORE
 
 
 @dataclass(frozen=True)
@@ -176,6 +180,7 @@ def publish(
     run_id: int | None = None,
     *,
     all_runs: bool = False,
+    metrics: Metrics = CORE,
 ) -> Publication:
     """Rank a stored run's cells per modality and write the leaderboards into ``out``.
 
@@ -191,19 +196,21 @@ def publish(
         The run to publish; defaults to the latest run with cells.
     all_runs : bool
         Publish the latest cell of every run instead.
+    metrics : Metrics
+        The catalogue of metrics (the registry's).
     """
     run_id = store.latest_run() if run_id is None and not all_runs else run_id
     cells = store.cells(run_id, all_runs=all_runs)
     frames = store.frame_tables(cells["id"])
-    boards = leaderboards(cells, frames, modalities)
+    boards = leaderboards(cells, frames, modalities, metrics)
     by_condition = condition_board(cells, frames, store.conditions(cells["dataset_key"]))
     problems = [] if all_runs else store.run_problems(run_id)
     caption = (
         f"All runs of {store.path}." if all_runs else f"Run {run_id} of {store.path}." if run_id else "No runs."
     )
-    files = write_leaderboards(boards, out, caption, problems=problems)
+    files = write_leaderboards(boards, out, caption, problems=problems, metrics=metrics)
     files += write_condition_board(by_condition, out, caption)
-    return Publication(None if all_runs else run_id, boards, files, problems, by_condition)
+    return Publication(None if all_runs else run_id, boards, files, problems, by_condition, metrics)
 
 
 def record_conditions(store: ResultStore, cells: Iterable[Cell], log: Log) -> None:
@@ -281,6 +288,7 @@ def run_benchmark(
     problems: Sequence[str] = (),
     log: Log = lambda line: None,
     progress: Progress | None = None,
+    metrics: Metrics = CORE,
 ) -> RunSummary:
     """Run cells, store every one as it finishes, and publish the run's leaderboards.
 
@@ -314,6 +322,8 @@ def run_benchmark(
         training and every finished cell.
     progress : Progress, optional
         Told how many cells run and when each finishes.
+    metrics : Metrics
+        The catalogue of metrics of the boards (the registry's).
 
     Returns
     -------
@@ -370,7 +380,7 @@ def run_benchmark(
             finally:
                 progress.close()
                 rendered = sum(path.is_file() for path in missing)
-            publication = publish(store, modalities, out, run_id)
+            publication = publish(store, modalities, out, run_id, metrics=metrics)
             cpu_s = _cpu_s() - cpu_started if executor.runs_here else None
             elapsed_s = time.perf_counter() - started
             return RunSummary(publication, statuses, interrupted, elapsed_s, rendered, step_s, read_s, cpu_s)

@@ -11,11 +11,17 @@ A plugin is a module (or object) registered under the entry-point group
         registry.add_tracker(MyTracker)
 
 The harness calls the hooks through pluggy, in this order: modalities,
+then metrics (each for every modality or for one),
 then trackers (each names a modality), then datasets (whose scene kinds
 belong to modalities).  Pluggy's ``tryfirst``, ``trylast`` and wrappers
 order and wrap the implementations of one hook.  The built-in modalities,
 the first-party trackers and the shared suites are plugins of exactly this
 kind.
+
+Commands of the command line come from a second entry-point group,
+``trackbench.commands``, whose plugins implement
+:func:`trackbench_register_commands` only: ``trackbench --help`` lists them
+without importing every tracker and its dependencies.
 """
 
 from __future__ import annotations
@@ -25,6 +31,7 @@ from typing import TYPE_CHECKING
 import pluggy
 
 if TYPE_CHECKING:
+    from benchmark.cli.discovery import CommandRegistry
     from benchmark.registry import Registry
 
 PROJECT_NAME = "trackbench"
@@ -44,6 +51,22 @@ def trackbench_register_modalities(registry: Registry) -> None:
     its frame and estimate types, scorer, file readers, exporter, scene
     kinds and, optionally, how to draw a frame for the reports.  Trackers
     and sequences name a modality by its ``name``.
+
+    Parameters
+    ----------
+    registry : Registry
+        The registry of this session; errors raised here name the plugin.
+    """
+
+
+@hookspec
+def trackbench_register_metrics(registry: Registry) -> None:
+    """Add metrics, numbers reported about every cell, to the registry.
+
+    Call :meth:`Registry.add_metric` with a :class:`benchmark.metrics.Metric`
+    (and optionally the modality it is for): it then stands on the boards,
+    with its interval over seeds, in the history and the nightly site, and
+    is judged by the regressions, like the core metrics.
 
     Parameters
     ----------
@@ -78,4 +101,26 @@ def trackbench_register_datasets(registry: Registry) -> None:
     ----------
     registry : Registry
         The registry of this session; errors raised here name the plugin.
+    """
+
+
+@hookspec
+def trackbench_register_commands(registry: CommandRegistry) -> None:
+    """Add commands to the ``trackbench`` command line.
+
+    Called only on the plugins of the entry-point group
+    ``trackbench.commands``, and only when the command line needs them (to
+    list the commands, or to run one that is not built in).  Call
+    :meth:`CommandRegistry.add_command` with a :class:`click.Command`; the
+    command gets the session (:class:`benchmark.cli.session.Session`, with
+    the plugin ``registry``) through ``click.pass_obj``, and its
+    :class:`~benchmark.errors.TrackbenchError` is shown as one line
+    ``Error: ...`` with exit status 2, as for the built-in commands.  Keep
+    the module light: import what a command needs inside the command.
+
+    Parameters
+    ----------
+    registry : CommandRegistry
+        The commands of this session; a name already taken (by a built-in
+        command or another plugin) is an error naming the plugin.
     """

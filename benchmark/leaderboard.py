@@ -1,14 +1,16 @@
 """Leaderboards: cells pooled per tracker and dataset, ranked per modality.
 
 A leaderboard row pools every scored frame of every seed a tracker ran on a
-dataset: rates are percentages of all those frames (so seeds weigh by their
-frame counts), each RMSE is the square root of the mean squared error over
-all frames with an estimate and a truth, and ``fps`` is all frames over all
-``step`` time (:func:`benchmark.results.summarise` applied to the pooled
-frames).  ``correct_sd_pct`` is the spread over seeds: the sample standard
-deviation of the per-seed ``correct_pct`` (empty for a single seed), so that
-a stochastic tracker's mean is read with its variation.  Every rate and
-RMSE also has its 95 % interval (``correct_lo_pct`` to ``correct_hi_pct``), a bootstrap
+dataset, and has a column per metric of its board (:mod:`benchmark.metrics`),
+computed from the pooled frames (:func:`benchmark.results.summarise`): rates
+are percentages of all those frames (so seeds weigh by their frame counts),
+each RMSE is the square root of the mean squared error over all frames with
+an estimate and a truth, ``fps`` is all frames over all ``step`` time, and
+the robustness metrics count failures over all frames.  A metric with a
+spread (``correct_pct``) has the sample standard deviation of its per-seed
+values (``correct_sd_pct``, empty for a single seed), so that a stochastic
+tracker's mean is read with its variation.  A metric with an interval also
+has its 95 % interval (``correct_lo_pct`` to ``correct_hi_pct``), a bootstrap
 over seeds (:mod:`benchmark.intervals`), and ``deterministic`` says
 whether all seeds gave the same frames *and* the tracker declares that it
 draws no random numbers (empty for a single seed): seeds that agree are not
@@ -22,8 +24,9 @@ so a split is never read through another's numbers.  A tracker name that ran wit
 parameter sets, or a dataset name that stood for several datasets (a file
 edited between runs), gets a row per key, labelled ``name [key prefix]``.
 
-Within each dataset trackers are ranked by ``correct_pct`` (higher first),
-then by the first RMSE column (``rmse_d_px`` for cameras, lower first), the
+Within each dataset trackers are ranked by the metrics that rank
+(:attr:`benchmark.metrics.Metric.ranks`): ``correct_pct`` (higher first),
+then the first RMSE column (``rmse_d_px`` for cameras, lower first), the
 order of seeds/004, Table V followed by the accuracy of seeds/000,
 section 5.2.3.  ``training`` names the training set of a tracker that
 learns (:mod:`benchmark.training`), empty for the others.  Rows whose cells failed (status other than ``ok``) rank
@@ -38,14 +41,14 @@ Boards keep full precision; :mod:`benchmark.report` writes them out.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
 import pandas as pd
 
 from benchmark.intervals import seed_intervals
+from benchmark.metrics import CORE, KINDS, Metric, Metrics
 from benchmark.modality import Modality
-from benchmark.model import Outcome
 from benchmark.results import summarise
 
 if TYPE_CHECKING:
@@ -69,9 +72,6 @@ def is_pooled(dataset: str) -> bool:
     return dataset == ALL_DATASETS or dataset.endswith(SUITE_POOL)
 
 LEADING_COLUMNS = ("rank", "tracker", "dataset", "init", "training", "seeds", "frames")
-RATE_COLUMNS = tuple(f"{outcome}_pct" for outcome in Outcome)
-SPREAD_COLUMN = "correct_sd_pct"
-"""Standard deviation over seeds of the per-seed ``correct_pct``, percentage points."""
 
 
 def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str, ...]:
@@ -81,17 +81,25 @@ def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str,
     return tuple(column for column in frames.columns if str(column).startswith("err_"))
 
 
-def interval_columns(metric: str) -> tuple[str, str]:
-    """The columns of the low and high end of a rate's or RMSE's 95 % interval, unit last: ``correct_lo_pct``."""
-    name, unit = metric.rsplit("_", 1)
-    return f"{name}_lo_{unit}", f"{name}_hi_{unit}"
+def board_metrics(
+    metrics: Metrics, modality_name: str, modality: Modality | None, frames: pd.DataFrame
+) -> tuple[Metric, ...]:
+    """The metrics of the board of a modality (registered or not: :func:`error_columns`), in board order."""
+    return metrics.for_board(modality_name, error_columns(modality, frames))
 
 
-def board_columns(errors: tuple[str, ...]) -> list[str]:
-    """Columns of a board whose modality has the error columns ``errors``."""
-    rmse = ["rmse_" + column.removeprefix("err_") for column in errors]
-    intervals = [column for metric in (*RATE_COLUMNS, *rmse) for column in interval_columns(metric)]
-    return [*LEADING_COLUMNS, *RATE_COLUMNS, SPREAD_COLUMN, *rmse, "fps", "deterministic", *intervals, "status"]
+def board_columns(metrics: Sequence[Metric]) -> list[str]:
+    """Columns of a board of ``metrics``: each kind's metrics then their spreads, ``deterministic``, intervals."""
+    values = [
+        column
+        for kind in KINDS
+        for column in [
+            *(m.name for m in metrics if m.kind == kind),
+            *(m.spread_column for m in metrics if m.kind == kind and m.spread),
+        ]
+    ]
+    intervals = [column for metric in metrics if metric.interval for column in metric.interval_columns]
+    return [*LEADING_COLUMNS, *values, "deterministic", *intervals, "status"]
 
 
 def pooled_status(cells: pd.DataFrame) -> str:
@@ -120,21 +128,23 @@ def key_labels(cells: pd.DataFrame, name: str, key: str) -> pd.Series:
     return cells[name].where(keys_per_name <= 1, cells[name] + " [" + short_keys + "]")
 
 
-def _rank(board: pd.DataFrame, first_rmse: str | None) -> pd.DataFrame:
+def _rank(board: pd.DataFrame, metrics: Sequence[Metric]) -> pd.DataFrame:
+    ranking = [metric for metric in metrics if metric.ranks]
+    keys = {
+        f"_by_{metric.name}": (board[metric.name] if metric.lower_is_better else -board[metric.name]).fillna(math.inf)
+        for metric in ranking
+    }
     ordered = board.assign(
         _failed=board["status"] != "ok",
-        _correct=-board["correct_pct"].fillna(-math.inf),
-        _rmse=board[first_rmse].fillna(math.inf) if first_rmse else 0.0,
         _all=[0 if name == ALL_DATASETS else 1 if is_pooled(name) else 2 for name in board["dataset"]],
+        **keys,
     )
-    ordered = ordered.sort_values(
-        ["_all", "dataset", "init", "_failed", "_correct", "_rmse", "tracker"], kind="stable"
-    )
+    ordered = ordered.sort_values(["_all", "dataset", "init", "_failed", *keys, "tracker"], kind="stable")
     ordered["rank"] = ordered.groupby(["dataset", "init"]).cumcount() + 1
-    return ordered.drop(columns=["_failed", "_correct", "_rmse", "_all"]).reset_index(drop=True)
+    return ordered.drop(columns=["_failed", "_all", *keys]).reset_index(drop=True)
 
 
-def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str, ...]) -> pd.DataFrame:
+def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, metrics: Sequence[Metric]) -> pd.DataFrame:
     """The ranked board of one modality.
 
     Parameters
@@ -147,8 +157,8 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
     frames : pandas.DataFrame
         Their frame scores: ``cell_id``, ``outcome``, the error columns and
         ``step_ms`` (as :meth:`benchmark.store.ResultStore.frame_tables`).
-    errors : tuple of str
-        The modality's error columns, ``err_*``.
+    metrics : sequence of Metric
+        The board's metrics, in board order (:meth:`benchmark.metrics.Metrics.for_board`).
 
     Returns
     -------
@@ -162,7 +172,7 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
     seeds/004, section VI-C and Table V (rates); seeds/000, sections 5.2.3
     and 5.2.5 (state errors and speed).
     """
-    columns = board_columns(errors)
+    columns = board_columns(metrics)
     if cells.empty:
         return pd.DataFrame(columns=columns)
     if "cell_id" not in frames.columns:
@@ -182,11 +192,15 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
         return pd.concat(parts, ignore_index=True) if parts else empty
 
     def row(group: pd.DataFrame, label: str, dataset: str, init: str) -> dict[str, object]:
-        summary = summarise(pool(group), errors)
+        summary = summarise(pool(group), metrics)
         summary["frames"] = int(summary["frames"])
         seeds = [pool(cells_of_seed) for _, cells_of_seed in group.groupby("seed")]
-        per_seed = [summarise(frames_of_seed, errors)["correct_pct"] for frames_of_seed in seeds]
-        intervals, seeds_agree = seed_intervals(seeds, errors)
+        spreads = {
+            metric.spread_column: pd.Series([metric.of(table) for table in seeds], dtype=float).std(ddof=1)
+            for metric in metrics
+            if metric.spread
+        }
+        intervals, seeds_agree = seed_intervals(seeds, metrics)
         declared = bool(group["deterministic"].all()) if "deterministic" in group else False
         deterministic = seeds_agree and declared if seeds_agree is not None else None
         return {
@@ -196,10 +210,10 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
             "training": ", ".join(sorted(set(group.get("training", pd.Series(dtype=str)).fillna("")) - {""})),
             "seeds": int(group["seed"].nunique()),
             **summary,
-            SPREAD_COLUMN: pd.Series(per_seed, dtype=float).std(ddof=1),
+            **spreads,
             "deterministic": deterministic,
-            **{column: end for metric, ends in intervals.items()
-               for column, end in zip(interval_columns(metric), ends)},
+            **{column: end for metric in metrics if metric.interval
+               for column, end in zip(metric.interval_columns, intervals[metric.name])},
             "status": pooled_status(group),
         }
 
@@ -219,13 +233,12 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, errors: tuple[str,
         for (label, dataset, init), group in cells.groupby(["label", "dataset", "init"], sort=True)
     ]
     board = pd.DataFrame(rows).reindex(columns=columns)
-    rmse = [column for column in columns if column.startswith("rmse_")]
-    ranked = _rank(board, rmse[0] if rmse else None)
+    ranked = _rank(board, metrics)
     return ranked.astype({"rank": "int64", "seeds": "int64", "frames": "int64"})[columns]
 
 
 def leaderboards(
-    cells: pd.DataFrame, frames: pd.DataFrame, modalities: Mapping[str, Modality]
+    cells: pd.DataFrame, frames: pd.DataFrame, modalities: Mapping[str, Modality], metrics: Metrics = CORE
 ) -> dict[str, pd.DataFrame]:
     """One ranked board per modality present in ``cells``.
 
@@ -237,6 +250,8 @@ def leaderboards(
         The registered modalities by name, whose scorers give each board its
         error columns; a modality of ``cells`` not among them (its plugin
         since removed) takes the error columns its frames have.
+    metrics : Metrics
+        The catalogue of metrics (the registry's, with those plugins added).
 
     Returns
     -------
@@ -246,12 +261,18 @@ def leaderboards(
     boards: dict[str, pd.DataFrame] = {}
     for modality, group in cells.groupby("modality", sort=True):
         part = frames[frames["cell_id"].isin(group["id"])] if "cell_id" in frames.columns else frames
-        boards[str(modality)] = modality_board(group, part, error_columns(modalities.get(str(modality)), part))
+        name = str(modality)
+        boards[name] = modality_board(group, part, board_metrics(metrics, name, modalities.get(name), part))
     return boards
 
 
 def load_leaderboards(
-    store: ResultStore, modalities: Mapping[str, Modality], run_id: int | None = None, *, all_runs: bool = False
+    store: ResultStore,
+    modalities: Mapping[str, Modality],
+    run_id: int | None = None,
+    *,
+    all_runs: bool = False,
+    metrics: Metrics = CORE,
 ) -> dict[str, pd.DataFrame]:
     """The boards of a run stored in ``store`` (default: its latest run).
 
@@ -259,4 +280,4 @@ def load_leaderboards(
     seed and initialisation, the latest cell of any run.
     """
     cells = store.cells(run_id, all_runs=all_runs)
-    return leaderboards(cells, store.frame_tables(cells["id"]), modalities)
+    return leaderboards(cells, store.frame_tables(cells["id"]), modalities, metrics)

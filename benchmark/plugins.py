@@ -10,6 +10,12 @@ loudly, and each ``trackbench_register_*`` hook is one pluggy hook call, so
 ``tryfirst``, ``trylast``, wrappers and pluggy's tracing work as they do
 for pytest's plugins.
 
+The same machinery loads the plugins of another entry-point group with
+its own hooks (:class:`PluginGroup`): the commands of the command line come
+from the group ``trackbench.commands`` (:mod:`benchmark.cli.discovery`), so
+that listing them imports no tracker.  A plugin implementing a hook that is
+called only on another group's plugins fails like a misspelt hook.
+
 Two distributions that offer an entry point of the same name are an error
 naming both: one would otherwise silently shadow the other.  A plugin that
 fails to import or does not validate against the hook specifications is
@@ -36,21 +42,43 @@ import importlib.metadata
 import inspect
 import os
 import traceback
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
 from types import CodeType, FrameType
+from typing import TypeVar
 
 import pluggy
 from pluggy import HookImpl
 
 from benchmark import hookspecs
 from benchmark.errors import PluginError
-from benchmark.registry import Origin, Registry
+from benchmark.registry import Origin, PluginRecords, Registry
 from benchmark.shared_modules import Snapshot
 
 ENTRY_POINT_GROUP = "trackbench"
 DISABLE_ENV = "TRACKBENCH_DISABLE_PLUGINS"
-REGISTER_HOOKS = ("trackbench_register_modalities", "trackbench_register_trackers", "trackbench_register_datasets")
+REGISTER_HOOKS = (
+    "trackbench_register_modalities",
+    "trackbench_register_metrics",
+    "trackbench_register_trackers",
+    "trackbench_register_datasets",
+)
 """The hooks that fill a registry, in the order they are called."""
+
+
+@dataclass(frozen=True)
+class PluginGroup:
+    """An entry-point group of plugins, the hooks called on them in that order, and what leaving one out costs."""
+
+    name: str
+    hooks: tuple[str, ...]
+    lost: str
+
+
+REGISTRY_PLUGINS = PluginGroup(ENTRY_POINT_GROUP, REGISTER_HOOKS, "its trackers are unavailable")
+"""The plugins that fill a :class:`~benchmark.registry.Registry` with modalities, trackers and suites."""
+
+Records = TypeVar("Records", bound=PluginRecords)
 
 
 def disabled_from_environment() -> set[str]:
@@ -58,8 +86,8 @@ def disabled_from_environment() -> set[str]:
     return {name.strip() for name in os.environ.get(DISABLE_ENV, "").split(",") if name.strip()}
 
 
-def entry_points() -> dict[str, dict[str, importlib.metadata.EntryPoint]]:
-    """The group's entry points by name, each with the distributions (``"name version"``) offering it.
+def entry_points(group: str = ENTRY_POINT_GROUP) -> dict[str, dict[str, importlib.metadata.EntryPoint]]:
+    """The entry points of ``group`` by name, each with the distributions (``"name version"``) offering it.
 
     A distribution found twice on the path (an editable install seen from
     its own folder, say) counts once.
@@ -72,7 +100,7 @@ def entry_points() -> dict[str, dict[str, importlib.metadata.EntryPoint]]:
             continue
         seen.add(name)
         for ep in dist.entry_points:
-            if ep.group == ENTRY_POINT_GROUP:
+            if ep.group == group:
                 found.setdefault(ep.name, {})[f"{name} {dist.version}"] = ep
     return found
 
@@ -80,23 +108,24 @@ def entry_points() -> dict[str, dict[str, importlib.metadata.EntryPoint]]:
 class PluginManager(pluggy.PluginManager):
     """pluggy's manager, which also remembers the plugins it had to leave out."""
 
-    def __init__(self) -> None:
+    def __init__(self, lost: str = REGISTRY_PLUGINS.lost) -> None:
         super().__init__(hookspecs.PROJECT_NAME)
         self.add_hookspecs(hookspecs)
         self.problems: list[str] = []
+        self.lost = lost
 
     def leave_out(self, name: str, error: PluginError, strict: bool) -> None:
         """Unregister and block plugin ``name`` and note why, or raise ``error`` when ``strict``."""
         if strict:
             raise error
         self.set_blocked(name)
-        self.problems.append(f"{error} (left out: its trackers are unavailable)")
+        self.problems.append(f"{error} (left out: {self.lost})")
 
 
 def make_plugin_manager(
-    disable: Iterable[str] = (), *, strict: bool = False
+    disable: Iterable[str] = (), *, strict: bool = False, group: PluginGroup = REGISTRY_PLUGINS
 ) -> tuple[PluginManager, dict[str, Origin]]:
-    """Load every plugin of the ``trackbench`` entry-point group.
+    """Load every plugin of an entry-point group (by default ``trackbench``).
 
     Parameters
     ----------
@@ -105,6 +134,10 @@ def make_plugin_manager(
     strict : bool
         Raise for a plugin that fails to import or to validate, instead of
         leaving it out and noting it in ``manager.problems``.
+    group : PluginGroup
+        The entry-point group, and the hooks its plugins may implement: one
+        that implements a hook called only on another group's plugins fails
+        like a misspelt hook.
 
     Returns
     -------
@@ -120,24 +153,24 @@ def make_plugin_manager(
         If two distributions offer the same entry-point name; with
         ``strict``, also if a plugin fails to import, does not validate
         against the hook specifications, or implements a hook that does not
-        exist.
+        exist, or one of another group.
     """
-    manager = PluginManager()
+    manager = PluginManager(group.lost)
     for name in set(disable) | disabled_from_environment():
         manager.set_blocked(name)
     origins: dict[str, Origin] = {}
-    for name, offers in entry_points().items():
+    for name, offers in entry_points(group.name).items():
         if manager.is_blocked(name):
             continue
         if len(offers) > 1:
             raise PluginError(
-                f"plugin name {name!r} of the {ENTRY_POINT_GROUP!r} entry-point group is taken twice, by "
+                f"plugin name {name!r} of the {group.name!r} entry-point group is taken twice, by "
                 f"{' and '.join(sorted(offers))}; uninstall one, or disable the name with --disable {name}"
             )
         ((distribution, ep),) = offers.items()
         shared = Snapshot.take()
         try:
-            manager.load_setuptools_entrypoints(ENTRY_POINT_GROUP, name=name)
+            manager.load_setuptools_entrypoints(group.name, name=name)
         except pluggy.PluginValidationError as exc:
             shared.restore()
             manager.leave_out(name, PluginError(f"plugin {name!r} ({distribution}): {exc}"), strict)
@@ -168,6 +201,16 @@ def make_plugin_manager(
             name = manager.get_name(exc.plugin) or "?"
             origin = origins.pop(name, Origin(name))
             manager.leave_out(name, PluginError(f"plugin {name!r} ({origin.distribution}): {exc}"), strict)
+    for name, origin in list(origins.items()):
+        foreign = [caller.name for caller in manager.get_hookcallers(manager.get_plugin(name)) or ()]
+        foreign = [hook for hook in foreign if hook not in group.hooks]
+        if foreign:
+            del origins[name]
+            error = PluginError(
+                f"plugin {name!r} ({origin.distribution}) of the {group.name!r} entry-point group implements "
+                f"{', '.join(foreign)}, which is called only on the plugins of another group"
+            )
+            manager.leave_out(name, error, strict)
     return manager, origins
 
 
@@ -175,9 +218,11 @@ Implementations = Mapping[CodeType, Sequence[tuple[HookImpl, Origin]]]
 """The code of the register hook implementations, each with the implementations (and plugins) running it."""
 
 
-def _implementations(manager: pluggy.PluginManager, origins: Mapping[str, Origin]) -> Implementations:
+def _implementations(
+    manager: pluggy.PluginManager, origins: Mapping[str, Origin], hook_names: Sequence[str]
+) -> Implementations:
     found: dict[CodeType, list[tuple[HookImpl, Origin]]] = {}
-    for hook_name in REGISTER_HOOKS:
+    for hook_name in hook_names:
         for impl in getattr(manager.hook, hook_name).get_hookimpls():
             origin = origins.get(impl.plugin_name, Origin(impl.plugin_name))
             found.setdefault(impl.function.__code__, []).append((impl, origin))
@@ -224,19 +269,24 @@ def _raising_plugin(exc: BaseException, implementations: Implementations) -> Ori
     return _frame_origin(frames[-1], implementations[frames[-1].f_code]) if frames else Origin()
 
 
-def fill_registry(manager: pluggy.PluginManager, origins: Mapping[str, Origin]) -> Registry:
-    """Call the register hooks through pluggy, attributing every addition to its plugin.
+def fill_registry(
+    manager: pluggy.PluginManager,
+    origins: Mapping[str, Origin],
+    make: Callable[[], Records] = Registry,
+    hook_names: Sequence[str] = REGISTER_HOOKS,
+) -> Records:
+    """Call the hooks that fill a new ``make()`` through pluggy, attributing every addition to its plugin.
 
     Raises
     ------
     PluginError
         For a bad addition or an exception raised by a hook, naming the plugin.
     """
-    registry = Registry()
-    implementations = _implementations(manager, origins)
+    registry = make()
+    implementations = _implementations(manager, origins, hook_names)
     registry.attribute_with(lambda: calling_plugin(implementations, inspect.currentframe()))
     try:
-        for hook_name in REGISTER_HOOKS:
+        for hook_name in hook_names:
             try:
                 getattr(manager.hook, hook_name)(registry=registry)
             except PluginError:
@@ -256,6 +306,16 @@ def fill_registry(manager: pluggy.PluginManager, origins: Mapping[str, Origin]) 
 def load_registry(disable: Iterable[str] = (), *, strict: bool = False) -> Registry:
     """Discover all plugins and return the registry they filled, with the problems of those left out.
 
+    See :func:`load_plugins`.
+    """
+    return load_plugins(Registry, REGISTRY_PLUGINS, disable, strict=strict)
+
+
+def load_plugins(
+    make: Callable[[], Records], group: PluginGroup, disable: Iterable[str] = (), *, strict: bool = False
+) -> Records:
+    """Load the plugins of ``group`` and return the ``make()`` their hooks filled, with the problems of those left out.
+
     A plugin whose register hook raises, or adds something invalid, is left
     out like one that fails to import, and the registry is filled again
     without it, so that nothing it added before failing remains.  ``strict``
@@ -267,10 +327,10 @@ def load_registry(disable: Iterable[str] = (), *, strict: bool = False) -> Regis
         With ``strict``, for any plugin left out; always, for a failure that
         cannot be pinned on one plugin.
     """
-    manager, origins = make_plugin_manager(disable, strict=strict)
+    manager, origins = make_plugin_manager(disable, strict=strict, group=group)
     while True:
         try:
-            registry = fill_registry(manager, origins)
+            registry = fill_registry(manager, origins, make, group.hooks)
             break
         except PluginError as exc:
             if exc.plugin not in origins:

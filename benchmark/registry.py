@@ -1,4 +1,4 @@
-"""The registry that plugins fill with modalities, trackers and suites.
+"""The registry that plugins fill with modalities, metrics, trackers and suites.
 
 Plugins receive a :class:`Registry` in their ``trackbench_register_*`` hooks
 (the pattern of tox's ``tox_register_tox_env``).  The registry checks every
@@ -20,6 +20,7 @@ from typing import Any
 
 from benchmark.errors import ParameterError, PluginError
 from benchmark.identity import code_digest
+from benchmark.metrics import CORE, Metric, Metrics
 from benchmark.modality import Modality, SceneFactory
 from benchmark.model import Sequence
 from benchmark.parameters import params_key
@@ -100,21 +101,16 @@ class SuiteEntry:
     scored: bool = True
 
 
-class Registry:
-    """Modalities, trackers and suites contributed by plugins.
+class PluginRecords:
+    """What plugins add through their hooks, each addition attributed to the plugin that made it.
 
-    Examples
-    --------
-    >>> registry = Registry()
-    >>> registry.add_modality(CAMERA)                                    # doctest: +SKIP
-    >>> registry.add_tracker(MyTracker)                                  # doctest: +SKIP
-    >>> registry.add_tracker(MyTracker, name="mine-fast", params={"n": 10})  # doctest: +SKIP
+    The base of every registry a plugin manager fills (:class:`Registry`
+    here, :class:`benchmark.cli.discovery.CommandRegistry` for commands):
+    it knows which plugin is adding something, notes the problems of
+    plugins, and words their errors.
     """
 
     def __init__(self) -> None:
-        self.modalities: dict[str, Modality] = {}
-        self.trackers: dict[str, TrackerEntry] = {}
-        self.suites: dict[str, SuiteEntry] = {}
         self.problems: list[str] = []
         """Plugins that could not be loaded, one line each (naming plugin, distribution and exception)."""
         self._origin: Origin | None = None
@@ -154,6 +150,26 @@ class Registry:
         origin = self.origin
         return PluginError(f"plugin {origin.plugin!r} ({origin.distribution}): {message}", plugin=origin.plugin)
 
+
+class Registry(PluginRecords):
+    """Modalities, metrics, trackers and suites contributed by plugins.
+
+    Examples
+    --------
+    >>> registry = Registry()
+    >>> registry.add_modality(CAMERA)                                    # doctest: +SKIP
+    >>> registry.add_tracker(MyTracker)                                  # doctest: +SKIP
+    >>> registry.add_tracker(MyTracker, name="mine-fast", params={"n": 10})  # doctest: +SKIP
+    """
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.modalities: dict[str, Modality] = {}
+        self.trackers: dict[str, TrackerEntry] = {}
+        self.suites: dict[str, SuiteEntry] = {}
+        self.metrics: Metrics = CORE
+        """The metrics of every board: the core ones, the modalities' errors and those plugins added."""
+
     def add_modality(self, modality: Modality) -> Modality:
         """Register a modality: a kind of sensor data, its types, scorer, readers and scene kinds.
 
@@ -186,6 +202,24 @@ class Registry:
                 raise self._fail(f"modality {modality.name!r}: scene kind {kind!r} belongs to modality {other!r}")
         self.modalities[modality.name] = modality
         return modality
+
+    def add_metric(self, metric: Metric, modality: str | None = None) -> Metric:
+        """Register a metric, for every modality or for ``modality`` alone.
+
+        Raises
+        ------
+        PluginError
+            If ``metric`` is not a :class:`~benchmark.metrics.Metric`,
+            ``modality`` is not registered, or the metric's name (or a
+            column derived from it) is already taken.
+        """
+        if modality is not None and modality not in self.modalities:
+            raise self._fail(f"metric for unknown modality {modality!r}")
+        try:
+            self.metrics = self.metrics.adding(metric, modality)
+        except ValueError as exc:
+            raise self._fail(str(exc)) from None
+        return metric
 
     @property
     def scene_kinds(self) -> dict[str, SceneFactory]:

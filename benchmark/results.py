@@ -7,8 +7,8 @@ took.  A :class:`CellResult` holds a cell's identity, how it ended, its
 frame scores and a :class:`Picture` of the first frame of each run of
 failures (where its modality draws frames); it is what worker processes
 hand back and what the store writes.  :func:`summarise` turns frame
-scores, of one cell or pooled over many, into the rates, RMSEs and speed
-of a leaderboard row.
+scores, of one cell or pooled over many, into the metrics of a
+leaderboard row (:mod:`benchmark.metrics`).
 
 Column names carry their units (``conventions.md`` section 4): angles are
 reported in degrees, distances in px (camera) or m (sonar, stereo).
@@ -24,6 +24,7 @@ from typing import Any, Literal, NamedTuple
 import numpy as np
 import pandas as pd
 
+from benchmark.metrics import CORE, Metric, Metrics
 from benchmark.model import Outcome
 
 Status = Literal["ok", "error", "timeout"]
@@ -89,50 +90,29 @@ def frame_table(scores: Iterable[FrameScore]) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def summarise(frames: pd.DataFrame, error_columns: Iterable[str]) -> dict[str, float]:
-    """Rates, RMSEs and speed of one cell (or of several pooled cells).
+def summarise(frames: pd.DataFrame, metrics: Iterable[Metric]) -> dict[str, float]:
+    """``frames``, the number of scored frames, and the value of each metric over a frame table.
 
     Parameters
     ----------
     frames : pandas.DataFrame
-        Frame scores as made by :func:`frame_table`.
-    error_columns : iterable of str
-        The modality's error columns; ``err_X`` becomes ``rmse_X``.
+        Frame scores as made by :func:`frame_table`, of one cell or of
+        several pooled (with a ``cell_id`` column telling them apart).
+    metrics : iterable of Metric
+        The metrics of the board (:meth:`benchmark.metrics.Metrics.for_board`).
 
     Returns
     -------
     dict
-        ``frames`` (scored frames), ``correct_pct``, ``false_pct``,
-        ``missed_pct`` (percentages of scored frames, summing to 100),
-        ``rmse_*`` over frames with both an estimate and a truth, and ``fps``
-        (frames processed per second of ``step`` time).
-
-    Notes
-    -----
-    A non-finite error is no error and is ignored, as the store does not
-    keep it; scorers report an error too large for a float as
-    ``+-sys.float_info.max`` (:meth:`benchmark.modality.Scorer.score`).
-    The RMSE ``sqrt(mean(e**2))`` is computed as ``m * sqrt(mean((e/m)**2))``
-    with ``m = max |e|``: equal to the plain formula up to rounding wherever
-    that does not overflow, and never above ``m``, so it is finite for any
-    finite errors.
+        ``frames``, then each metric's name to its value
+        (:meth:`benchmark.metrics.Metric.of`): for the core metrics
+        ``correct_pct``, ``false_pct``, ``missed_pct`` (percentages of scored
+        frames, summing to 100), ``rmse_*`` over frames with both an
+        estimate and a truth, and ``fps`` (frames processed per second of
+        ``step`` time).
     """
-    columns = list(error_columns)
-    outcomes = frames["outcome"].dropna() if "outcome" in frames else pd.Series(dtype=object)
-    scored = len(outcomes)
-    summary: dict[str, float] = {"frames": float(scored)}
-    for outcome in Outcome:
-        count = int((outcomes == str(outcome)).sum())
-        summary[f"{outcome}_pct"] = 100.0 * count / scored if scored else math.nan
-    for column in columns:
-        values = frames[column].to_numpy(dtype=float) if column in frames else np.array([])
-        values = values[np.isfinite(values)]
-        scale = float(np.max(np.abs(values), initial=0.0))
-        rmse = scale * float(np.sqrt(np.mean((values / scale) ** 2))) if scale > 0 else 0.0
-        summary["rmse_" + column.removeprefix("err_")] = rmse if values.size else math.nan
-    step_s = frames["step_ms"].sum() / 1000.0 if "step_ms" in frames else 0.0
-    summary["fps"] = len(frames) / step_s if step_s > 0 else math.nan
-    return summary
+    scored = frames["outcome"].notna().sum() if "outcome" in frames else 0
+    return {"frames": float(scored), **{metric.name: metric.of(frames) for metric in metrics}}
 
 
 class CellKey(NamedTuple):
@@ -224,6 +204,6 @@ class CellResult:
         """The frame scores as a table (:func:`frame_table`)."""
         return frame_table(self.scores)
 
-    def summary(self) -> dict[str, float]:
-        """Rates, RMSEs and fps of this cell (:func:`summarise`)."""
-        return summarise(self.frames, self.error_columns)
+    def summary(self, metrics: Metrics = CORE) -> dict[str, float]:
+        """The metrics of this cell (:func:`summarise`), those of ``metrics`` for its modality."""
+        return summarise(self.frames, metrics.for_board(self.modality, self.error_columns))

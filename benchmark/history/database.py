@@ -11,8 +11,9 @@ row per cell to ``cells``, copied from the run's results database
     cell_frames(cell_id -> cells, frames BLOB)
     cell_pictures(cell_id -> cells, frame, outcome, png BLOB)
 
-``metrics`` holds the cell's rates, RMSEs and fps
-(:func:`benchmark.results.summarise`); ``cell_frames`` its frame table
+``metrics`` holds the cell's value of every metric of its board
+(:func:`benchmark.results.summarise`; a metric added later is empty in
+earlier runs); ``cell_frames`` its frame table
 (outcome, errors and step time of every frame, compressed JSON) and
 ``cell_pictures`` the frames it failed on, drawn
 (:class:`benchmark.results.Picture`), so that the site can be rebuilt from
@@ -47,7 +48,8 @@ from sqlalchemy.exc import SQLAlchemyError
 
 from benchmark.errors import DataError
 from benchmark.files import resolved
-from benchmark.leaderboard import error_columns
+from benchmark.leaderboard import board_metrics
+from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
 from benchmark.results import Picture, summarise
 from benchmark.store import ResultStore
@@ -228,6 +230,7 @@ class History:
         machine_key: str,
         argv: Sequence[str],
         seeds: int,
+        metrics: Metrics = CORE,
     ) -> int:
         """Copy a finished run of a results database into the history and return its history id.
 
@@ -243,6 +246,8 @@ class History:
             When the nightly started (ISO 8601), trackbench's version and git
             commit, the machine (:mod:`benchmark.history.machine`), the
             command line and the number of seeds.
+        metrics : Metrics
+            The catalogue of metrics each cell's summary holds (the registry's).
         """
         cells = results.cells(run_id)
         frames = results.frame_tables(cells["id"])
@@ -263,7 +268,7 @@ class History:
             ).inserted_primary_key[0]
             for cell in cells.itertuples(index=False):
                 table = by_cell.get(int(cell.id), frames.iloc[0:0].drop(columns="cell_id"))
-                columns = error_columns(modalities.get(cell.modality), table)
+                of_board = board_metrics(metrics, cell.modality, modalities.get(cell.modality), table)
                 cell_id = connection.execute(
                     _cells.insert().values(
                         run_id=history_run,
@@ -271,7 +276,7 @@ class History:
                         seed=int(cell.seed),
                         frames=int(cell.frames),
                         elapsed_s=float(cell.elapsed_s),
-                        metrics=json.dumps(summarise(table, columns)),
+                        metrics=json.dumps(summarise(table, of_board)),
                     )
                 ).inserted_primary_key[0]
                 connection.execute(_cell_frames.insert().values(cell_id=cell_id, frames=_pack(table)))
@@ -310,9 +315,9 @@ class History:
         -------
         pandas.DataFrame
             The columns of ``cells`` (``params`` as a dict) with ``metrics``
-            spread into ``correct_pct``, ``false_pct``, ``missed_pct``,
-            ``rmse_*`` and ``fps``, plus the run's ``started`` and
-            ``machine_key``; ordered by run, then cell.
+            spread into a column per metric (``correct_pct``, ``rmse_*``,
+            ``fps``, ...; empty where a cell's run did not have it), plus the
+            run's ``started`` and ``machine_key``; ordered by run, then cell.
         """
         query = sa.select(_cells, _runs.c.started, _runs.c.machine_key).join(_runs).order_by(_cells.c.id)
         if run_ids is not None:

@@ -1,20 +1,23 @@
 """Regressions: what changed in a nightly run against the runs before it, and where each metric stepped.
 
-For each tracker, dataset and metric a run is compared with the earlier
-runs of the same series (:data:`benchmark.history.database.SERIES`):
+For each tracker, dataset and metric (:mod:`benchmark.metrics`) a run is
+compared with the earlier runs of the same series
+(:data:`benchmark.history.database.SERIES`):
 
-* **Accuracy** (rates and RMSEs) compares the run's per-seed values with
-  those of the last ``window`` earlier runs.  It is a change when the 95 %
-  percentile-bootstrap interval of the difference of the means (seeds
-  resampled within each side, :func:`scipy.stats.bootstrap`) excludes
-  zero *and* the difference reaches the metric's minimum effect: 2 points
-  for a rate, 10 % of the earlier value for an RMSE.  A deterministic
-  tracker, or a single seed on both sides, has a point interval, so the
-  minimum effect alone decides.
-* **Speed** (fps) compares the run's median over seeds with the median of
-  the last ``window`` earlier runs *on the same machine*; a change is a
-  relative difference of at least 10 %.  Cells that spent less than
-  ``min_step_s`` in their trackers' steps are too short to time.
+* **Accuracy** (every metric but speed: rates, RMSEs, robustness) compares
+  the run's per-seed values with those of the last ``window`` earlier runs.
+  It is a change when the 95 % percentile-bootstrap interval of the
+  difference of the means (seeds resampled within each side,
+  :func:`scipy.stats.bootstrap`) excludes zero *and* the difference reaches
+  the metric's minimum effect (:attr:`benchmark.metrics.Metric.minimum_effect`:
+  2 points for a rate, 10 % of the earlier value for an RMSE).  A
+  deterministic tracker, or a single seed on both sides, has a point
+  interval, so the minimum effect alone decides.
+* **Speed** (metrics of kind ``speed``: fps) compares the run's median over
+  seeds with the median of the last ``window`` earlier runs *on the same
+  machine*; a change reaches the minimum effect (10 % of the earlier
+  median).  Cells that spent less than ``min_step_s`` in their trackers'
+  steps are too short to time.
 
 A change for the worse is a regression, for the better an improvement.
 :func:`steps` finds where a metric's level changed over the whole history
@@ -35,6 +38,7 @@ import ruptures
 from scipy.stats import DegenerateDataWarning, bootstrap
 
 from benchmark.history.database import SERIES
+from benchmark.metrics import CORE, SPEED, Metric, Metrics
 
 CHANGE_COLUMNS = [
     "tracker",
@@ -52,51 +56,35 @@ CHANGE_COLUMNS = [
 """Columns of :func:`find_changes`'s table."""
 
 
-def lower_is_better(metric: str) -> bool:
-    """Whether a smaller value of ``metric`` is better (errors and failure rates)."""
-    return metric.startswith("rmse_") or metric in ("false_pct", "missed_pct")
-
-
 @dataclass(frozen=True)
 class Thresholds:
     """The minimum effects, and how many earlier runs make the baseline.
 
     Attributes
     ----------
-    rate_points : float
-        Minimum change of a rate, percentage points.
-    rmse_relative : float
-        Minimum change of an RMSE, as a share of the earlier value.
-    speed_relative : float
-        Minimum change of fps, as a share of the earlier median.
     window : int
         The earlier runs a run is compared with.
     min_step_s : float
         Speed is judged only where tonight's cells spent at least this
         long in ``step`` together: the fps of a few milliseconds is noise.
     overrides : Mapping
-        Metric name to its own minimum effect (points for a rate, a share
-        for an RMSE or fps), e.g. ``{"rmse_d_px": 0.2}``.
+        Metric name to a minimum effect other than the metric's own, in
+        the same terms (points for a rate, a share for an RMSE or fps),
+        e.g. ``{"rmse_d_px": 0.2}``.
     """
 
-    rate_points: float = 2.0
-    rmse_relative: float = 0.10
-    speed_relative: float = 0.10
     window: int = 5
     min_step_s: float = 2.0
     overrides: Mapping[str, float] = field(default_factory=dict)
 
-    def minimum_effect(self, metric: str, before: float) -> float:
+    def minimum_effect(self, metric: Metric, before: float) -> float:
         """The smallest change of ``metric`` from ``before`` that counts, in the metric's units."""
-        if metric.endswith("_pct"):
-            return self.overrides.get(metric, self.rate_points)
-        share = self.overrides.get(metric, self.speed_relative if metric == "fps" else self.rmse_relative)
-        return share * abs(before)
+        return metric.minimum_effect.of(before, self.overrides.get(metric.name))
 
 
-def accuracy_metrics(cells: pd.DataFrame) -> list[str]:
-    """The rates and RMSEs present in a table of cells."""
-    return ["correct_pct", "false_pct", "missed_pct", *(c for c in cells.columns if str(c).startswith("rmse_"))]
+def judged_metrics(cells: pd.DataFrame, metrics: Metrics) -> list[Metric]:
+    """The metrics of ``metrics`` that are columns of a table of cells, in column order."""
+    return [metric for column in cells.columns if (metric := metrics.named(str(column))) is not None]
 
 
 def _varies(sample: np.ndarray) -> bool:
@@ -133,10 +121,10 @@ def _difference_interval(after: np.ndarray, before: np.ndarray) -> tuple[float, 
     return float(result.confidence_interval.low), float(result.confidence_interval.high)
 
 
-def _verdict(metric: str, change: float, significant: bool, minimum: float) -> str:
+def _verdict(metric: Metric, change: float, significant: bool, minimum: float) -> str:
     if not significant or abs(change) < minimum or change == 0:
         return ""
-    worse = change > 0 if lower_is_better(metric) else change < 0
+    worse = change > 0 if metric.lower_is_better else change < 0
     return "regression" if worse else "improvement"
 
 
@@ -160,11 +148,17 @@ def _cause(now: pd.DataFrame, earlier: pd.DataFrame) -> str:
     return "; ".join(causes)
 
 
+def _step_seconds(cells: pd.DataFrame) -> float:
+    """The time the cells spent in their trackers' steps, from their frames and fps."""
+    return float((cells["frames"] / cells[SPEED.name]).sum()) if SPEED.name in cells else 0.0
+
+
 def find_changes(
     history_cells: pd.DataFrame,
     run_id: int,
     thresholds: Thresholds | None = None,
     against: Sequence[int] | None = None,
+    metrics: Metrics = CORE,
 ) -> pd.DataFrame:
     """The changes of a run against the runs before it (or other given runs), regressions first.
 
@@ -181,14 +175,17 @@ def find_changes(
         The runs to compare with (``trackbench compare``); by default the
         last ``thresholds.window`` runs before ``run_id`` that share a series
         with it (for speed: on the same machine).
+    metrics : Metrics
+        The catalogue of metrics to judge (those that are columns of the
+        history's cells).
 
     Returns
     -------
     pandas.DataFrame
         Columns :data:`CHANGE_COLUMNS`: per tracker, dataset and metric with
         a verdict, the earlier and current values (mean over seeds, or
-        median for fps), their difference with its interval, ``kind``
-        (``accuracy`` or ``speed``), ``verdict`` (``regression`` or
+        median for speed), their difference with its interval, ``kind``
+        (``speed`` for a metric of that kind, else ``accuracy``), ``verdict`` (``regression`` or
         ``improvement``) and ``cause`` (the tracker's version or parameters
         that changed, if any).  Only cells with status ``ok`` count.
     """
@@ -208,9 +205,10 @@ def find_changes(
         accuracy_runs = sorted(earlier["run_id"].unique())[-thresholds.window :]
         baseline = earlier[earlier["run_id"].isin(accuracy_runs)]
         shared = dict(tracker=tracker, dataset=current["dataset"].iloc[-1], cause=_cause(current, baseline))
-        for metric in accuracy_metrics(current):
-            after = current[metric].dropna().to_numpy(dtype=float) if metric in current else np.array([])
-            before = baseline[metric].dropna().to_numpy(dtype=float) if metric in baseline else np.array([])
+        judged = judged_metrics(current, metrics)
+        for metric in (m for m in judged if m.kind != "speed"):
+            after = current[metric.name].dropna().to_numpy(dtype=float)
+            before = baseline[metric.name].dropna().to_numpy(dtype=float) if metric.name in baseline else np.array([])
             if not after.size or not before.size:
                 continue
             low, high = _difference_interval(after, before)
@@ -219,23 +217,25 @@ def find_changes(
             verdict = _verdict(metric, change, low > 0 or high < 0, minimum)
             if verdict:
                 rows.append(
-                    dict(shared, metric=metric, kind="accuracy", before=float(before.mean()),
+                    dict(shared, metric=metric.name, kind="accuracy", before=float(before.mean()),
                          after=float(after.mean()), change=change, low=low, high=high, verdict=verdict)
                 )
         same_machine = earlier[earlier["machine_key"] == machine]
         speed_runs = sorted(same_machine["run_id"].unique())[-thresholds.window :]
-        speeds = same_machine[same_machine["run_id"].isin(speed_runs)].groupby("run_id")["fps"].median().dropna()
-        fps_now = float(current["fps"].median())
-        step_s = float((current["frames"] / current["fps"]).sum())
-        if len(speeds) and math.isfinite(fps_now) and step_s >= thresholds.min_step_s:
-            before_fps = float(speeds.median())
-            change = fps_now - before_fps
-            verdict = _verdict("fps", change, True, thresholds.minimum_effect("fps", before_fps))
-            if verdict:
-                rows.append(
-                    dict(shared, metric="fps", kind="speed", before=before_fps, after=fps_now, change=change,
-                         low=math.nan, high=math.nan, verdict=verdict)
-                )
+        step_s = _step_seconds(current)
+        for metric in (m for m in judged if m.kind == "speed"):
+            speeds = same_machine[same_machine["run_id"].isin(speed_runs)].groupby("run_id")[metric.name].median()
+            speeds = speeds.dropna()
+            now_median = float(current[metric.name].median())
+            if len(speeds) and math.isfinite(now_median) and step_s >= thresholds.min_step_s:
+                before_median = float(speeds.median())
+                change = now_median - before_median
+                verdict = _verdict(metric, change, True, thresholds.minimum_effect(metric, before_median))
+                if verdict:
+                    rows.append(
+                        dict(shared, metric=metric.name, kind="speed", before=before_median, after=now_median,
+                             change=change, low=math.nan, high=math.nan, verdict=verdict)
+                    )
     table = pd.DataFrame(rows, columns=CHANGE_COLUMNS)
     order = table.assign(_regression=table["verdict"] != "regression")
     return order.sort_values(["_regression", "tracker", "dataset", "metric"]).drop(columns="_regression").reset_index(

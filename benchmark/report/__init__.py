@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from benchmark.metrics import CORE, Metrics
 from benchmark.files import make_folder, write_text_atomically
 from benchmark.report.csv import to_csv
 from benchmark.report.html import to_html
@@ -30,7 +31,11 @@ CONDITION_FILE_NAMES = {"csv": "conditions.csv", "markdown": "conditions.md"}
 
 
 def write_leaderboards(
-    boards: Mapping[str, pd.DataFrame], out_dir: str | Path, caption: str = "", problems: Sequence[str] = ()
+    boards: Mapping[str, pd.DataFrame],
+    out_dir: str | Path,
+    caption: str = "",
+    problems: Sequence[str] = (),
+    metrics: Metrics = CORE,
 ) -> list[Path]:
     """Write ``leaderboard.csv``, ``leaderboard.md`` and ``leaderboard.html`` into ``out_dir``.
 
@@ -49,6 +54,8 @@ def write_leaderboards(
     problems : sequence of str
         Run-level problems (a plugin that failed to import), listed in a
         section of the Markdown and HTML pages; the CSV holds the boards only.
+    metrics : Metrics
+        The catalogue of metrics, which rounds each for reading.
 
     Returns
     -------
@@ -63,8 +70,8 @@ def write_leaderboards(
     out = make_folder(out_dir)
     contents = {
         "csv": to_csv(boards),
-        "markdown": to_markdown(boards, caption, problems),
-        "html": to_html(boards, caption, problems),
+        "markdown": to_markdown(boards, caption, problems, metrics),
+        "html": to_html(boards, caption, problems, metrics),
     }
     return [write_text_atomically(out / FILE_NAMES[kind], text, "leaderboard") for kind, text in contents.items()]
 

@@ -7,10 +7,13 @@ from collections.abc import Mapping, Sequence
 
 import pandas as pd
 
+from benchmark.metrics import CORE, Metrics
 from benchmark.report.display import display_table
 
 
-def to_html(boards: Mapping[str, pd.DataFrame], caption: str = "", problems: Sequence[str] = ()) -> str:
+def to_html(
+    boards: Mapping[str, pd.DataFrame], caption: str = "", problems: Sequence[str] = (), metrics: Metrics = CORE
+) -> str:
     """The boards as a self-contained HTML page, one section per modality, then a section listing ``problems``."""
     body = ["<h1>trackbench leaderboard</h1>"]
     if caption:
@@ -19,7 +22,7 @@ def to_html(boards: Mapping[str, pd.DataFrame], caption: str = "", problems: Seq
         body.append("<p>No results.</p>")
     for modality, board in boards.items():
         body.append(f"<h2>{html.escape(modality)}</h2>")
-        body.append(display_table(board).to_html(index=False, escape=True, border=1))
+        body.append(display_table(board, metrics).to_html(index=False, escape=True, border=1))
     if problems:
         items = "".join(f"<li>{html.escape(problem)}</li>" for problem in problems)
         body += ["<h2>Problems</h2>", f"<ul>{items}</ul>"]

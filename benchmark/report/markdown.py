@@ -14,6 +14,7 @@ from collections.abc import Mapping, Sequence
 
 import pandas as pd
 
+from benchmark.metrics import CORE, RATES, Metrics
 from benchmark.report.display import alignment, display_table, format_value, one_line, printable
 
 _INLINE_MARKUP = re.compile(r"[\\`*_\[\]|~$]")
@@ -43,20 +44,28 @@ def _shorten(text: str, width: int) -> str:
     return text if len(text) <= width else text[: width - 3] + "..."
 
 
-def to_text(boards: Mapping[str, pd.DataFrame], status_width: int = 60, problems: Sequence[str] = ()) -> str:
+def to_text(
+    boards: Mapping[str, pd.DataFrame],
+    status_width: int = 60,
+    problems: Sequence[str] = (),
+    metrics: Metrics = CORE,
+) -> str:
     """The boards for a terminal, one block per modality, long statuses shortened, then any ``problems``."""
     blocks = [] if boards else ["No results."]
     for modality, board in boards.items():
-        shown = display_table(board).map(lambda value: printable(value) if isinstance(value, str) else value)
+        shown = display_table(board, metrics).map(lambda value: printable(value) if isinstance(value, str) else value)
         shown["status"] = [_shorten(text, status_width) for text in shown["status"]]
-        table = shown.to_markdown(index=False, tablefmt="simple", disable_numparse=True, colalign=alignment(board))
+        aligned = alignment(board, metrics)
+        table = shown.to_markdown(index=False, tablefmt="simple", disable_numparse=True, colalign=aligned)
         blocks.append(f"{modality}\n\n{table}")
     if problems:
         blocks.append("\n".join(["Problems", "", *(f"- {one_line(problem)}" for problem in problems)]))
     return "\n\n".join(blocks)
 
 
-def to_markdown(boards: Mapping[str, pd.DataFrame], caption: str = "", problems: Sequence[str] = ()) -> str:
+def to_markdown(
+    boards: Mapping[str, pd.DataFrame], caption: str = "", problems: Sequence[str] = (), metrics: Metrics = CORE
+) -> str:
     """The boards as a Markdown page, one section per modality, then a section listing ``problems``.
 
     Every text taken from the boards, the caption and the problems is
@@ -68,9 +77,9 @@ def to_markdown(boards: Mapping[str, pd.DataFrame], caption: str = "", problems:
     if not boards:
         parts += ["No results.", ""]
     for modality, board in boards.items():
-        shown = display_table(board).map(escape_markdown)
+        shown = display_table(board, metrics).map(escape_markdown)
         shown.columns = [escape_markdown(column) for column in shown.columns]
-        table = shown.to_markdown(index=False, disable_numparse=True, colalign=alignment(board))
+        table = shown.to_markdown(index=False, disable_numparse=True, colalign=alignment(board, metrics))
         parts += [f"## {escape_markdown(modality)}", "", table, ""]
     if problems:
         parts += ["## Problems", "", *(f"- {escape_markdown(problem)}" for problem in problems), ""]
@@ -93,7 +102,7 @@ def condition_markdown(tables: Mapping[tuple[str, str, str], pd.DataFrame], capt
             parts += [f"## {escape_markdown(suite_name)} ({escape_markdown(modality)})", ""]
         cells = {
             escape_markdown(column): [
-                escape_markdown(value) if column == "tracker" else format_value("correct_pct", value)
+                escape_markdown(value) if column == "tracker" else format_value(RATES[0].name, value)
                 for value in table[column]
             ]
             for column in table.columns

@@ -61,6 +61,7 @@ import numpy as np
 import pydantic
 
 from benchmark.errors import DataError
+from benchmark.scenes.spec import describe_problems
 
 DRAW_KEY = "draw"
 """Key of a sequence table that holds its draws."""
@@ -178,8 +179,7 @@ def parse_draw(name: str, entry: Any, where: str) -> _Draw:
     try:
         draw = _DRAW_TYPES[kind].model_validate(entry)
     except pydantic.ValidationError as exc:
-        problems = "; ".join(f"{'.'.join(map(str, e['loc']))}: {e['msg']}" for e in exc.errors())
-        raise DataError(f"{at}: {problems}") from None
+        raise DataError(describe_problems(exc, at, _DRAW_TYPES[kind])) from None
     _check_draw(draw, kind, at)
     return draw
 

@@ -10,14 +10,17 @@ signals.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
+import pydantic
 
+from benchmark.parameters import require_order
 from benchmark.scenes.noise import smoothed_noise
+from benchmark.scenes.spec import SPEC_CONFIG, NonNegative, Number, Positive
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Wave:
     """A sinusoid ``amplitude * sin(2 pi k / period_frames + phase)`` of frame ``k``.
 
@@ -25,21 +28,18 @@ class Wave:
     out over ``taper_frames`` at both ends.
     """
 
-    amplitude: float
-    period_frames: float
-    phase_deg: float = 0.0
-    start_frame: float = -math.inf
-    stop_frame: float = math.inf
-    taper_frames: float = 0.0
+    amplitude: Number
+    period_frames: Positive
+    phase_deg: Number = 0.0
+    start_frame: Number = -math.inf
+    stop_frame: Number = math.inf
+    taper_frames: NonNegative = 0.0
 
     def __post_init__(self) -> None:
-        if not self.period_frames > 0:
-            raise ValueError(f"period_frames must be > 0, got {self.period_frames}")
-        if self.taper_frames < 0 or self.stop_frame < self.start_frame:
-            raise ValueError("need taper_frames >= 0 and start_frame <= stop_frame")
+        require_order(self, ("start_frame", "stop_frame"))
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Event:
     """A manoeuvre centred on ``frame`` that lasts ``duration_frames``.
 
@@ -47,19 +47,13 @@ class Event:
     it there; ``shape = "pulse"`` goes out by ``amplitude`` and back.
     """
 
-    frame: float
-    amplitude: float
-    duration_frames: float = 10.0
-    shape: str = "step"
-
-    def __post_init__(self) -> None:
-        if self.shape not in ("step", "pulse"):
-            raise ValueError(f"event shape must be 'step' or 'pulse', got {self.shape!r}")
-        if not self.duration_frames > 0:
-            raise ValueError(f"duration_frames must be > 0, got {self.duration_frames}")
+    frame: Number
+    amplitude: Number
+    duration_frames: Positive = 10.0
+    shape: Literal["step", "pulse"] = "step"
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Signal:
     """One pose coordinate over time: ``mean + slope k + waves + events + noise``.
 
@@ -68,16 +62,12 @@ class Signal:
     the standard deviation ``noise_std``.
     """
 
-    mean: float = 0.0
-    slope_per_frame: float = 0.0
+    mean: Number = 0.0
+    slope_per_frame: Number = 0.0
     waves: tuple[Wave, ...] = ()
     events: tuple[Event, ...] = ()
-    noise_std: float = 0.0
-    noise_smooth_frames: float = 4.0
-
-    def __post_init__(self) -> None:
-        if self.noise_std < 0 or self.noise_smooth_frames < 0:
-            raise ValueError("noise_std and noise_smooth_frames must be >= 0")
+    noise_std: NonNegative = 0.0
+    noise_smooth_frames: NonNegative = 4.0
 
 
 def _taper(k: np.ndarray, start: float, stop: float, width: float) -> np.ndarray:

@@ -47,6 +47,7 @@ from benchmark.files import make_folder
 from benchmark.history.database import History
 from benchmark.history.regressions import Step, Thresholds, find_changes, steps
 from benchmark.leaderboard import error_columns, is_pooled, leaderboards
+from benchmark.metrics import CORE, Metric, Metrics, error_columns_of
 from benchmark.modality import Modality
 from benchmark.report.display import alignment, display_table, format_value
 from benchmark.site.figures import OUTCOME_COLOURS, cell_figure, trend_figure
@@ -63,8 +64,6 @@ LOCK = ".lock"
 SHARED_COLUMNS = ("init", "seeds", "training")
 """Board columns shown once above the board instead when every row has the same value."""
 
-TREND_METRICS = ("correct_pct", "fps")
-"""Metrics every trend figure shows; the tracker's first RMSE with values goes between them."""
 
 _templates = jinja2.Environment(
     loader=jinja2.FileSystemLoader(Path(__file__).with_name("templates")),
@@ -90,8 +89,8 @@ def _when(started: str) -> str:
         return started
 
 
-def _signed(metric: str, value: float) -> str:
-    shown = format_value(metric, value)
+def _signed(metric: str, value: float, metrics: Metrics) -> str:
+    shown = format_value(metric, value, metrics)
     return f"+{shown}" if value > 0 and shown.strip("0.") else shown
 
 
@@ -112,6 +111,7 @@ class _Night:
 
     history: History
     modalities: Mapping[str, Modality]
+    metrics: Metrics
     thresholds: Thresholds
     runs: pd.DataFrame
     cells: pd.DataFrame
@@ -133,13 +133,22 @@ class _Night:
             link(f"seed {cell.seed}", f"{root}cells/{cell.id}.html") for cell in ordered.itertuples()
         )
 
+    def metrics_of(self, cells: pd.DataFrame) -> list[Metric]:
+        """The metrics of the boards of ``cells``'s modalities that have a value in ``cells``, in board order."""
+        found: dict[str, Metric] = {}
+        for modality in cells["modality"].unique():
+            registered = self.modalities.get(str(modality))
+            errors = registered.error_columns if registered else error_columns_of(cells.columns)
+            found |= {metric.name: metric for metric in self.metrics.for_board(str(modality), errors)}
+        return [metric for metric in found.values() if metric.name in cells and cells[metric.name].notna().any()]
+
     def errors_of(self, modality: str, frames: pd.DataFrame) -> list[str]:
         """The error columns of a modality that have a value in ``frames``."""
         columns = error_columns(self.modalities.get(modality), frames)
         return [c for c in columns if c in frames and pd.to_numeric(frames[c], errors="coerce").notna().any()]
 
 
-def _load(history: History, modalities: Mapping[str, Modality], thresholds: Thresholds) -> _Night:
+def _load(history: History, modalities: Mapping[str, Modality], metrics: Metrics, thresholds: Thresholds) -> _Night:
     runs = history.runs()
     if runs.empty:
         raise DataError(f"history database {history.location}: no runs yet, so no site to build")
@@ -147,8 +156,8 @@ def _load(history: History, modalities: Mapping[str, Modality], thresholds: Thre
     run_id = int(runs["id"].iloc[-1])
     latest = cells[cells["run_id"] == run_id].reset_index(drop=True)
     frames = {int(cell_id): history.frames(int(cell_id)) for cell_id in latest["id"]}
-    changes = find_changes(cells, run_id, thresholds) if len(runs) > 1 else None
-    return _Night(history, modalities, thresholds, runs, cells, latest, frames, changes)
+    changes = find_changes(cells, run_id, thresholds, metrics=metrics) if len(runs) > 1 else None
+    return _Night(history, modalities, metrics, thresholds, runs, cells, latest, frames, changes)
 
 
 def _render(template: str, night: _Night, root: str, title: str, **context: Any) -> str:
@@ -174,13 +183,14 @@ def _change_rows(night: _Night, verdict: str, root: str) -> list[dict[str, Any]]
         metric = str(change.metric)
         interval = ""
         if math.isfinite(change.low) and math.isfinite(change.high) and change.low != change.high:
-            interval = f"[{_signed(metric, change.low)}, {_signed(metric, change.high)}]"
+            interval = f"[{_signed(metric, change.low, night.metrics)}, {_signed(metric, change.high, night.metrics)}]"
         cells = night.latest[(night.latest["tracker"] == change.tracker) & (night.latest["dataset"] == change.dataset)]
         rows.append(
             dict(
                 tracker=change.tracker, dataset=change.dataset, metric=metric, kind=change.kind, verdict=verdict,
-                before=format_value(metric, change.before), after=format_value(metric, change.after),
-                change=_signed(metric, change.change), interval=interval, cause=change.cause,
+                before=format_value(metric, change.before, night.metrics),
+                after=format_value(metric, change.after, night.metrics),
+                change=_signed(metric, change.change, night.metrics), interval=interval, cause=change.cause,
                 tracker_href=night.tracker_href(str(change.tracker), root), cells=night.cell_links(cells, root),
             )
         )
@@ -194,8 +204,8 @@ def _board(night: _Night, board: pd.DataFrame, table_id: str, root: str) -> dict
     because every row has the same value there (``init``, ``seeds``), with
     that value.
     """
-    shown = display_table(board)
-    numeric = [c for c, side in zip(shown.columns, alignment(board)) if side == "right" and c != "rank"]
+    shown = display_table(board, night.metrics)
+    numeric = [c for c, side in zip(shown.columns, alignment(board, night.metrics)) if side == "right" and c != "rank"]
     empty = [c for c in shown.columns if c not in ("tracker", "dataset") and (shown[c] == "").all()]
     shared = {c: shown[c].iloc[0] for c in SHARED_COLUMNS if c not in empty and len(shown) and shown[c].nunique() == 1}
     table = escaped(shown.drop(columns=[*empty, *shared]))
@@ -221,6 +231,7 @@ def _index(night: _Night) -> str:
         pd.concat([frames.assign(cell_id=cell_id) for cell_id, frames in night.frames.items()], ignore_index=True)
         if night.frames else pd.DataFrame(),
         night.modalities,
+        night.metrics,
     )
     return _render(
         "index.html",
@@ -242,18 +253,16 @@ def _trend_levels(night: _Night, tracker: str) -> tuple[dict[str, pd.DataFrame],
     several_inits = cells["init"].nunique() > 1
     series = cells["dataset"] + (" [init " + cells["init"] + "]" if several_inits else "")
     position = cells["run_id"].map({int(run): i for i, run in enumerate(night.runs["id"])})
-    rmse = [c for c in cells.columns if str(c).startswith("rmse_") and cells[c].notna().any()]
-    metrics = [TREND_METRICS[0], *rmse[:1], *TREND_METRICS[1:]]
     levels, found = {}, {}
-    for metric in metrics:
-        table = cells.groupby([position, series])[metric].mean().unstack()
+    for metric in (m for m in night.metrics_of(cells) if m.headline):
+        table = cells.groupby([position, series])[metric.name].mean().unstack()
         table = table.reindex(range(len(night.runs)))
-        levels[metric] = table
+        levels[metric.name] = table
         for name in table.columns:
             values = table[name].dropna()
             if len(values):
                 minimum = night.thresholds.minimum_effect(metric, float(values.median()))
-                found[(metric, str(name))] = steps(values, minimum)
+                found[(metric.name, str(name))] = steps(values, minimum)
     return levels, found
 
 
@@ -261,18 +270,17 @@ def _tracker(night: _Night, tracker: str, folder: Path) -> str:
     stem = page_name(tracker)
     levels, found = _trend_levels(night, tracker)
     runs = [_when(str(started))[:10] for started in night.runs["started"]]
-    figure = trend_figure(levels, runs, found, folder / f"{stem}-trends.png") if levels else None
+    figure = trend_figure(levels, runs, found, folder / f"{stem}-trends.png", night.metrics) if levels else None
     cells = night.latest[night.latest["tracker"] == tracker]
-    rmse = next((m for m in levels if m.startswith("rmse_")), None)
-    columns = ["dataset", "init", "seed", "status", "correct_pct", "false_pct", "missed_pct", *([rmse] if rmse else []),
-               "fps", "message"]
-    shown = pd.DataFrame({c: [format_value(c, v) for v in cells[c]] for c in columns}, dtype=object)
+    numeric = ["seed", *(m.name for m in night.metrics_of(cells) if m.kind == "detection" or m.headline)]
+    columns = ["dataset", "init", "seed", "status", *numeric[1:], "message"]
+    shown = pd.DataFrame({c: [format_value(c, v, night.metrics) for v in cells[c]] for c in columns}, dtype=object)
     table = escaped(shown)
     table.insert(0, "cell", [str(link(f"#{cell_id}", f"../cells/{cell_id}.html")) for cell_id in cells["id"]])
-    numeric = ["seed", "correct_pct", "false_pct", "missed_pct", *([rmse] if rmse else []), "fps"]
     steps_found = [
         dict(metric=metric, dataset=dataset, run=runs[step.run_id],
-             before=format_value(metric, step.before), after=format_value(metric, step.after))
+             before=format_value(metric, step.before, night.metrics),
+             after=format_value(metric, step.after, night.metrics))
         for (metric, dataset), found_steps in found.items() for step in found_steps
     ]
     changes = [row for verdict in ("regression", "improvement") for row in _change_rows(night, verdict, "../")
@@ -304,12 +312,8 @@ def _cell(night: _Night, cell: pd.Series, folder: Path) -> str:
         (folder / name).write_bytes(picture.png)
         pictures.append(dict(src=name, frame=picture.frame, outcome=picture.outcome))
     counts = frames["outcome"].fillna("unscored").value_counts() if "outcome" in frames else pd.Series(dtype=int)
-    summary = {
-        metric: format_value(metric, cell[metric])
-        for metric in ["correct_pct", "false_pct", "missed_pct", *(f"rmse_{e.removeprefix('err_')}" for e in errors),
-                       "fps"]
-        if metric in cell
-    }
+    of_board = night.metrics.for_board(str(cell["modality"]), errors)
+    summary = {metric.name: metric.format(cell[metric.name]) for metric in of_board if metric.name in cell}
     return _render(
         "cell.html",
         night,
@@ -339,7 +343,12 @@ def _write(night: _Night, out: Path) -> None:
 
 
 def build_site(
-    history: History, site: Path, modalities: Mapping[str, Modality], *, thresholds: Thresholds | None = None
+    history: History,
+    site: Path,
+    modalities: Mapping[str, Modality],
+    *,
+    thresholds: Thresholds | None = None,
+    metrics: Metrics = CORE,
 ) -> Path:
     """Write the whole site for the history's latest run into ``site`` (created, old pages replaced); return index.html.
 
@@ -356,6 +365,8 @@ def build_site(
     thresholds : Thresholds, optional
         What counts as a regression, an improvement or a step; the defaults
         of :class:`~benchmark.history.regressions.Thresholds`.
+    metrics : Metrics
+        The catalogue of metrics shown and judged (the registry's).
 
     Returns
     -------
@@ -368,7 +379,7 @@ def build_site(
         If the history holds no run, from the history database, or when the
         site cannot be written (a full or read-only disk), naming the site.
     """
-    night = _load(history, modalities, thresholds or Thresholds())
+    night = _load(history, modalities, metrics, thresholds or Thresholds())
     site = make_folder(site)
     try:
         with filelock.FileLock(site / LOCK):

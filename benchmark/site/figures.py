@@ -18,6 +18,7 @@ from matplotlib.patches import Patch
 from matplotlib.ticker import FuncFormatter, MaxNLocator
 
 from benchmark.history.regressions import Step
+from benchmark.metrics import CORE, Metrics
 from benchmark.report.display import format_value
 
 OUTCOME_COLOURS = {
@@ -42,6 +43,7 @@ def trend_figure(
     runs: Sequence[str],
     found: Mapping[tuple[str, str], list[Step]],
     path: Path,
+    metrics: Metrics = CORE,
 ) -> Path:
     """Draw one panel per metric of a tracker's levels over the runs, steps marked, and save it as PNG.
 
@@ -58,18 +60,20 @@ def trend_figure(
         ``run_id`` is a run position.
     path : pathlib.Path
         The PNG file to write.
+    metrics : Metrics
+        The catalogue that rounds each metric's values for the labels.
 
     Returns
     -------
     pathlib.Path
         ``path``.
     """
-    metrics = list(levels)
+    shown = list(levels)
     datasets = sorted({str(column) for table in levels.values() for column in table.columns})
     colours = {name: f"C{i % 10}" for i, name in enumerate(datasets)}
-    figure = Figure(figsize=(10, 2.4 * len(metrics) + 0.6), layout="constrained")
-    axes = figure.subplots(len(metrics), 1, sharex=True, squeeze=False)[:, 0]
-    for ax, metric in zip(axes, metrics):
+    figure = Figure(figsize=(10, 2.4 * len(shown) + 0.6), layout="constrained")
+    axes = figure.subplots(len(shown), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, metric in zip(axes, shown):
         table = levels[metric]
         marked: dict[int, int] = {}
         for dataset in table.columns:
@@ -80,7 +84,7 @@ def trend_figure(
                 ax.axvline(step.run_id - 0.5, color=colours[str(dataset)], linestyle="--", linewidth=1)
                 above = marked[step.run_id] = marked.get(step.run_id, 0) + 1
                 ax.annotate(
-                    f"{format_value(metric, step.before)} \u2192 {format_value(metric, step.after)}",
+                    f"{format_value(metric, step.before, metrics)} \u2192 {format_value(metric, step.after, metrics)}",
                     (step.run_id - 0.5, 1.0), xycoords=("data", "axes fraction"), xytext=(4, -11 * above),
                     textcoords="offset points", fontsize=8, color=colours[str(dataset)],
                     bbox={"boxstyle": "square,pad=0.1", "facecolor": "white", "edgecolor": "none", "alpha": 0.8},

@@ -50,19 +50,29 @@ one world share a single definition::
 
 The world's table lies under the sequence's (``based_on`` base, defaults
 and entry merged); the key may stand in ``[defaults]`` or in an entry.
+
+The file's layout is declared by :class:`SuiteFile` and checked by pydantic
+like the specs of the sequences (:mod:`benchmark.scenes.spec`): an error
+names the file, the key path (``suite.scored``, ``sequence[2].name``) and
+the rule.
 """
 
 from __future__ import annotations
 
 import tomllib
 from collections.abc import Callable, Iterator, Mapping
+from dataclasses import field
 from importlib import resources
 from importlib.resources.abc import Traversable
-from typing import Any, NamedTuple
+from typing import Annotated, Any, NamedTuple
+
+import pydantic
+from annotated_types import MinLen
 
 from benchmark.errors import DataError
 from benchmark.modality import SceneFactory
 from benchmark.model import Sequence
+from benchmark.scenes.spec import SPEC_CONFIG, Flag, Name, Text, validate_table
 
 BASE_KEY = "based_on"
 """Key of a sequence table that names the sequence, ``"<suite>/<sequence>"``, it starts from."""
@@ -87,37 +97,73 @@ def merge_tables(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[s
     return merged
 
 
-def _read(text: str, source: str) -> tuple[Mapping[str, Any], Mapping[str, Any], list[Any]]:
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
+class SuiteHeader:
+    """The ``[suite]`` table.
+
+    Attributes
+    ----------
+    name : str
+        The suite name; its sequences are ``"<name>/<sequence>"``.
+    kind : str
+        The scene kind that builds its sequences, one the registered
+        modalities declare (checked against them by :func:`parse_suite`).
+    description : str
+    training : str or None
+        The suite that trains learning trackers for this one; not itself.
+    scored : bool
+        False for a training split, left out of runs.
+    """
+
+    name: Name
+    kind: Text
+    description: Text = ""
+    training: Name | None = None
+    scored: Flag = True
+
+    def __post_init__(self) -> None:
+        if self.training == self.name:
+            raise ValueError(f"training must name another suite, got {self.training!r}")
+
+
+@pydantic.dataclasses.dataclass(frozen=True, config=pydantic.ConfigDict(extra="ignore"))
+class SequenceEntry:
+    """What a ``[[sequence]]`` entry needs before its table is merged: a name (the scene's spec checks the rest)."""
+
+    name: Name
+
+
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
+class SuiteFile:
+    """The layout of a suite file: a ``[suite]`` header, ``[defaults]`` and named ``[[sequence]]`` entries."""
+
+    suite: SuiteHeader
+    sequence: Annotated[tuple[SequenceEntry, ...], MinLen(1)]
+    defaults: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        names = [entry.name for entry in self.sequence]
+        twice = sorted({name for name in names if names.count(name) > 1})
+        if twice:
+            raise ValueError(f"sequence name(s) {', '.join(map(repr, twice))} appear twice")
+
+
+def _read(text: str, source: str) -> tuple[SuiteHeader, Mapping[str, Any], list[Mapping[str, Any]]]:
     """The ``[suite]`` header, ``[defaults]`` and ``[[sequence]]`` entries of a TOML document, checked."""
     try:
         document = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise DataError(f"{source}: not valid TOML: {exc}") from exc
-    unknown = sorted(set(document) - {"suite", "defaults", "sequence"})
-    if unknown:
-        raise DataError(f"{source}: unknown top-level key(s) {unknown}; expected suite, defaults, sequence")
-    header = document.get("suite")
-    if not isinstance(header, Mapping) or not isinstance(header.get("name"), str) or not header["name"]:
-        raise DataError(f"{source}: needs a [suite] table with a non-empty name")
-    defaults = document.get("defaults", {})
-    entries = document.get("sequence", [])
-    if not isinstance(defaults, Mapping) or not isinstance(entries, list) or not entries:
-        raise DataError(f"{source}: needs [defaults] as a table and at least one [[sequence]]")
-    return header, defaults, entries
+    layout = validate_table(SuiteFile, document, source)
+    return layout.suite, document.get("defaults", {}), document["sequence"]
 
 
 def _tables(
-    defaults: Mapping[str, Any], entries: list[Any], source: str, resolve: BaseResolver
+    defaults: Mapping[str, Any], entries: list[Mapping[str, Any]], source: str, resolve: BaseResolver
 ) -> Iterator[tuple[str, dict[str, Any]]]:
     """``(name, merged table)`` of every entry, in file order, with ``based_on`` resolved and removed."""
-    seen: set[str] = set()
-    for position, entry in enumerate(entries, start=1):
-        short = entry.get("name") if isinstance(entry, Mapping) else None
-        if not isinstance(short, str) or not short:
-            raise DataError(f"{source}: [[sequence]] number {position} needs a non-empty name")
-        if short in seen:
-            raise DataError(f"{source}: sequence name {short!r} appears twice")
-        seen.add(short)
+    for entry in entries:
+        short = entry["name"]
         table = merge_tables(defaults, entry)
         reference = table.pop(BASE_KEY, None)
         if reference is not None:
@@ -180,7 +226,7 @@ def shipped_table(reference: str, where: str, _chain: tuple[str, ...] = ()) -> d
     suite, _, short = reference.partition("/")
     for item in suite_files():
         header, defaults, entries = _read(item.read_text(encoding="utf-8"), item.name)
-        if header["name"] != suite:
+        if header.name != suite:
             continue
 
         def resolve(inner: str, inner_where: str) -> dict[str, Any]:
@@ -239,31 +285,23 @@ def parse_suite(
     Raises
     ------
     DataError
-        For invalid TOML, a missing or unknown ``[suite]`` key or ``kind``, a
-        ``training`` that is not a suite name or a ``scored`` that is not a
-        boolean, a sequence without a name, a repeated name, a ``based_on``
-        that names nothing, or an invalid sequence definition.
+        For invalid TOML, a file that breaks the layout of :class:`SuiteFile`
+        (an unknown or missing key, a ``training`` that is not another
+        suite's name, a ``scored`` that is not a boolean, a sequence without
+        a name, a repeated name), a ``kind`` no modality registered, a
+        ``based_on`` that names nothing, or an invalid sequence definition.
     """
     header, defaults, entries = _read(text, source)
-    suite = header["name"]
-    kind = header.get("kind")
-    if kind not in kinds:
-        raise DataError(f"{source}: [suite] kind {kind!r} is not one of the registered scene kinds {sorted(kinds)}")
-    extra = sorted(set(header) - {"name", "kind", "description", "training", "scored"})
-    if extra:
-        raise DataError(f"{source}: unknown [suite] key(s) {extra}")
-    training = header.get("training")
-    if training is not None and (not isinstance(training, str) or not training or training == suite):
-        raise DataError(f"{source}: [suite] training must name another suite, got {training!r}")
-    scored = header.get("scored", True)
-    if not isinstance(scored, bool):
-        raise DataError(f"{source}: [suite] scored must be true or false, got {scored!r}")
-    factory = kinds[kind]
+    if header.kind not in kinds:
+        raise DataError(
+            f"{source}: suite.kind: must be one of the registered scene kinds {sorted(kinds)}, got {header.kind!r}"
+        )
+    factory = kinds[header.kind]
     sequences: list[Sequence] = []
     for short, table in _tables(defaults, entries, source, resolve):
-        table["name"] = f"{suite}/{short}"
+        table["name"] = f"{header.name}/{short}"
         sequences.append(factory(table, f"{source} [sequence {short}]"))
-    return SuiteDefinition(suite, sequences, training, scored)
+    return SuiteDefinition(header.name, sequences, header.training, header.scored)
 
 
 def suite_files() -> Iterator[Traversable]:

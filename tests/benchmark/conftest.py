@@ -230,15 +230,19 @@ def make_cell(entry: TrackerEntry, sequence: Sequence, seed: int = 0, init: str 
 
 
 class FakeDistribution(importlib.metadata.Distribution):
-    """An installed distribution as importlib.metadata sees one: its METADATA and its ``trackbench`` entry points."""
+    """An installed distribution as importlib.metadata sees one: its METADATA and its entry points of one group."""
 
     def __init__(
-        self, name: str, entry_points: Mapping[str, str] | Iterable[tuple[str, str]], version: str = "0.3"
+        self,
+        name: str,
+        entry_points: Mapping[str, str] | Iterable[tuple[str, str]],
+        version: str = "0.3",
+        group: str = "trackbench",
     ) -> None:
         pairs = entry_points.items() if isinstance(entry_points, Mapping) else entry_points
         self.files_text = {
             "METADATA": f"Metadata-Version: 2.1\nName: {name}\nVersion: {version}\n",
-            "entry_points.txt": "[trackbench]\n" + "".join(f"{ep} = {value}\n" for ep, value in pairs),
+            "entry_points.txt": f"[{group}]\n" + "".join(f"{ep} = {value}\n" for ep, value in pairs),
         }
 
     def read_text(self, filename: str) -> str | None:
@@ -253,15 +257,18 @@ Install = Callable[..., FakeDistribution]
 
 @pytest.fixture
 def installed(monkeypatch: pytest.MonkeyPatch) -> Install:
-    """``install(name, entry_points, version="0.3")`` adds a fake distribution next to the real ones."""
+    """``install(name, entry_points, version="0.3", group="trackbench")`` adds a fake distribution next to the real ones."""
     real = list(importlib.metadata.distributions())
     extra: list[FakeDistribution] = []
     monkeypatch.setattr(importlib.metadata, "distributions", lambda: [*real, *extra])
 
     def install(
-        name: str, entry_points: Mapping[str, str] | Iterable[tuple[str, str]], version: str = "0.3"
+        name: str,
+        entry_points: Mapping[str, str] | Iterable[tuple[str, str]],
+        version: str = "0.3",
+        group: str = "trackbench",
     ) -> FakeDistribution:
-        extra.append(FakeDistribution(name, entry_points, version))
+        extra.append(FakeDistribution(name, entry_points, version, group))
         return extra[-1]
 
     return install

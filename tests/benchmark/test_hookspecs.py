@@ -1,9 +1,10 @@
-"""Tests of benchmark.hookspecs: the three register hooks and the marker plugins use."""
+"""Tests of benchmark.hookspecs: the register hooks, the commands hook, and the marker plugins use."""
 
 import pluggy
 
 import benchmark
 from benchmark import hookspecs
+from benchmark.cli.discovery import COMMAND_PLUGINS
 from benchmark.plugins import REGISTER_HOOKS
 
 
@@ -11,9 +12,10 @@ def test_the_register_hooks_are_specified_in_the_order_they_are_called():
     manager = pluggy.PluginManager(hookspecs.PROJECT_NAME)
     manager.add_hookspecs(hookspecs)
     specified = [name for name in dir(manager.hook) if name.startswith("trackbench_")]
-    assert sorted(specified) == sorted(REGISTER_HOOKS)
+    assert sorted(specified) == sorted(REGISTER_HOOKS + COMMAND_PLUGINS.hooks)
     assert REGISTER_HOOKS[0] == "trackbench_register_modalities"
-    for name in REGISTER_HOOKS:
+    assert COMMAND_PLUGINS.hooks == ("trackbench_register_commands",)
+    for name in specified:
         assert getattr(manager.hook, name).spec.argnames == ("registry",)
 
 

@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from benchmark.metrics import CORE
 from benchmark.leaderboard import ALL_DATASETS, board_columns, error_columns, is_pooled, leaderboards, suite_of
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.modalities.sonar.modality import SONAR
@@ -181,9 +182,9 @@ def test_one_board_per_modality() -> None:
     boards = data.boards()
     assert list(boards) == ["camera", "sonar"]
     assert boards["sonar"]["tracker"].unique().tolist() == ["sonar-thing"]
-    assert list(boards["sonar"].columns) == board_columns(SONAR.error_columns)
+    assert list(boards["sonar"].columns) == board_columns(CORE.for_board("sonar", SONAR.error_columns))
     assert "rmse_across_m" in boards["sonar"] and "rmse_d_px" not in boards["sonar"]
-    assert list(boards["camera"].columns) == board_columns(CAMERA.error_columns)
+    assert list(boards["camera"].columns) == board_columns(CORE.for_board("camera", CAMERA.error_columns))
 
 
 def test_one_name_with_two_parameter_sets_is_shown_twice() -> None:

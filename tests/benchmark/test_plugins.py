@@ -132,6 +132,25 @@ def test_a_misspelt_hook_fails_loudly(monkeypatch, installed):
         load_registry(strict=True)
 
 
+def test_a_tracker_plugin_that_implements_the_commands_hook_fails_loudly(monkeypatch, installed):
+    plugin_module(
+        monkeypatch,
+        "acme_trackers",
+        trackbench_register_trackers=register_third_party,
+        trackbench_register_commands=lambda registry: None,
+    )
+    installed("acme-trackers", [("acme", "acme_trackers")])
+    registry = load_registry()
+    assert "acme" not in registry.trackers and "hough" in registry.trackers
+    assert registry.problems == [
+        "plugin 'acme' (acme-trackers 0.3) of the 'trackbench' entry-point group implements "
+        "trackbench_register_commands, which is called only on the plugins of another group "
+        "(left out: its trackers are unavailable)"
+    ]
+    with pytest.raises(PluginError, match=r"plugin 'acme'.*trackbench_register_commands"):
+        load_registry(strict=True)
+
+
 def test_an_exception_in_a_hook_is_named(monkeypatch, installed):
     def register(registry):
         raise RuntimeError("database offline")
@@ -378,6 +397,7 @@ def test_hooks_run_modalities_then_trackers_then_datasets(monkeypatch, installed
     registry = load_registry()
     assert REGISTER_HOOKS == (
         "trackbench_register_modalities",
+        "trackbench_register_metrics",
         "trackbench_register_trackers",
         "trackbench_register_datasets",
     )

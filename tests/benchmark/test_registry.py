@@ -9,6 +9,8 @@ import pytest
 
 from benchmark.errors import PluginError
 from benchmark.identity import code_digest
+from benchmark.metrics import RATES
+from benchmark.metrics.robustness import FAILURES
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.modalities.sonar.modality import SONAR
 from benchmark.modality import ANY_FILE, Modality, Reader
@@ -259,3 +261,19 @@ def test_an_edit_of_a_tracker_s_code_without_a_version_bump_changes_its_cache_ke
         assert entry.cache_key != before
     finally:
         code_digest.cache_clear()
+
+
+@pytest.mark.parametrize(
+    ("metric", "modality", "message"),
+    [
+        ("not a metric", None, "'not a metric' is not a benchmark.metrics.Metric"),
+        (RATES[0], None, "correct_pct"),
+        (FAILURES, "lidar", "metric for unknown modality 'lidar'"),
+    ],
+)
+def test_a_bad_metric_names_the_plugin(registry, metric, modality, message):
+    with registry.acting_for(Origin("acme", "acme-metrics")):
+        with pytest.raises(PluginError, match=r"plugin 'acme' \(acme-metrics\): .*" + re.escape(message)):
+            registry.add_metric(metric, modality)
+    assert registry.add_metric(FAILURES, "camera") is FAILURES
+    assert [m.name for m in registry.metrics.for_board("camera", ())][-1] == FAILURES.name

@@ -12,6 +12,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from benchmark.model import Outcome
+from benchmark.metrics import CORE
 from benchmark.results import CellKey, CellResult, FrameScore, Picture, frame_table, summarise
 
 COLUMNS = ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
@@ -22,7 +23,7 @@ outcomes = st.lists(st.sampled_from([*Outcome, None]), min_size=1, max_size=60)
 @given(outcomes)
 def test_rates_sum_to_100_over_scored_frames(sequence):
     scores = [FrameScore(i, o, dict(zip(COLUMNS, (1.0,) * 4)), 0.01) for i, o in enumerate(sequence)]
-    summary = summarise(frame_table(scores), COLUMNS)
+    summary = summarise(frame_table(scores), CORE.for_board(None, COLUMNS))
     scored = sum(o is not None for o in sequence)
     assert summary["frames"] == scored
     if scored:
@@ -35,7 +36,7 @@ def test_rates_sum_to_100_over_scored_frames(sequence):
 def test_rmse_ignores_frames_without_an_error():
     errors = [(3.0, 1.0, 0.0, 0.0), (4.0, -1.0, 0.0, 0.0), (math.nan,) * 4]
     scores = [FrameScore(i, Outcome.CORRECT, dict(zip(COLUMNS, e)), 0.5) for i, e in enumerate(errors)]
-    summary = summarise(frame_table(scores), COLUMNS)
+    summary = summarise(frame_table(scores), CORE.for_board(None, COLUMNS))
     assert summary["rmse_d_px"] == pytest.approx(np.sqrt((9 + 16) / 2))
     assert summary["rmse_alpha_deg"] == pytest.approx(1.0)
     assert summary["fps"] == pytest.approx(2.0)
@@ -50,7 +51,7 @@ def test_frame_table_has_frame_outcome_errors_and_step_ms():
 
 
 def test_summary_of_nothing_is_nan_but_names_every_column():
-    summary = summarise(pd.DataFrame(), ("err_x_m", "err_y_deg"))
+    summary = summarise(pd.DataFrame(), CORE.for_board(None, ("err_x_m", "err_y_deg")))
     assert summary["frames"] == 0.0
     assert set(summary) == {"frames", "correct_pct", "false_pct", "missed_pct", "rmse_x_m", "rmse_y_deg", "fps"}
     assert all(math.isnan(summary[key]) for key in summary if key != "frames")
@@ -108,7 +109,7 @@ ordinary = st.one_of(st.just(0.0), st.floats(1e-100, 1e100), st.floats(-1e100, -
 def test_rmse_equals_the_plain_formula_where_that_does_not_overflow(errors):
     scores = [FrameScore(i, Outcome.FALSE, {"err_x_m": e}, 0.01) for i, e in enumerate(errors)]
     plain = np.sqrt(np.mean(np.square(errors)))
-    np.testing.assert_allclose(summarise(frame_table(scores), ("err_x_m",))["rmse_x_m"], plain, rtol=1e-12)
+    np.testing.assert_allclose(summarise(frame_table(scores), CORE.for_board(None, ("err_x_m",)))["rmse_x_m"], plain, rtol=1e-12)
 
 
 @pytest.mark.parametrize(
@@ -123,7 +124,7 @@ def test_rmse_equals_the_plain_formula_where_that_does_not_overflow(errors):
 )
 def test_rmse_of_huge_errors_is_finite_and_ignores_non_finite_values(errors, expected):
     scores = [FrameScore(i, Outcome.FALSE, {"err_x_m": e}, 0.01) for i, e in enumerate(errors)]
-    rmse = summarise(frame_table(scores), ("err_x_m",))["rmse_x_m"]
+    rmse = summarise(frame_table(scores), CORE.for_board(None, ("err_x_m",)))["rmse_x_m"]
     assert math.isfinite(rmse)
     np.testing.assert_allclose(rmse, expected, rtol=1e-12)
 
@@ -131,5 +132,5 @@ def test_rmse_of_huge_errors_is_finite_and_ignores_non_finite_values(errors, exp
 @given(st.lists(st.floats(allow_nan=False, allow_infinity=False), min_size=1, max_size=50))
 def test_rmse_of_any_finite_errors_is_finite_and_at_most_the_largest(errors):
     scores = [FrameScore(i, Outcome.FALSE, {"err_x_m": e}, 0.01) for i, e in enumerate(errors)]
-    rmse = summarise(frame_table(scores), ("err_x_m",))["rmse_x_m"]
+    rmse = summarise(frame_table(scores), CORE.for_board(None, ("err_x_m",)))["rmse_x_m"]
     assert 0.0 <= rmse <= max(abs(e) for e in errors)

@@ -8,5 +8,9 @@
 * :mod:`~benchmark.modalities.camera.io`: image sequence files, image
   folders, videos, and the exporter;
 * :mod:`~benchmark.modalities.camera.scenes`: the rendered camera scenes;
-* :mod:`~benchmark.modalities.camera.modality`: the modality as registered.
+* :mod:`~benchmark.modalities.camera.modality`: the modality as registered;
+* :mod:`~benchmark.modalities.camera.commands`: its commands ``trackbench
+  diagnose`` (:mod:`~benchmark.modalities.camera.diagnostics`) and
+  ``trackbench pose-table`` (:mod:`~benchmark.modalities.camera.pose_table`),
+  added through the ``trackbench_register_commands`` hook.
 """

@@ -52,7 +52,8 @@ def test_a_deterministic_drop_beyond_the_minimum_effect_is_a_regression_naming_i
 def test_a_change_below_the_minimum_effect_is_none() -> None:
     changes = find_changes(history(cells(1, [90.0]), cells(2, [88.5])), 2)
     assert changes.empty
-    assert not find_changes(history(cells(1, [90.0]), cells(2, [88.5])), 2, Thresholds(rate_points=1.0)).empty
+    lower = Thresholds(overrides={"correct_pct": 1.0})
+    assert not find_changes(history(cells(1, [90.0]), cells(2, [88.5])), 2, lower).empty
 
 
 def test_seed_noise_larger_than_the_change_is_not_significant() -> None:

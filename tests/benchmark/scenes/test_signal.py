@@ -46,11 +46,13 @@ def test_mean_and_slope_without_noise_are_exact_and_draw_the_same_for_a_seed() -
 @pytest.mark.parametrize(
     ("make", "message"),
     [
-        (lambda: Wave(1.0, 0.0), "period_frames must be > 0"),
-        (lambda: Wave(1.0, 5.0, start_frame=10.0, stop_frame=5.0), "start_frame <= stop_frame"),
+        (lambda: Wave(amplitude=1.0, period_frames=0.0), r"period_frames\n  Input should be greater than 0"),
+        (lambda: Wave(1.0, 5.0, start_frame=10.0, stop_frame=5.0), "start_frame must not exceed stop_frame"),
+        (lambda: Wave(1.0, 5.0, taper_frames=-1.0), r"taper_frames\n  Input should be greater than or equal to 0"),
         (lambda: Event(frame=3.0, amplitude=1.0, shape="ramp"), "'step' or 'pulse'"),
-        (lambda: Event(frame=3.0, amplitude=1.0, duration_frames=0.0), "duration_frames must be > 0"),
-        (lambda: Signal(noise_std=-1.0), "noise_std"),
+        (lambda: Event(frame=3.0, amplitude=1.0, duration_frames=0.0), r"duration_frames\n  Input should be greater"),
+        (lambda: Signal(noise_std=-1.0), r"noise_std\n  Input should be greater than or equal to 0"),
+        (lambda: Signal(mean="1"), r"mean\n  Input should be a valid number"),
     ],
 )
 def test_invalid_definitions_are_refused(make, message) -> None:

@@ -105,7 +105,7 @@ def test_based_on_takes_the_named_sequence_under_the_files_defaults_and_entry(ki
     [
         ('"stereo/case2-slow"', '"stereo/nothing"', r"demo\.toml \[sequence A\]: based_on 'stereo/nothing' names no"),
         ('"stereo/case1-fast"', "3", r"demo\.toml \[sequence B\]: based_on must be a string"),
-        ("seed = 5", "seed = 5\nfocal = 1.0", r"demo\.toml \[sequence B\]: unknown key\(s\) 'focal'"),
+        ("seed = 5", "seed = 5\nfocal = 1.0", r"demo\.toml \[sequence B\]: unknown key 'focal' \(known: name, "),
     ],
 )
 def test_bad_based_on_is_named(kinds, old: str, new: str, message: str) -> None:

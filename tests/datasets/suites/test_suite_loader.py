@@ -53,19 +53,33 @@ def test_sequences_get_the_defaults_and_the_suite_prefix(kinds) -> None:
         ("[suite\n", r"bad\.toml: not valid TOML"),
         (
             GOOD.replace('kind = "camera"', 'kind = "lidar"'),
-            r"kind 'lidar' is not one of the registered scene kinds \['camera', 'sonar', 'stereo', 'stereo-images'\]",
+            r"^bad\.toml: suite\.kind: must be one of the registered scene kinds "
+            r"\['camera', 'sonar', 'stereo', 'stereo-images'\], got 'lidar'$",
         ),
-        (GOOD.replace('name = "B"', 'name = "A"'), r"sequence name 'A' appears twice"),
-        (GOOD.replace('name = "B"\n', ""), r"\[\[sequence\]\] number 2 needs a non-empty name"),
+        (GOOD.replace('name = "B"', 'name = "A"'), r"^bad\.toml: sequence name\(s\) 'A' appear twice$"),
+        (GOOD.replace('name = "B"\n', ""), r"^bad\.toml: sequence\[1\]: missing required key 'name'$"),
+        (GOOD.replace('name = "B"', 'name = ""'), r"^bad\.toml: sequence\[1\]\.name: must not be empty$"),
+        (GOOD.split("[[sequence]]")[0], r"^bad\.toml: missing required key 'sequence'$"),
+        (
+            "defaults = 3\n" + GOOD.split("[defaults]")[0] + "[[sequence]]" + GOOD.split("[[sequence]]", 1)[1],
+            r"^bad\.toml: defaults: expected a table, got 3$",
+        ),
         (
             GOOD.replace("n_frames = 4", "n_frames = 4\nfocal = 1.0"),
-            r"bad\.toml \[sequence A\]: unknown key\(s\) 'focal'",
+            r"^bad\.toml \[sequence A\]: unknown key 'focal' \(known: name, n_frames, ",
         ),
-        (GOOD + "\n[extra]\n", r"unknown top-level key"),
-        (GOOD.replace('name = "demo"\n', ""), r"needs a \[suite\] table with a non-empty name"),
-        (GOOD.replace('kind = "camera"', 'kind = "camera"\ntraining = 3'), r"training must name another suite"),
-        (GOOD.replace('kind = "camera"', 'kind = "camera"\ntraining = "demo"'), r"training must name another suite"),
-        (GOOD.replace('kind = "camera"', 'kind = "camera"\nscored = "no"'), r"scored must be true or false"),
+        (
+            GOOD.replace("noise_grey = 2.0", "noise_grey = 2.0\nwater = { lamps = [{}, { cone_deg = 40.0, hotspot = -1 }] }"),
+            r"^bad\.toml \[sequence A\]: optics\.water\.lamps\[1\]\.hotspot: must be >= 0, got -1$",
+        ),
+        (GOOD + "\n[extra]\n", r"^bad\.toml: unknown key 'extra' \(known: suite, sequence, defaults\)$"),
+        (GOOD.replace('name = "demo"\n', ""), r"^bad\.toml: suite: missing required key 'name'$"),
+        (GOOD.replace('kind = "camera"', 'kind = "camera"\ntraining = 3'), r"^bad\.toml: suite\.training: expected a string"),
+        (
+            GOOD.replace('kind = "camera"', 'kind = "camera"\ntraining = "demo"'),
+            r"^bad\.toml: suite: training must name another suite, got 'demo'$",
+        ),
+        (GOOD.replace('kind = "camera"', 'kind = "camera"\nscored = "no"'), r"^bad\.toml: suite\.scored: expected true or false, got 'no'$"),
     ],
 )
 def test_bad_suite_files_name_file_and_sequence(kinds, text: str, message: str) -> None:
@@ -86,7 +100,7 @@ def test_a_suite_may_name_any_kind_it_is_given_and_its_factory_builds_each_seque
     assert where_a == "scan.toml [sequence A]"
     assert a == {"name": "demo/A", "focal_px": 300.0, "optics": {"blur_px": 0.0, "noise_grey": 2.0}, "n_frames": 4}
     assert (b["focal_px"], b["optics"]["noise_grey"]) == (500.0, 1.0)
-    with pytest.raises(DataError, match=r"scan\.toml: \[suite\] kind 'scan' is not one of the registered .* \[\]"):
+    with pytest.raises(DataError, match=r"^scan\.toml: suite\.kind: must be one of the registered scene kinds \[\], got 'scan'$"):
         parse_suite(text, "scan.toml", {})
 
 

@@ -1,10 +1,12 @@
 """Definitions of synthetic camera sequences, as plain data.
 
 A camera sequence is a pure function of a :class:`CameraSceneSpec` (which
-includes its seed).  The spec is a tree of frozen dataclasses built from a
-plain mapping, so suites can be written as TOML files
-(:meth:`CameraSceneSpec.from_dict`); an unknown key or a value of the wrong
-type is a :class:`benchmark.errors.DataError` naming where it was found.
+includes its seed).  The spec is a tree of frozen pydantic dataclasses
+(:mod:`benchmark.scenes.spec`) whose fields declare their ranges, built from
+a plain mapping, so suites can be written as TOML files
+(:meth:`CameraSceneSpec.from_dict`); an unknown key, a value of the wrong
+type or out of its range is a :class:`benchmark.errors.DataError` naming
+the file, the key and the rule.
 
 The tree mirrors the parts of the scene model of seeds/004, section II:
 
@@ -34,20 +36,37 @@ scene is built), times in frames unless a name says otherwise.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
+from typing import Annotated, Literal
+
+import pydantic
+from annotated_types import Ge, Gt, Interval, Lt
 
 from benchmark.identity import OMIT_AT_DEFAULT
 from benchmark.modalities.camera.scenes.water import JERLOV_KD
-
 from benchmark.scenes.signal import Signal
-from benchmark.scenes.spec import TableSpec
+from benchmark.scenes.spec import (
+    SPEC_CONFIG,
+    Finite,
+    Flag,
+    Integer,
+    Name,
+    NonNegative,
+    Number,
+    Positive,
+    Share,
+    TableSpec,
+    Text,
+    ordered,
+    strictly_increasing,
+)
 
-ZRange = tuple[float, float]
+ZRange = tuple[Number, Number]
 """A stretch ``(from, to)`` along the pipe axis ``Z``, in m."""
 
 EVERYWHERE: ZRange = (-math.inf, math.inf)
 
-DensityProfile = tuple[tuple[float, float], ...]
+DensityProfile = Annotated[tuple[tuple[Finite, NonNegative], ...], pydantic.AfterValidator(strictly_increasing)]
 """Points ``(Z in m, factor)`` of a density that varies along the pipe.
 
 The factor is interpolated linearly between points and held constant
@@ -55,35 +74,21 @@ beyond the first and the last; an empty profile is 1 everywhere.
 """
 
 
-def check_profile(points: DensityProfile) -> None:
-    """Raise ``ValueError`` unless ``points`` is a valid :data:`DensityProfile`.
+TintFactor = Annotated[Finite, Interval(ge=0, le=1.5)]
 
-    Parameters
-    ----------
-    points : DensityProfile
-        Positions must be finite and strictly increasing, factors finite
-        and ``>= 0``.
-    """
-    zs = [z for z, _ in points]
-    if not all(math.isfinite(z) and math.isfinite(f) and f >= 0 for z, f in points):
-        raise ValueError(f"density profile needs finite positions and factors >= 0, got {points}")
-    if any(b <= a for a, b in zip(zs, zs[1:])):
-        raise ValueError(f"density profile positions must increase strictly, got {zs}")
-
-
-Tint = tuple[float, float, float]
-"""Relative reflectance of the R, G and B channels."""
+Tint = tuple[TintFactor, TintFactor, TintFactor]
+"""Relative reflectance of the R, G and B channels, each in ``[0, 1.5]``."""
 
 WHITE: Tint = (1.0, 1.0, 1.0)
 
+Albedo = Share
+"""An albedo, in ``[0, 1]``."""
 
-def check_tint(tint: Tint) -> None:
-    """A tint has three finite factors in ``[0, 1.5]``."""
-    if not all(math.isfinite(c) and 0 <= c <= 1.5 for c in tint):
-        raise ValueError(f"tint needs three factors in [0, 1.5], got {tint}")
+JerlovType = Literal[tuple(JERLOV_KD)]  # type: ignore[valid-type]
+"""A Jerlov water type of :data:`~benchmark.modalities.camera.scenes.water.JERLOV_KD`."""
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class MotionSpec:
     """The camera trajectory, seeds/004 section II and Fig. 2.
 
@@ -109,14 +114,10 @@ class MotionSpec:
     phi_deg: Signal = Signal(mean=60.0)
     xi_deg: Signal = Signal()
     speed_mps: Signal = Signal(mean=0.45)
-    speed_noise_mps: float = 0.02
-
-    def __post_init__(self) -> None:
-        if self.speed_noise_mps < 0:
-            raise ValueError("speed_noise_mps must be >= 0")
+    speed_noise_mps: NonNegative = 0.02
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Ripples:
     """Sand ripples: parallel crests with a sharp edge, a trap for line detectors.
 
@@ -136,20 +137,16 @@ class Ripples:
         The stretch of seabed that has them, with soft ends of ``fade_m``.
     """
 
-    amplitude: float = 0.2
-    wavelength_m: float = 0.12
-    angle_deg: float = 15.0
-    sharpness: float = 0.85
-    waviness_m: float = 0.008
+    amplitude: Number = 0.2
+    wavelength_m: Positive = 0.12
+    angle_deg: Number = 15.0
+    sharpness: Share = 0.85
+    waviness_m: Number = 0.008
     z_m: ZRange = EVERYWHERE
-    fade_m: float = 0.5
-
-    def __post_init__(self) -> None:
-        if not self.wavelength_m > 0 or not 0 <= self.sharpness <= 1:
-            raise ValueError("need wavelength_m > 0 and 0 <= sharpness <= 1")
+    fade_m: Number = 0.5
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Clutter:
     """Rocks and tufts of algae scattered over a stretch of seabed.
 
@@ -170,22 +167,17 @@ class Clutter:
     """
 
     z_m: ZRange = EVERYWHERE
-    x_m: float = 2.5
-    rocks_per_m2: float = 0.0
-    rock_size_m: float = 0.1
-    rock_albedo: float = 0.35
-    algae_per_m2: float = 0.0
-    algae_size_m: float = 0.25
-    algae_albedo: float = 0.18
+    x_m: Number = 2.5
+    rocks_per_m2: NonNegative = 0.0
+    rock_size_m: Positive = 0.1
+    rock_albedo: Number = 0.35
+    algae_per_m2: NonNegative = 0.0
+    algae_size_m: Positive = 0.25
+    algae_albedo: Number = 0.18
     density: DensityProfile = ()
 
-    def __post_init__(self) -> None:
-        if min(self.rocks_per_m2, self.algae_per_m2) < 0 or min(self.rock_size_m, self.algae_size_m) <= 0:
-            raise ValueError("densities must be >= 0 and sizes > 0")
-        check_profile(self.density)
 
-
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class SeabedSpec:
     """Appearance of the seabed plane ``Y = -r``.
 
@@ -207,22 +199,17 @@ class SeabedSpec:
         clutter and the overgrowth share it.
     """
 
-    albedo: float = 0.5
-    patchiness: float = 0.15
-    patch_scale_m: float = 0.6
-    detail: float = 0.08
-    grain: float = 0.06
+    albedo: Albedo = 0.5
+    patchiness: Number = 0.15
+    patch_scale_m: Number = 0.6
+    detail: Number = 0.08
+    grain: Number = 0.06
     ripples: tuple[Ripples, ...] = ()
     clutter: tuple[Clutter, ...] = ()
     tint: Tint = field(default=WHITE, metadata=OMIT_AT_DEFAULT)
 
-    def __post_init__(self) -> None:
-        if not 0 <= self.albedo <= 1:
-            raise ValueError(f"albedo must be in [0, 1], got {self.albedo}")
-        check_tint(self.tint)
 
-
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class CableLook:
     """Appearance of the pipe's surface.
 
@@ -247,22 +234,17 @@ class CableLook:
         about ``(1, 0.85, 0.15)``); used by the water model only.
     """
 
-    albedo: float = 0.22
-    texture: float = 0.06
-    specular: float = 0.15
-    growth_coverage: float = 0.0
-    growth_albedo: float = 0.4
-    growth_angle_deg: float = 80.0
-    growth_spread_deg: float = 30.0
+    albedo: Albedo = 0.22
+    texture: Number = 0.06
+    specular: Number = 0.15
+    growth_coverage: Share = 0.0
+    growth_albedo: Albedo = 0.4
+    growth_angle_deg: Number = 80.0
+    growth_spread_deg: Number = 30.0
     tint: Tint = field(default=WHITE, metadata=OMIT_AT_DEFAULT)
 
-    def __post_init__(self) -> None:
-        if not (0 <= self.albedo <= 1 and 0 <= self.growth_albedo <= 1 and 0 <= self.growth_coverage <= 1):
-            raise ValueError("albedo, growth_albedo and growth_coverage must be in [0, 1]")
-        check_tint(self.tint)
 
-
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Burial:
     """A stretch where sand covers the pipe (seeds/004, Fig. 14).
 
@@ -280,19 +262,13 @@ class Burial:
         Irregularity of the sand line, as a share of the diameter.
     """
 
-    z_m: ZRange
-    level: float = 1.15
-    ramp_m: float = 0.6
-    roughness: float = 0.05
-
-    def __post_init__(self) -> None:
-        if not (math.isfinite(self.z_m[0]) and math.isfinite(self.z_m[1]) and self.z_m[0] <= self.z_m[1]):
-            raise ValueError(f"burial z_m must be a finite (from, to) with from <= to, got {self.z_m}")
-        if self.ramp_m < 0 or self.roughness < 0:
-            raise ValueError("ramp_m and roughness must be >= 0")
+    z_m: Annotated[tuple[Finite, Finite], pydantic.AfterValidator(ordered)]
+    level: Number = 1.15
+    ramp_m: NonNegative = 0.6
+    roughness: NonNegative = 0.05
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Overgrowth:
     """Algae and stones on the pipe and against its sides (seeds/000, section 5.2.3).
 
@@ -342,34 +318,23 @@ class Overgrowth:
 
     z_m: ZRange = EVERYWHERE
     density: DensityProfile = ()
-    x_m: float = 0.5
-    mat_cover: float = 0.0
-    mat_scale_m: float = 0.08
-    mat_albedo: float = 0.22
-    fronds_per_m: float = 0.0
-    frond_length_m: float = 0.3
-    frond_width_m: float = 0.02
-    frond_albedo: float = 0.2
-    parallel_share: float = 0.3
-    side_stones_per_m: float = 0.0
-    top_stones_per_m: float = 0.0
-    stone_size_m: float = 0.15
-    stone_height: float = 0.6
-    stone_albedo: float = 0.35
-
-    def __post_init__(self) -> None:
-        if min(self.fronds_per_m, self.side_stones_per_m, self.top_stones_per_m) < 0:
-            raise ValueError("fronds_per_m, side_stones_per_m and top_stones_per_m must be >= 0")
-        if min(self.x_m, self.mat_scale_m, self.frond_length_m, self.frond_width_m, self.stone_size_m) <= 0:
-            raise ValueError("x_m, mat_scale_m, frond_length_m, frond_width_m and stone_size_m must be > 0")
-        if not (0 <= self.mat_cover < 1 and 0 <= self.parallel_share <= 1 and self.stone_height > 0):
-            raise ValueError("need 0 <= mat_cover < 1, 0 <= parallel_share <= 1 and stone_height > 0")
-        if not all(0 <= a <= 1 for a in (self.mat_albedo, self.frond_albedo, self.stone_albedo)):
-            raise ValueError("mat_albedo, frond_albedo and stone_albedo must be in [0, 1]")
-        check_profile(self.density)
+    x_m: Annotated[Number, Gt(0)] = 0.5
+    mat_cover: Annotated[Finite, Interval(ge=0, lt=1)] = 0.0
+    mat_scale_m: Annotated[Number, Gt(0)] = 0.08
+    mat_albedo: Albedo = 0.22
+    fronds_per_m: Annotated[Number, Ge(0)] = 0.0
+    frond_length_m: Annotated[Number, Gt(0)] = 0.3
+    frond_width_m: Annotated[Number, Gt(0)] = 0.02
+    frond_albedo: Albedo = 0.2
+    parallel_share: Share = 0.3
+    side_stones_per_m: Annotated[Number, Ge(0)] = 0.0
+    top_stones_per_m: Annotated[Number, Ge(0)] = 0.0
+    stone_size_m: Annotated[Number, Gt(0)] = 0.15
+    stone_height: Annotated[Number, Gt(0)] = 0.6
+    stone_albedo: Albedo = 0.35
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Lamp:
     """A lamp on the vehicle, aimed at the point the camera looks at.
 
@@ -391,23 +356,19 @@ class Lamp:
         Angular radius of the hot spot (``1/e`` of its extra light).
     """
 
-    offset_m: tuple[float, float, float] = (0.0, -0.4, 0.0)
-    intensity: float = 1.0
-    cone_deg: float = 35.0
-    edge_deg: float = 8.0
-    hotspot: float = 0.5
-    hotspot_deg: float = 10.0
+    offset_m: tuple[Finite, Finite, Finite] = (0.0, -0.4, 0.0)
+    intensity: Annotated[Number, Ge(0)] = 1.0
+    cone_deg: Number = 35.0
+    edge_deg: Annotated[Number, Ge(0)] = 8.0
+    hotspot: Annotated[Number, Ge(0)] = 0.5
+    hotspot_deg: Annotated[Number, Gt(0)] = 10.0
 
     def __post_init__(self) -> None:
-        if not (self.intensity >= 0 and self.hotspot >= 0 and self.hotspot_deg > 0 and 0 <= self.edge_deg):
-            raise ValueError("need intensity >= 0, hotspot >= 0, hotspot_deg > 0 and edge_deg >= 0")
         if not (0 < self.cone_deg - self.edge_deg and self.cone_deg + self.edge_deg < 90):
             raise ValueError(f"need 0 < cone_deg - edge_deg and cone_deg + edge_deg < 90, got {self.cone_deg}, {self.edge_deg}")
-        if not all(math.isfinite(c) for c in self.offset_m):
-            raise ValueError(f"offset_m must be finite, got {self.offset_m}")
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class WaterSpec:
     """Water, light and camera exposure of the image formation model (:mod:`~benchmark.modalities.camera.scenes.water`).
 
@@ -443,34 +404,25 @@ class WaterSpec:
         distance; the focus is at the distance the lamps are aimed at.
     """
 
-    jerlov: str = "II"
-    depth_m: float = 50.0
-    sun: float = 0.0
-    sky_ambient: float = 0.3
-    caustics: float = 0.0
-    caustic_scale_m: float = 0.5
-    caustic_speed_mps: float = 0.3
+    jerlov: JerlovType = "II"
+    depth_m: NonNegative = 50.0
+    sun: NonNegative = 0.0
+    sky_ambient: Share = 0.3
+    caustics: NonNegative = 0.0
+    caustic_scale_m: Annotated[Number, Gt(0)] = 0.5
+    caustic_speed_mps: Annotated[Number, Ge(0)] = 0.3
     lamps: tuple[Lamp, ...] = (Lamp(),)
-    mean_grey: float = 110.0
-    snow_per_m3: float = 0.0
-    snow_size_mm: float = 1.5
-    defocus_px: float = 2.0
+    mean_grey: Annotated[Number, Gt(0), Lt(255)] = 110.0
+    snow_per_m3: NonNegative = 0.0
+    snow_size_mm: Annotated[Number, Gt(0)] = 1.5
+    defocus_px: NonNegative = 2.0
 
     def __post_init__(self) -> None:
-        if self.jerlov not in JERLOV_KD:
-            raise ValueError(f"jerlov must be one of {', '.join(JERLOV_KD)}, got {self.jerlov!r}")
-        values = (self.depth_m, self.sun, self.caustics, self.snow_per_m3, self.defocus_px)
-        if not all(math.isfinite(v) and v >= 0 for v in values):
-            raise ValueError("depth_m, sun, caustics, snow_per_m3 and defocus_px must be finite and >= 0")
-        if not (0 <= self.sky_ambient <= 1 and 0 < self.mean_grey < 255):
-            raise ValueError("need 0 <= sky_ambient <= 1 and 0 < mean_grey < 255")
-        if not (self.caustic_scale_m > 0 and self.caustic_speed_mps >= 0 and self.snow_size_mm > 0):
-            raise ValueError("need caustic_scale_m > 0, caustic_speed_mps >= 0 and snow_size_mm > 0")
         if self.sun == 0 and not any(lamp.intensity > 0 for lamp in self.lamps):
             raise ValueError("the scene needs light: a lamp with intensity > 0 or sun > 0")
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class OpticsSpec:
     """Light, water and sensor.
 
@@ -520,34 +472,24 @@ class OpticsSpec:
         ``auto_gain`` and ``snow_per_frame`` serve it only).
     """
 
-    exposure: float = 430.0
-    ambient: float = 0.15
-    light_falloff: bool = True
-    daylight: float = 0.4
-    reference_distance_m: float | None = None
-    auto_gain: float = 0.85
-    water_grey: float = 38.0
-    attenuation_per_m: float = 0.1
-    vignetting: float = 0.35
-    blur_px: float = 0.8
-    noise_grey: float = 3.5
-    snow_per_frame: float = 0.0
-    shot_noise: float = field(default=0.0, metadata=OMIT_AT_DEFAULT)
-    jpeg_quality: int = field(default=0, metadata=OMIT_AT_DEFAULT)
+    exposure: Number = 430.0
+    ambient: Number = 0.15
+    light_falloff: Flag = True
+    daylight: Share = 0.4
+    reference_distance_m: Annotated[Number, Gt(0)] | None = None
+    auto_gain: Share = 0.85
+    water_grey: Number = 38.0
+    attenuation_per_m: Annotated[Number, Ge(0)] = 0.1
+    vignetting: Annotated[Number, Ge(0)] = 0.35
+    blur_px: Annotated[Number, Ge(0)] = 0.8
+    noise_grey: Annotated[Number, Ge(0)] = 3.5
+    snow_per_frame: Annotated[Number, Ge(0)] = 0.0
+    shot_noise: NonNegative = field(default=0.0, metadata=OMIT_AT_DEFAULT)
+    jpeg_quality: Annotated[Integer, Interval(ge=0, le=100)] = field(default=0, metadata=OMIT_AT_DEFAULT)
     water: WaterSpec | None = field(default=None, metadata=OMIT_AT_DEFAULT)
 
-    def __post_init__(self) -> None:
-        if min(self.attenuation_per_m, self.blur_px, self.noise_grey, self.snow_per_frame, self.vignetting) < 0:
-            raise ValueError("attenuation, blur, noise, snow and vignetting must be >= 0")
-        if not (math.isfinite(self.shot_noise) and self.shot_noise >= 0 and 0 <= self.jpeg_quality <= 100):
-            raise ValueError("need shot_noise >= 0 and jpeg_quality in 0..100 (0: no compression)")
-        if self.reference_distance_m is not None and not self.reference_distance_m > 0:
-            raise ValueError("reference_distance_m must be > 0")
-        if not (0 <= self.daylight <= 1 and 0 <= self.auto_gain <= 1):
-            raise ValueError("daylight and auto_gain must be in [0, 1]")
 
-
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class CameraSceneSpec(TableSpec):
     """Everything that defines one synthetic camera sequence.
 
@@ -574,31 +516,21 @@ class CameraSceneSpec(TableSpec):
         None takes the mean of ``motion.phi_deg``.
     """
 
-    name: str
-    n_frames: int
-    seed: int = 0
-    description: str = ""
-    frame_size: tuple[int, int] = (320, 240)
-    frame_interval_s: float = 0.04
-    focal_px: float = 380.0
-    pipe_diameter_m: float = 0.2
-    nominal_tilt_deg: float | None = None
+    name: Name
+    n_frames: Annotated[Integer, Ge(1)]
+    seed: Integer = 0
+    description: Text = ""
+    frame_size: tuple[Annotated[Integer, Ge(8)], Annotated[Integer, Ge(8)]] = (320, 240)
+    frame_interval_s: Annotated[Number, Gt(0)] = 0.04
+    focal_px: Annotated[Number, Gt(0)] = 380.0
+    pipe_diameter_m: Annotated[Number, Gt(0)] = 0.2
+    nominal_tilt_deg: Number | None = None
     motion: MotionSpec = field(default_factory=MotionSpec)
     seabed: SeabedSpec = field(default_factory=SeabedSpec)
     cable: CableLook = field(default_factory=CableLook)
     burial: tuple[Burial, ...] = ()
     overgrowth: tuple[Overgrowth, ...] = ()
     optics: OpticsSpec = field(default_factory=OpticsSpec)
-
-    def __post_init__(self) -> None:
-        if not self.name:
-            raise ValueError("name must not be empty")
-        if self.n_frames < 1:
-            raise ValueError(f"n_frames must be >= 1, got {self.n_frames}")
-        if min(self.frame_size) < 8:
-            raise ValueError(f"frame_size must be at least 8 x 8, got {self.frame_size}")
-        if not (self.frame_interval_s > 0 and self.focal_px > 0 and self.pipe_diameter_m > 0):
-            raise ValueError("frame_interval_s, focal_px and pipe_diameter_m must be > 0")
 
     @property
     def radius(self) -> float:

@@ -6,9 +6,10 @@ across the track per ping.  The sequence is a pure function of a
 :class:`SonarSceneSpec`, seed included.  Like the camera and stereo specs
 (:mod:`benchmark.scenes.spec`, :mod:`benchmark.modalities.stereo.scenes.spec`), it is a
 tree of frozen dataclasses built from a plain mapping by
-:meth:`SonarSceneSpec.from_dict`, so suites are TOML files; an unknown key or
-a bad value is a :class:`benchmark.errors.DataError` naming where it was
-found.
+:meth:`SonarSceneSpec.from_dict`, so suites are TOML files; its fields
+declare their ranges (:mod:`benchmark.scenes.spec`), and an unknown key or a
+bad value is a :class:`benchmark.errors.DataError` naming the file, the key
+and the rule.
 
 The tree:
 
@@ -36,23 +37,52 @@ pings (frames) unless a name says otherwise.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
+from typing import Annotated
 
 import numpy as np
+import pydantic
+from annotated_types import Ge, Gt, Interval
 
 from benchmark.modalities.sonar.model import SonarCalibration
+from benchmark.parameters import require_order
 from benchmark.scenes.signal import Signal
-from benchmark.scenes.spec import TableSpec
+from benchmark.scenes.spec import (
+    SPEC_CONFIG,
+    Finite,
+    Integer,
+    Name,
+    NonNegative,
+    Number,
+    Positive,
+    Probability,
+    TableSpec,
+    Text,
+    ordered,
+)
 
 MIN_RANGE_RESOLUTION_M = 1e-6
 """The finest range step a sonar may round to, m; finer steps overflow ``range / step``."""
 
 
-def _finite(*values: float) -> bool:
-    return all(math.isfinite(v) for v in values)
+def _no_finer_than_the_finest_step(step: float) -> float:
+    """A range resolution of 0 (no rounding) or at least :data:`MIN_RANGE_RESOLUTION_M`, else ``ValueError``."""
+    if 0 < step < MIN_RANGE_RESOLUTION_M:
+        raise ValueError(f"must be 0 (no rounding) or at least {MIN_RANGE_RESOLUTION_M:g} m, got {step:g}")
+    return step
 
 
-@dataclass(frozen=True)
+RangeResolution = Annotated[NonNegative, pydantic.AfterValidator(_no_finer_than_the_finest_step)]
+"""A range step in m: 0 for none, else at least :data:`MIN_RANGE_RESOLUTION_M`."""
+
+Diameter = Annotated[Finite, Interval(ge=0.05, le=5)]
+"""A pipe's outer diameter, between 5 cm and 5 m."""
+
+PositiveRange = Annotated[tuple[Positive, Positive], pydantic.AfterValidator(ordered)]
+"""A range ``(low, high)`` with ``0 < low <= high``."""
+
+
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class SonarSpec:
     """The multibeam echo sounder and its errors.
 
@@ -92,40 +122,18 @@ class SonarSpec:
         Scale of the spikes' range error (Laplace distributed).
     """
 
-    model: str = ""
-    n_beams: int = 240
-    swath_deg: float = 120.0
-    beam_width_deg: float = 0.5
-    range_sigma_m: float = 0.01
-    outer_sigma_factor: float = 1.0
-    range_resolution_m: float = 0.0
-    max_range_m: float = 40.0
-    missing_nadir: float = 0.0
-    missing_outer: float = 0.0
-    outlier_rate: float = 0.0
-    outlier_scale_m: float = 1.0
-
-    def __post_init__(self) -> None:
-        if self.n_beams < 3:
-            raise ValueError(f"n_beams must be >= 3, got {self.n_beams}")
-        if not 0 < self.swath_deg < 175:
-            raise ValueError(f"swath_deg must be in (0, 175), got {self.swath_deg}")
-        if not _finite(self.beam_width_deg, self.range_sigma_m, self.range_resolution_m, self.max_range_m):
-            raise ValueError("beam_width_deg, range_sigma_m, range_resolution_m and max_range_m must be finite")
-        if min(self.beam_width_deg, self.range_sigma_m, self.range_resolution_m) < 0 or not self.max_range_m > 0:
-            raise ValueError("need beam_width_deg, range_sigma_m, range_resolution_m >= 0 and max_range_m > 0")
-        if 0 < self.range_resolution_m < MIN_RANGE_RESOLUTION_M:
-            raise ValueError(
-                f"range_resolution_m must be 0 (no rounding) or at least {MIN_RANGE_RESOLUTION_M:g} m, "
-                f"got {self.range_resolution_m:g}"
-            )
-        if not (math.isfinite(self.outer_sigma_factor) and self.outer_sigma_factor >= 1):
-            raise ValueError(f"outer_sigma_factor must be >= 1, got {self.outer_sigma_factor}")
-        for name in ("missing_nadir", "missing_outer", "outlier_rate"):
-            if not 0 <= getattr(self, name) < 1:
-                raise ValueError(f"{name} must be in [0, 1), got {getattr(self, name)}")
-        if not self.outlier_scale_m > 0:
-            raise ValueError(f"outlier_scale_m must be > 0, got {self.outlier_scale_m}")
+    model: Text = ""
+    n_beams: Annotated[Integer, Ge(3)] = 240
+    swath_deg: Annotated[Number, Interval(gt=0, lt=175)] = 120.0
+    beam_width_deg: NonNegative = 0.5
+    range_sigma_m: NonNegative = 0.01
+    outer_sigma_factor: Annotated[Finite, Ge(1)] = 1.0
+    range_resolution_m: RangeResolution = 0.0
+    max_range_m: Positive = 40.0
+    missing_nadir: Probability = 0.0
+    missing_outer: Probability = 0.0
+    outlier_rate: Probability = 0.0
+    outlier_scale_m: Annotated[Number, Gt(0)] = 1.0
 
     @property
     def half_swath(self) -> float:
@@ -133,7 +141,7 @@ class SonarSpec:
         return math.radians(self.swath_deg) / 2.0
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class VehicleSpec:
     """The vehicle that carries the sonar.
 
@@ -150,14 +158,10 @@ class VehicleSpec:
 
     altitude_m: Signal = Signal(mean=10.0)
     roll_deg: Signal = Signal()
-    speed_mps: float = 1.5
-
-    def __post_init__(self) -> None:
-        if not (math.isfinite(self.speed_mps) and self.speed_mps > 0):
-            raise ValueError(f"speed_mps must be > 0, got {self.speed_mps}")
+    speed_mps: Positive = 1.5
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Roughness:
     """One scale of seabed roughness: a smooth random field over both axes.
 
@@ -170,15 +174,11 @@ class Roughness:
         the field, the same along and across the track.
     """
 
-    std_m: float = 0.0
-    length_m: float = 1.0
-
-    def __post_init__(self) -> None:
-        if not (_finite(self.std_m, self.length_m) and self.std_m >= 0 and self.length_m > 0):
-            raise ValueError("need std_m >= 0 and length_m > 0")
+    std_m: NonNegative = 0.0
+    length_m: Positive = 1.0
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Ripples:
     """Sand ripples: parallel crests.
 
@@ -193,18 +193,12 @@ class Ripples:
         track, parallel to the pipe).
     """
 
-    height_m: float = 0.0
-    wavelength_m: float = 1.0
-    crest_deg: float = 0.0
-
-    def __post_init__(self) -> None:
-        if not (_finite(self.height_m, self.wavelength_m, self.crest_deg) and self.height_m >= 0):
-            raise ValueError("need finite values and height_m >= 0")
-        if not self.wavelength_m > 0:
-            raise ValueError(f"wavelength_m must be > 0, got {self.wavelength_m}")
+    height_m: NonNegative = 0.0
+    wavelength_m: Positive = 1.0
+    crest_deg: Finite = 0.0
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class BoulderField:
     """Boulders scattered over a stretch of the track.
 
@@ -229,25 +223,19 @@ class BoulderField:
         The stretch of pings the field covers.
     """
 
-    per_100m2: float = 0.0
-    diameter_m: tuple[float, float] = (0.3, 1.0)
-    height_ratio: tuple[float, float] = (0.3, 0.6)
-    elongation: tuple[float, float] = (0.7, 1.4)
-    clearance_m: float = 0.3
-    start_frame: float = -math.inf
-    stop_frame: float = math.inf
+    per_100m2: NonNegative = 0.0
+    diameter_m: PositiveRange = (0.3, 1.0)
+    height_ratio: PositiveRange = (0.3, 0.6)
+    elongation: PositiveRange = (0.7, 1.4)
+    clearance_m: Annotated[Number, Ge(0)] = 0.3
+    start_frame: Number = -math.inf
+    stop_frame: Number = math.inf
 
     def __post_init__(self) -> None:
-        pairs = (self.diameter_m, self.height_ratio, self.elongation)
-        if not all(_finite(*pair) and 0 < pair[0] <= pair[1] for pair in pairs):
-            raise ValueError("diameter_m, height_ratio and elongation need 0 < low <= high")
-        if not (math.isfinite(self.per_100m2) and self.per_100m2 >= 0 and self.clearance_m >= 0):
-            raise ValueError("need per_100m2 >= 0 and clearance_m >= 0")
-        if self.stop_frame < self.start_frame:
-            raise ValueError("need start_frame <= stop_frame")
+        require_order(self, ("start_frame", "stop_frame"))
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class SeabedSpec:
     """The seabed the pipes lie on.
 
@@ -273,15 +261,11 @@ class SeabedSpec:
     roughness: tuple[Roughness, ...] = ()
     ripples: Ripples = Ripples()
     boulders: tuple[BoulderField, ...] = ()
-    cell_m: float = 0.05
+    cell_m: Annotated[Number, Interval(ge=0.005, le=0.5)] = 0.05
     sand_waves: Ripples = Ripples()
 
-    def __post_init__(self) -> None:
-        if not 0.005 <= self.cell_m <= 0.5:
-            raise ValueError(f"cell_m must be in [0.005, 0.5], got {self.cell_m}")
 
-
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class TrenchSpec:
     """A trench along a pipe, with spoil heaps on both sides.
 
@@ -305,22 +289,20 @@ class TrenchSpec:
     """
 
     depth_m: Signal = Signal()
-    bottom_width_m: float = 1.0
-    top_width_m: float = 4.0
-    offset_m: float = 0.0
-    berm_ratio: float = 0.0
-    berm_width_m: float = 1.0
+    bottom_width_m: NonNegative = 1.0
+    top_width_m: Finite = 4.0
+    offset_m: Finite = 0.0
+    berm_ratio: NonNegative = 0.0
+    berm_width_m: Positive = 1.0
 
     def __post_init__(self) -> None:
-        if not _finite(self.bottom_width_m, self.top_width_m, self.offset_m, self.berm_ratio, self.berm_width_m):
-            raise ValueError("trench values must be finite")
-        if not 0 <= self.bottom_width_m < self.top_width_m:
-            raise ValueError("need 0 <= bottom_width_m < top_width_m")
-        if self.berm_ratio < 0 or not self.berm_width_m > 0:
-            raise ValueError("need berm_ratio >= 0 and berm_width_m > 0")
+        if not self.bottom_width_m < self.top_width_m:
+            raise ValueError(
+                f"bottom_width_m must be below top_width_m, got {self.bottom_width_m} >= {self.top_width_m}"
+            )
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Drift:
     """A smooth cross-track drift: the pipe swings across the swath and back at up to a given speed.
 
@@ -339,15 +321,9 @@ class Drift:
         Phase at the first ping.
     """
 
-    amplitude_m: float = 0.0
-    speed_mps: float = 0.0
-    phase_deg: float = 0.0
-
-    def __post_init__(self) -> None:
-        if not (_finite(self.amplitude_m, self.speed_mps, self.phase_deg) and self.amplitude_m >= 0):
-            raise ValueError("drift values must be finite and amplitude_m >= 0")
-        if self.speed_mps < 0:
-            raise ValueError(f"speed_mps must be >= 0, got {self.speed_mps}")
+    amplitude_m: NonNegative = 0.0
+    speed_mps: NonNegative = 0.0
+    phase_deg: Finite = 0.0
 
     def offsets(self, n_frames: int, frame_interval_s: float) -> np.ndarray:
         """The drift's across-track offset at pings ``0 .. n_frames - 1``, m."""
@@ -357,13 +333,7 @@ class Drift:
         return self.amplitude_m * np.sin(self.speed_mps * t / self.amplitude_m + math.radians(self.phase_deg))
 
 
-def _check_diameter(diameter_m: float) -> None:
-    """ValueError unless a pipe diameter is between 5 cm and 5 m."""
-    if not (math.isfinite(diameter_m) and 0.05 <= diameter_m <= 5):
-        raise ValueError(f"diameter_m must be in [0.05, 5], got {diameter_m}")
-
-
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class PipeSpec:
     """The tracked pipe.
 
@@ -389,20 +359,15 @@ class PipeSpec:
         default): the pipe rests on the seabed in every ping.
     """
 
-    diameter_m: float = 0.5
+    diameter_m: Diameter = 0.5
     across_m: Signal = Signal()
     burial: Signal = Signal()
     trench: TrenchSpec = TrenchSpec()
-    bend_radius_m: float = 0.0
+    bend_radius_m: NonNegative = 0.0
     drift: Drift = Drift()
 
-    def __post_init__(self) -> None:
-        _check_diameter(self.diameter_m)
-        if not (math.isfinite(self.bend_radius_m) and self.bend_radius_m >= 0):
-            raise ValueError(f"bend_radius_m must be finite and >= 0, got {self.bend_radius_m}")
 
-
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class SecondPipeSpec:
     """A second pipe near the first, never the one the truth follows.
 
@@ -416,16 +381,13 @@ class SecondPipeSpec:
     trench : TrenchSpec
     """
 
-    diameter_m: float = 0.5
+    diameter_m: Diameter = 0.5
     offset_m: Signal = Signal(mean=5.0)
     burial: Signal = Signal()
     trench: TrenchSpec = TrenchSpec()
 
-    def __post_init__(self) -> None:
-        _check_diameter(self.diameter_m)
 
-
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class SonarSceneSpec(TableSpec):
     """Everything that defines one simulated sonar sequence (seeds/003, section 4).
 
@@ -449,24 +411,16 @@ class SonarSceneSpec(TableSpec):
     second_pipe : SecondPipeSpec or None
     """
 
-    name: str
-    n_frames: int
-    seed: int = 0
-    description: str = ""
-    frame_interval_s: float = 0.25
+    name: Name
+    n_frames: Annotated[Integer, Ge(1)]
+    seed: Integer = 0
+    description: Text = ""
+    frame_interval_s: Positive = 0.25
     sonar: SonarSpec = field(default_factory=SonarSpec)
     vehicle: VehicleSpec = field(default_factory=VehicleSpec)
     seabed: SeabedSpec = field(default_factory=SeabedSpec)
     pipe: PipeSpec = field(default_factory=PipeSpec)
     second_pipe: SecondPipeSpec | None = None
-
-    def __post_init__(self) -> None:
-        if not self.name:
-            raise ValueError("name must not be empty")
-        if self.n_frames < 1:
-            raise ValueError(f"n_frames must be >= 1, got {self.n_frames}")
-        if not (math.isfinite(self.frame_interval_s) and self.frame_interval_s > 0):
-            raise ValueError(f"frame_interval_s must be > 0, got {self.frame_interval_s}")
 
     @property
     def ping_spacing_m(self) -> float:

@@ -12,23 +12,30 @@ see: sky, a distant shoreline, the sea, and TG's hull, cabin and marker.
 Like the other specs it is built from plain data by
 :meth:`StereoImageSceneSpec.from_dict`, with the ``render`` table nested
 next to ``camera``, ``sensors``, ``target`` and ``chase``; an unknown key or
-a bad value is a :class:`benchmark.errors.DataError` naming where it was
-found.  Lengths are in m, angles in degrees clockwise from north, colours
+a bad value is a :class:`benchmark.errors.DataError` naming the file, the
+key and the rule.  Lengths are in m, angles in degrees clockwise from north, colours
 ``(blue, green, red)`` in grey levels 0-255.
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field
+from dataclasses import field
+from typing import Annotated
+
+import pydantic
+from annotated_types import Ge, Gt, Interval
 
 from benchmark.modalities.stereo.scenes.spec import StereoSceneSpec
+from benchmark.scenes.spec import SPEC_CONFIG, Integer, NonNegative, Number, Positive
 
-Colour = tuple[float, float, float]
+Level = Annotated[Number, Interval(ge=0, le=255)]
+"""A grey level, 0-255."""
+
+Colour = tuple[Level, Level, Level]
 """A BGR colour, grey levels 0-255."""
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class StereoRenderSpec:
     """How the scene in front of CH's stereo camera looks.
 
@@ -77,60 +84,35 @@ class StereoRenderSpec:
         Standard deviation of the optics' Gaussian blur, px (0: none).
     """
 
-    height_px: int = 240
-    camera_height_m: float = 1.0
-    hull_length_m: float = 4.0
-    hull_beam_m: float = 1.8
-    freeboard_m: float = 0.8
-    cabin_height_m: float = 0.55
-    marker_radius_m: float = 0.3
-    marker_height_m: float = 0.6
+    height_px: Annotated[Integer, Ge(8)] = 240
+    camera_height_m: Positive = 1.0
+    hull_length_m: Positive = 4.0
+    hull_beam_m: Positive = 1.8
+    freeboard_m: Positive = 0.8
+    cabin_height_m: Positive = 0.55
+    marker_radius_m: Positive = 0.3
+    marker_height_m: Positive = 0.6
     marker_bgr: Colour = (20.0, 200.0, 235.0)
     sky_zenith_bgr: Colour = (185.0, 120.0, 70.0)
     sky_horizon_bgr: Colour = (225.0, 212.0, 200.0)
     sea_bgr: Colour = (95.0, 75.0, 40.0)
-    wave_contrast: float = 0.35
-    wave_length_m: float = 1.2
-    wave_drift_mps: float = 0.8
-    glint: float = 0.8
-    sun_azimuth_deg: float = 120.0
-    sun_elevation_deg: float = 35.0
-    shore_distance_m: float = 2000.0
-    shore_height_m: float = 200.0
-    noise_grey: float = 2.0
-    blur_px: float = 0.5
+    wave_contrast: NonNegative = 0.35
+    wave_length_m: Positive = 1.2
+    wave_drift_mps: NonNegative = 0.8
+    glint: NonNegative = 0.8
+    sun_azimuth_deg: Number = 120.0
+    sun_elevation_deg: Annotated[Number, Interval(gt=0, lt=90)] = 35.0
+    shore_distance_m: Annotated[Number, Gt(100)] = 2000.0
+    shore_height_m: Positive = 200.0
+    noise_grey: NonNegative = 2.0
+    blur_px: NonNegative = 0.5
 
     def __post_init__(self) -> None:
-        if self.height_px < 8:
-            raise ValueError(f"height_px must be >= 8, got {self.height_px}")
-        sizes = (
-            self.camera_height_m,
-            self.hull_length_m,
-            self.hull_beam_m,
-            self.freeboard_m,
-            self.cabin_height_m,
-            self.marker_radius_m,
-            self.marker_height_m,
-            self.wave_length_m,
-            self.shore_height_m,
-        )
-        if not all(math.isfinite(v) and v > 0 for v in sizes):
-            raise ValueError("camera height, boat and marker sizes, wave length and shore height must be > 0")
-        if not self.shore_distance_m > 100.0:
-            raise ValueError(f"shore_distance_m must exceed 100 m, got {self.shore_distance_m}")
         if not 2.0 * self.marker_radius_m < min(self.hull_beam_m, self.hull_length_m):
             raise ValueError("the marker must fit on the cabin: 2 marker_radius_m < hull beam and length")
-        if not 0.0 < self.sun_elevation_deg < 90.0:
-            raise ValueError(f"sun_elevation_deg must lie in (0, 90), got {self.sun_elevation_deg}")
-        levels = (self.wave_contrast, self.wave_drift_mps, self.glint, self.noise_grey, self.blur_px)
-        if not all(math.isfinite(v) and v >= 0 for v in levels):
-            raise ValueError("wave_contrast, wave_drift_mps, glint, noise_grey and blur_px must be >= 0")
-        for colour in (self.marker_bgr, self.sky_zenith_bgr, self.sky_horizon_bgr, self.sea_bgr):
-            if not all(0.0 <= c <= 255.0 for c in colour):
-                raise ValueError(f"colours are BGR grey levels in [0, 255], got {colour}")
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class StereoImageSceneSpec(StereoSceneSpec):
     """A simulated stereo sequence rendered as image pairs (seeds/002, section 4.1).
 

@@ -7,8 +7,9 @@ constant-speed legs (seeds/002, Fig. 6(b)).  The sequence is a pure
 function of a :class:`StereoSceneSpec`, seed included.  Like the camera
 specs (:mod:`benchmark.scenes.spec`), it is a tree of frozen dataclasses
 built from a plain mapping by :meth:`StereoSceneSpec.from_dict`, so suites
-are TOML files; an unknown key or a bad value is a
-:class:`benchmark.errors.DataError` naming where it was found.
+are TOML files; its fields declare their ranges, and an unknown key or a
+bad value is a :class:`benchmark.errors.DataError` naming the file, the key
+and the rule.
 
 The tree:
 
@@ -28,20 +29,39 @@ degrees here and clockwise from north; times are in s.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+import typing
+from dataclasses import field
+from typing import Annotated, Literal
+
+import pydantic
+from annotated_types import Ge, Gt, Interval
 
 from benchmark.modalities.stereo.model import StereoCalibration
-from benchmark.scenes.spec import TableSpec
+from benchmark.scenes.spec import (
+    SPEC_CONFIG,
+    Finite,
+    Integer,
+    Name,
+    NonNegative,
+    Number,
+    TableSpec,
+    Text,
+    strictly_increasing,
+)
 
-SPEED_CLASSES = ("slow", "medium", "fast", "custom")
+SpeedClass = Literal["slow", "medium", "fast", "custom"]
 """Speed classes of seeds/002, section 3.5 (TG top speed 3.6, 7 and 9 m/s), and one for anything else."""
 
-CASES = (0, 1, 2, 3)
+SPEED_CLASSES = typing.get_args(SpeedClass)
+
+Case = Literal[0, 1, 2, 3]
 """The trajectory cases of seeds/002, section 3.2 (1: both straight; 2: CH straight, TG sinusoidal;
 3: both sinusoidal), and 0 for a sequence that is none of them."""
 
+CASES = typing.get_args(Case)
 
-@dataclass(frozen=True)
+
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class PathSpec:
     """A boat's path: a line, or a sinusoid about it (seeds/002, Fig. 8).
 
@@ -74,20 +94,13 @@ class PathSpec:
         and then a jump of the turn rate).
     """
 
-    origin_m: tuple[float, float] = (0.0, 0.0)
-    course_deg: float = 0.0
-    amplitude_m: float = 0.0
-    wavelength_m: float = 100.0
-    phase_deg: float = 0.0
-    onset_m: float = 0.0
-    ramp_m: float = 0.0
-
-    def __post_init__(self) -> None:
-        values = (*self.origin_m, self.course_deg, self.amplitude_m, self.wavelength_m, self.phase_deg)
-        if not all(math.isfinite(v) for v in (*values, self.onset_m, self.ramp_m)):
-            raise ValueError("path values must be finite")
-        if not self.wavelength_m > 0 or self.ramp_m < 0 or self.amplitude_m < 0:
-            raise ValueError("need wavelength_m > 0, amplitude_m >= 0 and ramp_m >= 0")
+    origin_m: tuple[Finite, Finite] = (0.0, 0.0)
+    course_deg: Finite = 0.0
+    amplitude_m: NonNegative = 0.0
+    wavelength_m: Annotated[Finite, Gt(0)] = 100.0
+    phase_deg: Finite = 0.0
+    onset_m: Finite = 0.0
+    ramp_m: NonNegative = 0.0
 
     @property
     def straight(self) -> bool:
@@ -95,11 +108,27 @@ class PathSpec:
         return self.amplitude_m == 0.0
 
 
-SpeedKnots = tuple[tuple[float, float], ...]
-"""Points ``(time in s, speed in m/s)`` of a speed profile; linear between, constant after the last."""
 
 
-@dataclass(frozen=True)
+def _starts_at_time_zero(knots: tuple[tuple[float, float], ...]) -> tuple[tuple[float, float], ...]:
+    """``knots`` unchanged when the first is at time 0, else ``ValueError``."""
+    if not knots or knots[0][0] != 0.0:
+        raise ValueError(f"must start at time 0, got {list(knots)}")
+    return knots
+
+
+SpeedKnots = Annotated[
+    tuple[tuple[Finite, NonNegative], ...],
+    pydantic.AfterValidator(_starts_at_time_zero),
+    pydantic.AfterValidator(strictly_increasing),
+]
+"""Points ``(time in s, speed in m/s)`` of a speed profile; linear between, constant after the last.
+
+The first is at time 0, times increase strictly, speeds are ``>= 0``.
+"""
+
+
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class BoatSpec:
     """One boat: its path, where on it it starts, and its speed profile.
 
@@ -117,20 +146,8 @@ class BoatSpec:
     """
 
     path: PathSpec = PathSpec()
-    start_m: float = 0.0
+    start_m: NonNegative = 0.0
     speed_knots: SpeedKnots = ((0.0, 2.0),)
-
-    def __post_init__(self) -> None:
-        if not (math.isfinite(self.start_m) and self.start_m >= 0):
-            raise ValueError(f"start_m must be finite and >= 0, got {self.start_m}")
-        knots = self.speed_knots
-        if not knots or knots[0][0] != 0.0:
-            raise ValueError(f"speed_knots must start at time 0, got {knots}")
-        if not all(math.isfinite(t) and math.isfinite(v) and v >= 0 for t, v in knots):
-            raise ValueError(f"speed_knots need finite times and finite speeds >= 0, got {knots}")
-        times = [t for t, _ in knots]
-        if any(b <= a for a, b in zip(times, times[1:])):
-            raise ValueError(f"speed_knots times must increase strictly, got {times}")
 
     @property
     def top_speed_mps(self) -> float:
@@ -138,7 +155,7 @@ class BoatSpec:
         return max(v for _, v in self.speed_knots)
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class StereoCameraSpec:
     """The stereo camera of seeds/002, Tables 3 and 4.
 
@@ -163,19 +180,13 @@ class StereoCameraSpec:
         variance ``Q_f = m^2 / 2`` (eq. 19).
     """
 
-    focal_px: float = 140.8
-    baseline_m: float = 0.12
-    width_px: int = 320
-    principal_left_px: float | None = None
-    principal_right_px: float | None = None
-    range_limit_m: float = 16.0
-    correlation_accuracy_px: float = 0.11
-
-    def __post_init__(self) -> None:
-        if not (self.focal_px > 0 and self.baseline_m > 0 and self.width_px >= 8 and self.range_limit_m > 0):
-            raise ValueError("need focal_px > 0, baseline_m > 0, width_px >= 8 and range_limit_m > 0")
-        if not self.correlation_accuracy_px >= 0:
-            raise ValueError(f"correlation_accuracy_px must be >= 0, got {self.correlation_accuracy_px}")
+    focal_px: Annotated[Number, Gt(0)] = 140.8
+    baseline_m: Annotated[Number, Gt(0)] = 0.12
+    width_px: Annotated[Integer, Ge(8)] = 320
+    principal_left_px: Number | None = None
+    principal_right_px: Number | None = None
+    range_limit_m: Annotated[Number, Gt(0)] = 16.0
+    correlation_accuracy_px: Annotated[Number, Ge(0)] = 0.11
 
     def calibration(self) -> StereoCalibration:
         """The camera as a :class:`benchmark.modalities.stereo.model.StereoCalibration`."""
@@ -198,7 +209,7 @@ class StereoCameraSpec:
         return self.correlation_accuracy_px / math.sqrt(2.0)
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class StereoSensorSpec:
     """CH's navigation sensors and the stereo front end's failures.
 
@@ -221,23 +232,15 @@ class StereoSensorSpec:
         Mean length ``>= 1`` of a run of such misses.
     """
 
-    gps_sigma_m: float = 0.3
-    gps_correlation_s: float = 0.0
-    heading_sigma_deg: float = 0.5
-    min_disparity_px: float = 0.3
-    dropout_rate: float = 0.02
-    dropout_burst_frames: float = 3.0
-
-    def __post_init__(self) -> None:
-        if min(self.gps_sigma_m, self.gps_correlation_s, self.heading_sigma_deg) < 0:
-            raise ValueError("gps_sigma_m, gps_correlation_s and heading_sigma_deg must be >= 0")
-        if not (0 <= self.dropout_rate < 1 and self.dropout_burst_frames >= 1):
-            raise ValueError("need 0 <= dropout_rate < 1 and dropout_burst_frames >= 1")
-        if not self.min_disparity_px >= 0:
-            raise ValueError(f"min_disparity_px must be >= 0, got {self.min_disparity_px}")
+    gps_sigma_m: Annotated[Number, Ge(0)] = 0.3
+    gps_correlation_s: Annotated[Number, Ge(0)] = 0.0
+    heading_sigma_deg: Annotated[Number, Ge(0)] = 0.5
+    min_disparity_px: Annotated[Number, Ge(0)] = 0.3
+    dropout_rate: Annotated[Number, Interval(ge=0, lt=1)] = 0.02
+    dropout_burst_frames: Annotated[Number, Ge(1)] = 3.0
 
 
-@dataclass(frozen=True)
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class StereoSceneSpec(TableSpec):
     """Everything that defines one simulated stereo sequence (seeds/002, section 3).
 
@@ -265,29 +268,17 @@ class StereoSceneSpec(TableSpec):
         CH; its camera's optical axis points along its heading.
     """
 
-    name: str
-    n_frames: int
-    seed: int = 0
-    description: str = ""
-    case: int = 0
-    speed: str = "custom"
-    frame_interval_s: float = 0.2
+    name: Name
+    n_frames: Annotated[Integer, Ge(1)]
+    seed: Integer = 0
+    description: Text = ""
+    case: Case = 0
+    speed: SpeedClass = "custom"
+    frame_interval_s: Annotated[Number, Gt(0)] = 0.2
     camera: StereoCameraSpec = field(default_factory=StereoCameraSpec)
     sensors: StereoSensorSpec = field(default_factory=StereoSensorSpec)
     target: BoatSpec = BoatSpec(start_m=8.0)
     chase: BoatSpec = BoatSpec()
-
-    def __post_init__(self) -> None:
-        if not self.name:
-            raise ValueError("name must not be empty")
-        if self.n_frames < 1:
-            raise ValueError(f"n_frames must be >= 1, got {self.n_frames}")
-        if not self.frame_interval_s > 0:
-            raise ValueError(f"frame_interval_s must be > 0, got {self.frame_interval_s}")
-        if self.case not in CASES:
-            raise ValueError(f"case must be one of {CASES}, got {self.case}")
-        if self.speed not in SPEED_CLASSES:
-            raise ValueError(f"speed must be one of {SPEED_CLASSES}, got {self.speed!r}")
 
     @property
     def duration_s(self) -> float:

@@ -14,6 +14,7 @@ from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState, CameraP
 from benchmark.modalities.camera.scoring import CameraScorer
 from benchmark.modality import EstimateError
 from benchmark.model import Outcome, SequenceInfo
+from benchmark.metrics import CORE
 from benchmark.results import FrameScore, frame_table, summarise
 
 INFO = SequenceInfo("test/seq", "camera", 3, frame_size=(320, 240))
@@ -81,7 +82,7 @@ def summary_of(scored: list[tuple[Outcome, tuple[float, ...]]]) -> dict[str, flo
         FrameScore(i, outcome, dict(zip(scorer.error_columns, errors)), 0.01)
         for i, (outcome, errors) in enumerate(scored)
     ]
-    return summarise(frame_table(frames), scorer.error_columns)
+    return summarise(frame_table(frames), CORE.for_board(None, scorer.error_columns))
 
 
 @pytest.mark.parametrize("value", [1e308, 1e200, -1e308])

@@ -13,6 +13,7 @@ from benchmark.modalities.sonar.model import PipeEstimate, SonarTruth
 from benchmark.modalities.sonar.scoring import SonarScorer
 from benchmark.modality import EstimateError
 from benchmark.model import Outcome, SequenceInfo
+from benchmark.metrics import CORE
 from benchmark.results import FrameScore, frame_table, summarise
 
 SONAR_INFO = SequenceInfo("sonar/as-laid", "sonar", 1)
@@ -45,7 +46,8 @@ def test_sonar_scorer_misses_unscored_and_garbage():
     with pytest.raises(EstimateError):
         sonar.check(PipeEstimate(math.nan))
     sonar.check(PipeEstimate(1.0))
-    summary = summarise(frame_table([FrameScore(0, Outcome.CORRECT, {"err_across_m": 0.3}, 0.01)]), sonar.error_columns)
+    frames = frame_table([FrameScore(0, Outcome.CORRECT, {"err_across_m": 0.3}, 0.01)])
+    summary = summarise(frames, CORE.for_board(None, sonar.error_columns))
     assert summary["rmse_across_m"] == pytest.approx(0.3)
 
 
@@ -56,7 +58,7 @@ def test_the_sonar_modality_scores_with_this_scorer():
 
 def sonar_summary(scored):
     frames = [FrameScore(i, outcome, {"err_across_m": error}, 0.01) for i, (outcome, (error,)) in enumerate(scored)]
-    return summarise(frame_table(frames), ("err_across_m",))
+    return summarise(frame_table(frames), CORE.for_board(None, ("err_across_m",)))
 
 
 @pytest.mark.parametrize("value", [1e308, 1e200, -1e308])

@@ -13,6 +13,7 @@ from benchmark.modalities.stereo.model import StereoTruth, TargetEstimate
 from benchmark.modalities.stereo.scoring import StereoScorer
 from benchmark.modality import EstimateError
 from benchmark.model import Outcome, SequenceInfo
+from benchmark.metrics import CORE
 from benchmark.results import FrameScore, frame_table, summarise
 
 INFO = SequenceInfo("stereo/case1-slow", "stereo", 1)
@@ -55,7 +56,7 @@ def test_the_stereo_modality_scores_with_this_scorer():
 def stereo_summary(scored):
     columns = StereoScorer().error_columns
     frames = [FrameScore(i, outcome, dict(zip(columns, errors)), 0.01) for i, (outcome, errors) in enumerate(scored)]
-    return summarise(frame_table(frames), columns)
+    return summarise(frame_table(frames), CORE.for_board(None, columns))
 
 
 def with_component(index, value):

@@ -42,19 +42,19 @@ def test_overgrowth_and_density_profiles_from_plain_data(flat_scene) -> None:
 @pytest.mark.parametrize(
     ("change", "message"),
     [
-        ({"seabed": {"ripples": [{"amplitud": 0.3}]}}, r"here\.seabed\.ripples\[0\]: unknown key\(s\) 'amplitud'"),
-        ({"n_frames": "ten"}, r"here\.n_frames: expected an integer"),
-        ({"focal_px": True}, r"here\.focal_px: expected a number"),
-        ({"frame_size": [320]}, r"here\.frame_size: expected 2 values"),
-        ({"n_frames": 0}, r"here: n_frames must be >= 1"),
-        ({"motion": {"phi_deg": {"waves": [{"amplitude": 1.0, "period_frames": 0.0}]}}}, r"period_frames must be > 0"),
-        ({"burial": [{"z_m": [1.0, "inf"]}]}, r"here\.burial\[0\]\.z_m\[1\]: expected a number"),
-        ({"motion": {"cx_m": 0.1}}, r"here\.motion\.cx_m: expected a table for Signal"),
-        ({"overgrowth": [{"density": [[2.0, 1.0], [1.0, 0.5]]}]}, r"here\.overgrowth\[0\]: .*increase strictly"),
-        ({"overgrowth": [{"density": [[1.0, -0.5]]}]}, r"here\.overgrowth\[0\]: .*factors >= 0"),
-        ({"overgrowth": [{"density": [[1.0]]}]}, r"here\.overgrowth\[0\]\.density\[0\]: expected 2 values"),
-        ({"overgrowth": [{"mat_cover": 1.0}]}, r"here\.overgrowth\[0\]: need 0 <= mat_cover < 1"),
-        ({"seabed": {"clutter": [{"density": [[0.0, "a"]]}]}}, r"here\.seabed\.clutter\[0\]\.density\[0\]\[1\]"),
+        ({"seabed": {"ripples": [{"amplitud": 0.3}]}}, r"here: seabed\.ripples\[0\]: unknown key 'amplitud' \(known: amplitude, wavelength_m, "),
+        ({"n_frames": "ten"}, r"here: n_frames: expected an integer, got 'ten'"),
+        ({"focal_px": True}, r"here: focal_px: expected a number, got True"),
+        ({"frame_size": [320]}, r"here: frame_size: expected 2 values, got 1"),
+        ({"n_frames": 0}, r"here: n_frames: must be >= 1, got 0"),
+        ({"motion": {"phi_deg": {"waves": [{"amplitude": 1.0, "period_frames": 0.0}]}}}, r"here: motion\.phi_deg\.waves\[0\]\.period_frames: must be > 0, got 0\.0"),
+        ({"burial": [{"z_m": [1.0, "inf"]}]}, r"here: burial\[0\]\.z_m\[1\]: expected a number, got 'inf'"),
+        ({"motion": {"cx_m": 0.1}}, r"here: motion\.cx_m: expected a table for Signal, got 0\.1"),
+        ({"overgrowth": [{"density": [[2.0, 1.0], [1.0, 0.5]]}]}, r"here: overgrowth\[0\]\.density: .*increase strictly, got \[2\.0, 1\.0\]"),
+        ({"overgrowth": [{"density": [[1.0, -0.5]]}]}, r"here: overgrowth\[0\]\.density\[0\]\[1\]: must be >= 0, got -0\.5"),
+        ({"overgrowth": [{"density": [[1.0]]}]}, r"here: overgrowth\[0\]\.density\[0\]: expected 2 values, got 1"),
+        ({"overgrowth": [{"mat_cover": 1.0}]}, r"here: overgrowth\[0\]\.mat_cover: must be < 1, got 1\.0"),
+        ({"seabed": {"clutter": [{"density": [[0.0, "a"]]}]}}, r"here: seabed\.clutter\[0\]\.density\[0\]\[1\]: expected a number, got 'a'"),
     ],
 )
 def test_bad_data_names_where_it_is(flat_scene, change, message) -> None:
@@ -63,5 +63,5 @@ def test_bad_data_names_where_it_is(flat_scene, change, message) -> None:
 
 
 def test_missing_required_key_is_a_data_error() -> None:
-    with pytest.raises(DataError, match="there"):
+    with pytest.raises(DataError, match=r"^there: missing required key 'n_frames'$"):
         CameraSceneSpec.from_dict({"name": "camera/x"}, source="there")

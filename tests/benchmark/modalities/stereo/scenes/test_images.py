@@ -46,7 +46,7 @@ def test_spec_takes_a_render_table_and_names_bad_keys() -> None:
     spec = StereoImageSceneSpec.from_dict({**SPEC, "render": {"height_px": 120, "marker_radius_m": 0.4}})
     assert spec.frame_size == (320, 120)
     assert spec.render.marker_radius_m == 0.4
-    with pytest.raises(DataError, match=r"here\.render: unknown key\(s\) 'colour'"):
+    with pytest.raises(DataError, match=r"here: render: unknown key 'colour' \(known: height_px, "):
         StereoImageSceneSpec.from_dict({**SPEC, "render": {"colour": 1}}, "here")
     with pytest.raises(DataError, match="marker must fit"):
         StereoImageSceneSpec.from_dict({**SPEC, "render": {"marker_radius_m": 1.0}})

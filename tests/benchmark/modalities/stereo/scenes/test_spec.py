@@ -65,17 +65,17 @@ def _with(path: tuple[str, ...], value) -> dict:
 @pytest.mark.parametrize(
     ("path", "value", "message"),
     [
-        (("target", "path", "amplitude"), 1.0, r"here\.target\.path: unknown key\(s\) 'amplitude'"),
-        (("target", "speed_knots"), [[1, 3.0]], r"here\.target: speed_knots must start at time 0"),
-        (("target", "speed_knots"), [[0, 3.0], [5, 4.0], [5, 6.0]], r"here\.target: .*increase strictly"),
-        (("target", "speed_knots"), [[0, -1.0]], r"here\.target: .*speeds >= 0"),
-        (("target", "speed_knots"), [[0, 1.0, 2.0]], r"here\.target\.speed_knots\[0\]: expected 2 values"),
-        (("target", "path", "wavelength_m"), 0.0, r"here\.target\.path: need wavelength_m > 0"),
-        (("speed",), "warp", r"here: speed must be one of"),
-        (("case",), 4, r"here: case must be one of"),
-        (("sensors",), {"dropout_rate": 1.0}, r"here\.sensors: need 0 <= dropout_rate < 1"),
-        (("camera",), {"focal_px": "f"}, r"here\.camera\.focal_px: expected a number"),
-        (("n_frames",), 0, r"here: n_frames must be >= 1"),
+        (("target", "path", "amplitude"), 1.0, r"here: target\.path: unknown key 'amplitude' \(known: origin_m, course_deg, amplitude_m, "),
+        (("target", "speed_knots"), [[1, 3.0]], r"here: target\.speed_knots: must start at time 0, got \[\(1\.0, 3\.0\)\]"),
+        (("target", "speed_knots"), [[0, 3.0], [5, 4.0], [5, 6.0]], r"here: target\.speed_knots: .*increase strictly, got \[0\.0, 5\.0, 5\.0\]"),
+        (("target", "speed_knots"), [[0, -1.0]], r"here: target\.speed_knots\[0\]\[1\]: must be >= 0, got -1\.0"),
+        (("target", "speed_knots"), [[0, 1.0, 2.0]], r"here: target\.speed_knots\[0\]: expected at most 2 values, got 3"),
+        (("target", "path", "wavelength_m"), 0.0, r"here: target\.path\.wavelength_m: must be > 0, got 0\.0"),
+        (("speed",), "warp", r"here: speed: must be 'slow', 'medium', 'fast' or 'custom', got 'warp'"),
+        (("case",), 4, r"here: case: must be 0, 1, 2 or 3, got 4"),
+        (("sensors",), {"dropout_rate": 1.0}, r"here: sensors\.dropout_rate: must be < 1, got 1\.0"),
+        (("camera",), {"focal_px": "f"}, r"here: camera\.focal_px: expected a number, got 'f'"),
+        (("n_frames",), 0, r"here: n_frames: must be >= 1, got 0"),
     ],
 )
 def test_bad_data_names_where_it_is(path, value, message) -> None:
@@ -84,6 +84,6 @@ def test_bad_data_names_where_it_is(path, value, message) -> None:
 
 
 def test_missing_required_key_is_a_data_error() -> None:
-    with pytest.raises(DataError, match="there"):
+    with pytest.raises(DataError, match=r"^there: missing required key 'n_frames'$"):
         StereoSceneSpec.from_dict({"name": "stereo/x"}, source="there")
 

@@ -1,0 +1,182 @@
+"""Options and defaults that several commands share: the cells a run selects, folders, the regression thresholds."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import click
+
+from benchmark.executors import executor_names
+from benchmark.frame_cache import CACHE_ENV
+from benchmark.runner import DEFAULT_TIMEOUT_S
+
+if TYPE_CHECKING:
+    from benchmark.history.regressions import Thresholds
+
+DEFAULT_OUT = Path("reports") / "latest"
+DEFAULT_HISTORY = Path("reports") / "history.sqlite"
+DEFAULT_SITE = Path("reports") / "site"
+
+
+class Seconds(click.FloatRange):
+    """A positive, finite number of seconds (``nan`` and ``inf`` would lift a time limit)."""
+
+    name = "seconds"
+
+    def __init__(self) -> None:
+        super().__init__(min=0.0, min_open=True)
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> float:
+        seconds = super().convert(value, param, ctx)
+        if not math.isfinite(seconds):
+            self.fail(f"{value!r} is not a finite number of seconds.", param, ctx)
+        return seconds
+
+
+cache_option = click.option(
+    "--cache",
+    type=click.Path(file_okay=False, path_type=Path),
+    envvar=CACHE_ENV,
+    default=None,
+    help=f"Folder of the frame cache (default: ${CACHE_ENV}, else the platform's user cache folder).",
+)
+
+_RUN_OPTIONS = [
+    click.option(
+        "--suite", "suites", multiple=True, metavar="SUITE", help="Run every sequence of a suite (repeatable)."
+    ),
+    click.option(
+        "--tracker", "trackers", multiple=True, metavar="NAME", help="Run this tracker (repeatable; default all)."
+    ),
+    click.option(
+        "--dataset",
+        "datasets",
+        multiple=True,
+        metavar="NAME|PATH",
+        help="A registered sequence (suite/name) or a sequence file, image folder or video (repeatable).",
+    ),
+    click.option("--seeds", type=click.IntRange(min=1), default=1, show_default=True, help="Run seeds 0..N-1."),
+    click.option(
+        "--jobs",
+        type=click.IntRange(min=0),
+        default=None,
+        help="Worker processes (default: all cores; 0 or 1: one worker, one cell at a time).",
+    ),
+    click.option(
+        "--in-process",
+        is_flag=True,
+        help="Run cells in this process, for debuggers and profilers: no time limit inside a step, "
+        "and a tracker that exits or crashes ends the run.",
+    ),
+    click.option(
+        "--init",
+        type=click.Choice(["truth", "none"]),
+        default="truth",
+        show_default=True,
+        help="Initialise trackers from the first frame's ground truth, or not.",
+    ),
+    click.option("--resume", is_flag=True, help="Skip cells this database already finished with status ok."),
+    click.option(
+        "--timeout",
+        type=Seconds(),
+        default=DEFAULT_TIMEOUT_S,
+        show_default=True,
+        metavar="SECONDS",
+        help="Time limit of each cell.",
+    ),
+    click.option("--param", "params", multiple=True, metavar="TRACKER.KEY=VALUE", help="Override a tracker parameter."),
+    click.option(
+        "--train",
+        "train",
+        multiple=True,
+        metavar="SUITE|NAME|PATH",
+        help="Train the trackers that learn on this suite, sequence or sequence file (repeatable), instead of the "
+        "training suite each scored suite names.",
+    ),
+    click.option(
+        "--executor",
+        type=click.Choice(executor_names()),
+        default="local",
+        show_default=True,
+        help="Run the cells in worker processes of this machine, or as tasks of a Dask cluster.",
+    ),
+    click.option(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="The Dask scheduler to send the cells to (tcp://host:8786); without it --executor dask starts a local "
+        "cluster of --jobs workers.",
+    ),
+    cache_option,
+    click.option("--no-cache", is_flag=True, help="Render every simulated sequence in every cell that reads it."),
+]
+"""The options of ``run`` that choose and run the cells, shared by ``nightly``; ``--out`` is each command's own."""
+
+
+def run_options(command: Callable[..., Any]) -> Callable[..., Any]:
+    """Add the options of :data:`_RUN_OPTIONS` to a command, in the order ``--help`` lists them."""
+    for option in reversed(_RUN_OPTIONS):
+        command = option(command)
+    return command
+
+
+OUT_OPTION = click.option(
+    "--out",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=DEFAULT_OUT,
+    show_default=True,
+    help="Folder holding results.sqlite; reports are written there.",
+)
+"""``--out`` of the commands that read a results database and write their reports beside it."""
+
+history_option = click.option(
+    "--history",
+    default=str(DEFAULT_HISTORY),
+    show_default=True,
+    metavar="FILE|URL",
+    help="The history database: an SQLite file or an SQLAlchemy URL (postgresql://...).",
+)
+site_option = click.option(
+    "--site",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=DEFAULT_SITE,
+    show_default=True,
+    help="Folder the static HTML report is written to.",
+)
+
+
+def threshold_options(command: Callable[..., Any]) -> Callable[..., Any]:
+    """Add ``--min-effect METRIC=VALUE`` and ``--window N``, the thresholds of a regression."""
+    command = click.option(
+        "--window",
+        type=click.IntRange(min=1),
+        default=5,
+        show_default=True,
+        help="Compare with this many earlier runs (for speed: on the same machine).",
+    )(command)
+    return click.option(
+        "--min-effect",
+        "min_effects",
+        multiple=True,
+        metavar="METRIC=VALUE",
+        help="Smallest change that counts for a metric: points for a rate (default 2), a share for an RMSE "
+        "or fps (default 0.1) (repeatable).",
+    )(command)
+
+
+def thresholds(min_effects: tuple[str, ...], window: int) -> Thresholds:
+    """The thresholds of a regression that the options of :func:`threshold_options` give."""
+    from benchmark.history.regressions import Thresholds
+
+    overrides = {}
+    for text in min_effects:
+        metric, sep, value = text.partition("=")
+        try:
+            overrides[metric.strip()] = float(value)
+        except ValueError:
+            sep = ""
+        if not sep or not metric.strip():
+            raise click.BadParameter(f"expected METRIC=NUMBER, got {text!r}", param_hint="--min-effect")
+    return Thresholds(window=window, overrides=overrides)
