@@ -32,7 +32,10 @@ class (``SystemExit`` and ``KeyboardInterrupt`` included), whatever invalid
 estimate it returns, and any error reading a frame, turns the cell into a
 result with status ``"error"`` and a message ``"ExceptionType: message
 (frame k)"``; a cell that runs past its time limit gets status
-``"timeout"``.  Frames scored before the failure stay in the result.
+``"timeout"``.  Frames scored before the failure stay in the result.  Each
+phase of a cell (reading its info, creating the tracker, reset, each frame,
+each read) is a :class:`benchmark.faults.Call`, and the first that fails
+is the cell's ending: its message names the phase.
 
 :func:`benchmark.executors.run_cells` runs every cell on an executor,
 by default in a worker process of a local pool: a worker still busy a
@@ -41,7 +44,7 @@ grace period after the limit is killed, and one that exits or crashes
 ``in_process=True`` runs the cells in the calling process instead, for
 debuggers and profilers: there a ``step`` that never returns cannot be
 stopped, and a tracker that ends the process ends the run.  Only the
-user's own Ctrl-C (:class:`UserInterrupt`) stops a run.
+user's own Ctrl-C (:class:`~benchmark.faults.UserInterrupt`) stops a run.
 """
 
 from __future__ import annotations
@@ -52,7 +55,6 @@ import math
 import signal
 import threading
 import time
-import traceback
 import zlib
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
@@ -63,11 +65,13 @@ import numpy as np
 
 from benchmark import shared_modules
 from benchmark.drawing import encode_png
+from benchmark.faults import Call, Stopped, UserInterrupt, safe_text
 from benchmark.identity import DatasetIdentity
 from benchmark.modality import Drawer, EstimateError, Modality
-from benchmark.model import Frame, Outcome, Sequence
+from benchmark.model import Frame, Outcome, Sequence, SequenceInfo
 from benchmark.registry import TrackerEntry
 from benchmark.results import CellKey, CellResult, FrameScore, Picture, Status
+from benchmark.tracker import Tracker
 from benchmark.training import Training
 from benchmark.workers import cell_isolation
 
@@ -146,10 +150,8 @@ class Cell:
 
 def cell_result(cell: Cell, status: Status, message: str = "", **fields: Any) -> CellResult:
     """A result carrying ``cell``'s identity; ``fields`` fill the rest (scores, elapsed_s, detail)."""
-    try:
-        dataset, dataset_key = cell.identity.name, cell.identity.key
-    except Exception:
-        dataset, dataset_key = _safe_text(repr, cell.sequence), ""
+    identity = Call.of(lambda: (cell.identity.name, cell.identity.key), "reading the dataset's identity")
+    dataset, dataset_key = identity.result if identity.ok else (safe_text(repr, cell.sequence), "")
     values: dict[str, Any] = {"scores": (), "elapsed_s": 0.0, **fields}
     return CellResult(
         tracker=cell.tracker.name,
@@ -198,20 +200,6 @@ def seed_global_generators(seed: int, tracker_name: str, dataset: DatasetIdentit
     shared_modules.seed_global_generators(words.generate_state(4))
 
 
-class UserInterrupt(KeyboardInterrupt):
-    """The user's Ctrl-C or a ``SIGTERM``, as told apart from a ``KeyboardInterrupt`` a tracker raises itself.
-
-    Parameters
-    ----------
-    signum : int
-        The signal that stopped the run.
-    """
-
-    def __init__(self, signum: int = signal.SIGINT) -> None:
-        super().__init__(signum)
-        self.signum = signum
-
-
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
 """The signals that stop a run the way the user's Ctrl-C does: what finished is kept and published."""
 
@@ -234,33 +222,10 @@ def sigint_is_user_interrupt() -> Iterator[None]:
             signal.signal(signum, handler)
 
 
-def _safe_text(render: Any, value: Any) -> str:
-    """``render(value)``, or a placeholder when rendering itself raises (a tracker's broken ``__str__``)."""
-    try:
-        return str(render(value))
-    except Exception:
-        return f"<{type(value).__name__} that cannot be shown>"
-
-
-def describe_exception(exc: BaseException) -> str:
-    """``ExceptionType: message`` on one line."""
-    text = " ".join(_safe_text(str, exc).split())
-    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
-
-
-def traceback_text(exc: BaseException) -> str:
-    """The exception's traceback as text, or a placeholder when formatting it raises."""
-    return _safe_text(lambda e: "".join(traceback.format_exception(e)), exc)
-
-
 def _picture(draw: Drawer, frame: Frame, estimate: Any, outcome: Outcome) -> Picture | None:
-    """The frame drawn with ``estimate`` as a PNG, or None when drawing or encoding it fails."""
-    try:
-        return Picture(int(frame.index), str(outcome), encode_png(draw(frame, estimate)))
-    except UserInterrupt:
-        raise
-    except BaseException:  # a picture is never worth a cell
-        return None
+    """The frame drawn with ``estimate`` as a PNG, or None when drawing or encoding it fails: never worth a cell."""
+    drawn = Call.of(lambda: Picture(int(frame.index), str(outcome), encode_png(draw(frame, estimate))), "drawing")
+    return drawn.result
 
 
 def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
@@ -298,82 +263,106 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
         return _run_cell(cell, timeout_s)
 
 
+@dataclass
+class _Progress:
+    """What a cell has done so far, kept however it ends."""
+
+    scores: list[FrameScore] = dataclasses.field(default_factory=list)
+    pictures: list[Picture] = dataclasses.field(default_factory=list)
+    read_s: float = 0.0
+    previous: Outcome | None = None
+
+
 def _run_cell(cell: Cell, timeout_s: float | None) -> CellResult:
     """:func:`run_cell`'s work."""
     started = time.perf_counter()
     deadline = math.inf if timeout_s is None else started + timeout_s
-    scores: list[FrameScore] = []
-    pictures: list[Picture] = []
-    previous: Outcome | None = None
-    read_s = 0.0
-    where = "before frame 0"
-    status: Status = "ok"
-    message = detail = ""
-    try:
-        modality = cell.modality
-        scorer = modality.scorer
-        draw = modality.draw
-        where = "reading the sequence's info"
-        info = cell.sequence.info
-        where = "creating the tracker"
-        seed_global_generators(cell.seed, cell.tracker.name, cell.identity)
-        tracker = cell.tracker.create()
-        if cell.training is not None:
-            where = f"adopting the model trained on {cell.training.name}"
-            tracker.use_model(cell.training.load())  # type: ignore[attr-defined]
-        frames = iter(cell.sequence.frames())
-        where = "reading frame 0"
-        tick = time.perf_counter()
-        first = next(frames, None)
-        read_s += time.perf_counter() - tick
-        if first is None:
-            raise ValueError(f"sequence {info.name!r} has no frames")
-        modality.check_frame(first, f"sequence {info.name!r}, frame {first.index}")
-        where = "reset, frame 0"
-        rng = cell_rng(cell.seed, cell.tracker.name, cell.identity)
-        tracker.reset(info, rng, init=first.truth if cell.init == "truth" else None)
-        frame = first
-        while True:
-            where = f"frame {frame.index}"
-            tick = time.perf_counter()
-            estimate = tracker.step(frame)
-            step_s = time.perf_counter() - tick
-            try:
-                modality.check_estimate(estimate)
-            except EstimateError as exc:
-                raise EstimateError(f"tracker {cell.tracker.name!r} returned an invalid estimate: {exc}") from exc
-            outcome, errors = scorer.score(estimate, frame.truth, info)
-            scores.append(FrameScore(frame.index, outcome, dict(zip(scorer.error_columns, errors)), step_s))
-            if outcome in _FAILURES and outcome != previous and len(pictures) < MAX_PICTURES and draw is not None:
-                picture = _picture(draw, frame, estimate, outcome)
-                if picture is not None:
-                    pictures.append(picture)
-            previous = outcome
-            where = f"reading frame {frame.index + 1}"
-            tick = time.perf_counter()
-            following = next(frames, None)
-            read_s += time.perf_counter() - tick
-            if following is None:
-                break
-            modality.check_frame(following, f"sequence {info.name!r}, frame {following.index}")
-            if time.perf_counter() > deadline:
-                status = "timeout"
-                message = f"exceeded the {timeout_s:g} s limit after {len(scores)} frames (frame {following.index})"
-                break
-            frame = following
-    except UserInterrupt:
-        raise
-    except BaseException as exc:  # whatever a tracker raises, SystemExit included, ends only its cell
-        status = "error"
-        message = f"{describe_exception(exc)} ({where})"
-        detail = traceback_text(exc)
+    progress = _Progress()
+    ended = Call.of(lambda: _play(cell, timeout_s, deadline, progress), "before frame 0")
     return cell_result(
         cell,
-        status,
-        message,
-        scores=tuple(scores),
+        ended.status,
+        ended.message,
+        scores=tuple(progress.scores),
         elapsed_s=time.perf_counter() - started,
-        read_s=read_s,
-        detail=detail,
-        pictures=tuple(pictures),
+        read_s=progress.read_s,
+        detail=ended.detail,
+        pictures=tuple(progress.pictures),
     )
+
+
+def _play(cell: Cell, timeout_s: float | None, deadline: float, progress: _Progress) -> None:
+    """Create the tracker, reset it and step it over the frames, each phase a :class:`~benchmark.faults.Call`.
+
+    Raises
+    ------
+    benchmark.faults.Stopped
+        With the phase that failed, or the time limit that stopped the cell.
+    """
+    modality = cell.modality
+    info = Call.of(lambda: cell.sequence.info, "reading the sequence's info").value()
+    tracker = Call.of(lambda: _fresh_tracker(cell), "creating the tracker").value()
+    training = cell.training
+    if training is not None:
+        adopting = f"adopting the model trained on {training.name}"
+        Call.of(lambda: tracker.use_model(training.load()), adopting).value()  # type: ignore[attr-defined]
+    frames: Iterator[Frame] | None = None
+
+    def read(index: int) -> Frame | None:
+        nonlocal frames
+        if frames is None:
+            frames = iter(cell.sequence.frames())
+        tick = time.perf_counter()
+        frame = next(frames, None)
+        progress.read_s += time.perf_counter() - tick
+        if frame is None and index == 0:
+            raise ValueError(f"sequence {info.name!r} has no frames")
+        if frame is not None:
+            modality.check_frame(frame, f"sequence {info.name!r}, frame {frame.index}")
+        return frame
+
+    def reading(index: int) -> Frame | None:
+        return Call.of(lambda: read(index), f"reading frame {index}", index).value()
+
+    frame = reading(0)
+    assert frame is not None  # read(0) raises instead
+    rng = cell_rng(cell.seed, cell.tracker.name, cell.identity)
+    init = frame.truth if cell.init == "truth" else None
+    Call.of(lambda: tracker.reset(info, rng, init=init), "reset, frame 0", 0).value()
+    while True:
+        Call.of(lambda: _step(cell, tracker, frame, info, progress), f"frame {frame.index}", frame.index).value()
+        following = reading(frame.index + 1)
+        if following is None:
+            return
+        if time.perf_counter() > deadline:
+            note = f"exceeded the {timeout_s:g} s limit after {len(progress.scores)} frames"
+            raise Stopped(Call.timed_out(f"frame {following.index}", note, following.index))
+        frame = following
+
+
+def _fresh_tracker(cell: Cell) -> Tracker:
+    """A new instance of the cell's tracker, the global generators seeded for the cell first."""
+    seed_global_generators(cell.seed, cell.tracker.name, cell.identity)
+    return cell.tracker.create()
+
+
+def _step(cell: Cell, tracker: Tracker, frame: Frame, info: SequenceInfo, progress: _Progress) -> None:
+    """Step ``tracker`` over ``frame``, score its estimate, and draw the frame if it starts a run of failures."""
+    modality = cell.modality
+    tick = time.perf_counter()
+    estimate = tracker.step(frame)
+    step_s = time.perf_counter() - tick
+    try:
+        modality.check_estimate(estimate)
+    except EstimateError as exc:
+        raise EstimateError(f"tracker {cell.tracker.name!r} returned an invalid estimate: {exc}") from exc
+    scorer = modality.scorer
+    outcome, errors = scorer.score(estimate, frame.truth, info)
+    progress.scores.append(FrameScore(frame.index, outcome, dict(zip(scorer.error_columns, errors)), step_s))
+    draw = modality.draw
+    wanted = outcome in _FAILURES and outcome != progress.previous and len(progress.pictures) < MAX_PICTURES
+    if wanted and draw is not None:
+        picture = _picture(draw, frame, estimate, outcome)
+        if picture is not None:
+            progress.pictures.append(picture)
+    progress.previous = outcome

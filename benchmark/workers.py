@@ -34,7 +34,7 @@ process group: a cell that moved the worker to another group of its session
 is moved back; one that started a new session (``os.setsid``), which no
 process can leave, retires the worker: it takes no further cell and exits
 with :data:`RETIRED_STATUS` when handed one, and the executor gives that
-cell to another worker (:func:`benchmark.executors.local.worker_retired`).
+cell to another worker (:func:`benchmark.executors.local.call_of_future` says ``retired``).
 """
 
 from __future__ import annotations

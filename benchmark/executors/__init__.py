@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Protocol
 
 from benchmark.errors import DataError
+from benchmark.faults import Call
 from benchmark.runner import DEFAULT_TIMEOUT_S, sigint_is_user_interrupt
 
 if TYPE_CHECKING:
@@ -122,12 +123,11 @@ def open_executor(name: str = DEFAULT_EXECUTOR, options: ExecutorOptions | None 
     if name not in found:
         raise DataError(f"unknown executor {name!r} (installed: {', '.join(executor_names()) or 'none'})")
     entry = found[name]
-    try:
-        executor_class = entry.load()
-    except Exception as exc:
+    loading = Call.of(entry.load, f"loading executor {name!r}")
+    if not loading.ok:
         where = entry.dist.name if entry.dist is not None else entry.value
-        raise DataError(f"executor {name!r} ({where}) cannot be loaded: {type(exc).__name__}: {exc}") from None
-    return executor_class.open(options or ExecutorOptions())
+        raise DataError(f"executor {name!r} ({where}) cannot be loaded: {loading.summary}")
+    return loading.value().open(options or ExecutorOptions())
 
 
 def run_cells(

@@ -44,9 +44,10 @@ from typing import Any
 
 from benchmark.errors import DataError
 from benchmark.executors import ExecutorOptions
-from benchmark.executors.local import cell_in_pool, value_from_future, worker_pool
+from benchmark.executors.local import cell_from_call, cell_in_pool, value_from_future, worker_pool
+from benchmark.faults import Call
 from benchmark.results import CellResult
-from benchmark.runner import Cell, cell_result, describe_exception, traceback_text
+from benchmark.runner import Cell
 
 CONNECT_TIMEOUT_S = 20.0
 """How long to wait for a scheduler before giving up."""
@@ -100,11 +101,10 @@ def _adopt_model(cell: Cell, model: bytes | None) -> Cell:
 
 def run_cell_on_worker(cell: Cell, timeout_s: float | None, model: bytes | None = None) -> CellResult:
     """The Dask task of a cell: run it in this worker's warm process pool, under its time limit."""
-    try:
-        cell = _adopt_model(cell, model)
-    except Exception as exc:
-        return cell_result(cell, "error", f"{describe_exception(exc)} (storing the fitted model on the worker)")
-    return cell_in_pool(_worker_pool(), cell, timeout_s)
+    adopted = Call.of(lambda: _adopt_model(cell, model), "storing the fitted model on the worker")
+    if not adopted.ok:
+        return cell_from_call(cell, adopted, timeout_s)
+    return cell_in_pool(_worker_pool(), adopted.value(), timeout_s)
 
 
 def call_on_worker(function: Callable[..., Any], args: tuple[Any, ...], timeout_s: float | None) -> Any:
@@ -206,12 +206,8 @@ class DaskExecutor:
                 self._futures[future] = cell
             for future in as_completed(list(self._futures)):
                 cell = self._futures.pop(future)
-                try:
-                    yield future.result()
-                except Exception as exc:
-                    yield cell_result(
-                        cell, "error", f"{describe_exception(exc)} (Dask worker)", detail=traceback_text(exc)
-                    )
+                ended = Call.of(future.result, "Dask worker", reraise=(KeyboardInterrupt,))  # the user's, here
+                yield cell_from_call(cell, ended, timeout_s)
         finally:
             if self._futures:
                 self._client.cancel(list(self._futures))
@@ -222,11 +218,9 @@ class DaskExecutor:
         return self._client.submit(call_on_worker, function, args, timeout_s, pure=False).result()
 
     def running(self) -> list[str]:
-        """Labels of the cells the workers are processing now."""
-        try:
-            processing = {key for keys in self._client.processing().values() for key in keys}
-        except Exception:
-            return []
+        """Labels of the cells the workers are processing now; none while the scheduler does not answer."""
+        asked = Call.of(self._client.processing, "asking the scheduler", reraise=(KeyboardInterrupt,))
+        processing = {key for keys in (asked.value() if asked.ok else {}).values() for key in keys}
         return [cell.label() for future, cell in list(self._futures.items()) if future.key in processing]
 
     def close(self) -> None:

@@ -10,27 +10,29 @@ crashes (``os._exit``, a segmentation fault) costs only its cell: pebble
 starts another in its place.  A worker that an earlier cell left in a
 session of its own refuses its next cell before running any of it
 (:data:`benchmark.workers.RETIRED_STATUS`), and that cell is scheduled
-again on another (:func:`worker_retired`).
+again on another.
 
-:func:`cell_from_future` turns whatever became of a cell's future into its
-result; the Dask executor runs its cells through the same function
-(:func:`cell_in_pool`), so that a cell fails the same way wherever it ran.
+:func:`call_of_future` says how a task of the pool ended (a
+:class:`benchmark.faults.Call`), and :func:`cell_from_call` turns that into
+the cell's result; the Dask executor runs its cells through the same
+functions (:func:`cell_in_pool`), so that a cell fails the same way wherever it ran.
 """
 
 from __future__ import annotations
 
 import concurrent.futures
 import contextlib
+import dataclasses
 import os
-import signal
 import sys
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from benchmark.errors import DataError
 from benchmark.executors import ExecutorOptions
+from benchmark.faults import Call
 from benchmark.results import CellResult
-from benchmark.runner import Cell, cell_result, describe_exception, run_cell, traceback_text
+from benchmark.runner import Cell, cell_result, run_cell
 
 
 def grace_s(timeout_s: float) -> float:
@@ -43,23 +45,40 @@ def hard_limit_s(timeout_s: float | None) -> float | None:
     return None if timeout_s is None else timeout_s + grace_s(timeout_s)
 
 
-def _exit_reason(code: int | None) -> str:
-    if code is not None and code < 0:
-        try:
-            return f"killed by {signal.Signals(-code).name}"
-        except ValueError:
-            return f"killed by signal {-code}"
-    return f"exit status {code}"
+CELL_PHASE = "worker process"
+"""The phase of a cell's fault that its worker's future raised (the cell's own faults name theirs)."""
+
+LOST = {
+    "timeout": " and the frames are lost",
+    "died": " while running the cell; its frames are lost",
+    "retired": " while running the cell; its frames are lost",
+}
+"""What a cell's message adds to a worker's timeout or death: its frames went with the worker."""
 
 
-def worker_retired(future: concurrent.futures.Future) -> bool:
-    """Whether the worker of a finished future refused its cell, untouched, and exited (:mod:`benchmark.workers`)."""
+def call_of_future(future: concurrent.futures.Future, phase: str, limit_s: float | None) -> Call[Any]:
+    """How the task of a finished pebble future ended, as a :class:`~benchmark.faults.Call`.
+
+    ``ok`` with its value; ``timeout`` if the worker was stopped at
+    ``limit_s``; ``retired`` if the worker refused the task untouched
+    (:data:`benchmark.workers.RETIRED_STATUS`); ``died`` if the worker
+    process ended otherwise; ``error`` with whatever else the future raised
+    (the task's own exception, or one returning its value).
+    """
     from pebble import ProcessExpired
 
     from benchmark.workers import RETIRED_STATUS
 
+    fetched = Call.of(future.result, phase, reraise=(KeyboardInterrupt,))  # the user's, here
+    if fetched.ok:
+        return fetched
     error = future.exception()
-    return isinstance(error, ProcessExpired) and error.exitcode == RETIRED_STATUS
+    if isinstance(error, TimeoutError):
+        return Call.timed_out("", f"no result within the {limit_s or 0.0:g} s limit; the worker was stopped")
+    if isinstance(error, ProcessExpired):
+        ending = "retired" if error.exitcode == RETIRED_STATUS else "died"
+        return dataclasses.replace(fetched, ending=ending, exit_code=error.exitcode)
+    return fetched
 
 
 def cell_in_pool(pool: Any, cell: Cell, timeout_s: float | None) -> CellResult:
@@ -67,32 +86,22 @@ def cell_in_pool(pool: Any, cell: Cell, timeout_s: float | None) -> CellResult:
     while True:
         future = pool.schedule(run_cell, args=(cell, timeout_s), timeout=hard_limit_s(timeout_s))
         concurrent.futures.wait([future])
-        if not worker_retired(future):
-            return cell_from_future(cell, future, timeout_s)
+        ended = call_of_future(future, CELL_PHASE, timeout_s)
+        if ended.ending != "retired":
+            return cell_from_call(cell, ended, timeout_s)
 
 
-def cell_from_future(cell: Cell, future: concurrent.futures.Future, timeout_s: float | None) -> CellResult:
-    """The result of ``cell`` from its pebble future: its own result, or a timeout or error row."""
-    from pebble import ProcessExpired
+def cell_from_call(cell: Cell, call: Call[CellResult], timeout_s: float | None) -> CellResult:
+    """The result of ``cell`` from how its task ended: its own result, or a timeout or error row.
 
-    try:
-        return future.result()
-    except TimeoutError:
-        return cell_result(
-            cell,
-            "timeout",
-            f"no result within the {timeout_s:g} s limit; the worker was stopped and the frames are lost",
-            elapsed_s=float(timeout_s or 0.0),
-        )
-    except ProcessExpired as exc:
-        return cell_result(
-            cell,
-            "error",
-            f"the worker process ended ({_exit_reason(exc.exitcode)}) while running the cell; its frames are lost",
-            detail=traceback_text(exc),
-        )
-    except Exception as exc:
-        return cell_result(cell, "error", f"{describe_exception(exc)} (worker process)", detail=traceback_text(exc))
+    A worker's timeout or death loses the cell's frames, and its message
+    says so; any other fault is ``ExceptionType: message (phase)``, with its traceback as the detail.
+    """
+    if call.ok:
+        return call.value()
+    message = call.summary + LOST[call.ending] if call.ending in LOST else call.message
+    elapsed_s = float(timeout_s or 0.0) if call.ending == "timeout" else 0.0
+    return cell_result(cell, call.status, message, elapsed_s=elapsed_s, detail=call.detail)
 
 
 class WorkerDied(RuntimeError):
@@ -108,15 +117,15 @@ def value_from_future(future: concurrent.futures.Future, timeout_s: float | None
         If the worker was stopped at the limit.
     WorkerDied
         If the worker process ended, saying how.
+    Exception
+        Whatever the task raised, as it raised it.
     """
-    from pebble import ProcessExpired
-
-    try:
-        return future.result()
-    except TimeoutError:
-        raise TimeoutError(f"no result within the {timeout_s:g} s limit; the worker was stopped") from None
-    except ProcessExpired as exc:
-        raise WorkerDied(f"the worker process ended ({_exit_reason(exc.exitcode)})") from None
+    call = call_of_future(future, "", timeout_s)
+    if call.ending == "timeout":
+        raise TimeoutError(call.summary)
+    if call.ending in ("died", "retired"):
+        raise WorkerDied(call.summary)
+    return future.result()
 
 
 def worker_pool(workers: int) -> Any:
@@ -200,10 +209,11 @@ class LocalExecutor:
                 done, _ = concurrent.futures.wait(self._futures, return_when=concurrent.futures.FIRST_COMPLETED)
                 for future in done:
                     cell = self._futures.pop(future)
-                    if worker_retired(future):
+                    ended = call_of_future(future, CELL_PHASE, timeout_s)
+                    if ended.ending == "retired":
                         schedule(cell)
                     else:
-                        yield cell_from_future(cell, future, timeout_s)
+                        yield cell_from_call(cell, ended, timeout_s)
         finally:
             self._futures = {}
             pool.stop()

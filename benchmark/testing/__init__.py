@@ -46,9 +46,10 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Literal
 
+from benchmark.faults import Call
 from benchmark.model import Sequence
 from benchmark.registry import Registry, TrackerEntry
-from benchmark.runner import UserInterrupt, describe_exception, sigint_is_user_interrupt
+from benchmark.runner import sigint_is_user_interrupt
 from benchmark.testing.checks import (
     CHECKS,
     DEFAULT_FRAMES,
@@ -151,12 +152,8 @@ def entry_of(entry_or_class: TrackerEntry | type[Tracker]) -> TrackerEntry:
     """The entry itself, or a class's entry with its default parameters (None if they cannot be made)."""
     if isinstance(entry_or_class, TrackerEntry):
         return entry_or_class
-    try:
-        params = entry_or_class.make_params()
-    except UserInterrupt:
-        raise
-    except BaseException:
-        params = None  # reported by the metadata check
+    made = Call.of(entry_or_class.make_params, "making the default parameters")
+    params = made.result  # None when they cannot be made: the metadata check says why
     return TrackerEntry(str(getattr(entry_or_class, "name", entry_or_class.__name__)), entry_or_class, params)
 
 
@@ -239,22 +236,34 @@ def run_check(check: Check, subject: Subject, time_limit_s: float | None = DEFAU
     """
     name = subject.name
     started = time.perf_counter()
-    outcome: Outcome
-    try:
+
+    def checked() -> str:
         with sigint_is_user_interrupt(), time_limit(time_limit_s), global_random_state_kept():
-            detail, outcome, message = check(subject), "passed", ""
-    except NotApplicable as exc:
-        detail, outcome, message = "", "skipped", str(exc)
-    except CheckTimeout as exc:
-        detail, outcome, message = "", "failed", f"tracker {name!r}: the check {exc}: does it hang?"
-    except AssertionError as exc:
-        detail, outcome, message = "", "failed", str(exc)
-    except UserInterrupt:
-        raise
-    except BaseException as exc:
-        detail, outcome, message = "", "failed", f"tracker {name!r}: the check raised {describe_exception(exc)}"
+            return check(subject)
+
+    ended = Call.of(checked, check.name, timeouts=(CheckTimeout,))
+    outcome, message = verdict(ended, name)
+    detail = ended.result if ended.ok else ""
     result = CheckResult(name, check.name, outcome, message, detail, time.perf_counter() - started)
     return expected(result, getattr(subject.entry.tracker_class, "expected_failed_checks", {}))
+
+
+def verdict(ended: Call[str], name: str) -> tuple[Outcome, str]:
+    """The outcome and message of a check of tracker ``name`` that ended so.
+
+    A check passes by returning, skips by raising :class:`NotApplicable`
+    and fails by raising :class:`AssertionError`, with their messages;
+    running out of time, or raising anything else, fails it too.
+    """
+    if ended.ok:
+        return "passed", ""
+    if ended.ending == "timeout" or ended.fault is None:
+        return "failed", f"tracker {name!r}: the check {ended.summary}: does it hang?"
+    if ended.fault.is_a(NotApplicable):
+        return "skipped", ended.fault.message
+    if ended.fault.is_a(AssertionError):
+        return "failed", ended.fault.message
+    return "failed", f"tracker {name!r}: the check raised {ended.summary}"
 
 
 def expected(result: CheckResult, expected_failures: Mapping[str, str]) -> CheckResult:

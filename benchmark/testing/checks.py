@@ -39,16 +39,17 @@ from collections.abc import Sequence as SequenceOf
 from contextlib import contextmanager
 from dataclasses import dataclass
 from itertools import islice
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
 from benchmark import storage
+from benchmark.faults import Call, UserInterrupt
 from benchmark.identity import DatasetIdentity
 from benchmark.modality import Modality
 from benchmark.model import Frame, Sequence, SequenceInfo
 from benchmark.registry import Registry, TrackerEntry
-from benchmark.runner import UserInterrupt, cell_rng, describe_exception
+from benchmark.runner import cell_rng
 from benchmark.testing.beliefs import (
     GaussianBelief,
     GaussianUpdate,
@@ -84,6 +85,12 @@ Anything else a tracker raises, ``SystemExit`` and its own
 ``KeyboardInterrupt`` included, is the failure of the check it happened in,
 as it is of its cell in a run (:func:`benchmark.runner.run_cell`).
 """
+
+
+_TRACKER_CALL: dict[str, Any] = {"reraise": (UserInterrupt,), "timeouts": (CheckTimeout,)}
+"""How :meth:`Subject.run` calls a tracker: a check's time running out is a timeout of the phase it happened in."""
+
+T = TypeVar("T")
 
 
 class NotApplicable(Exception):
@@ -173,17 +180,27 @@ class Subject:
             raise self.fail(f"cannot run: {self.problem or 'no frames'}")
         return self.modalities[self.entry.modality], self.frames
 
+    def attempt(self, function: Callable[[], T], phase: str, *, saying: str = "") -> T:
+        """``function()``'s value; whatever it raises, but what the kit lets through, fails the check.
+
+        The failure names the tracker and says ``saying`` followed by the
+        fault, or, without ``saying``, the fault and ``phase`` in parentheses.
+        """
+        call = Call.of(function, phase, reraise=PASS_THROUGH)
+        if not call.ok:
+            raise self.fail(f"{saying}{call.summary}" if saying else call.message)
+        return call.value()
+
     def create(self) -> Tracker:
         """A fresh instance, with the fitted model adopted if the tracker learns."""
-        try:
+
+        def created() -> Tracker:
             tracker = self.entry.create()
             if self.model is not None:
                 tracker.use_model(self.model)  # type: ignore[attr-defined]
-        except PASS_THROUGH:
-            raise
-        except BaseException as exc:
-            raise self.fail(f"creating an instance raised {describe_exception(exc)}") from exc
-        return tracker
+            return tracker
+
+        return self.attempt(created, "creating an instance", saying="creating an instance raised ")
 
     def run(
         self,
@@ -206,22 +223,23 @@ class Subject:
         source = frames if isinstance(frames, FrameList) else own
         steps = source.frame_list if frames is None or isinstance(frames, FrameList) else frames
         suffix = f", {label}" if label else ""
-        where = "reset"
-        try:
-            tracker.reset(source.info, self.rng(seed, source), init=steps[0].truth if truth else None)
-            estimates = []
-            for frame in steps:
-                where = f"step, frame {frame.index}"
-                estimates.append(tracker.step(frame))
-        except AssertionError:
-            raise
-        except CheckTimeout as exc:
-            raise CheckTimeout(f"{exc} ({where}{suffix})") from None
-        except PASS_THROUGH:
-            raise
-        except BaseException as exc:
-            raise self.fail(f"{describe_exception(exc)} ({where}{suffix})") from exc
-        return estimates
+        rng = self.rng(seed, source)
+        init = steps[0].truth if truth else None
+
+        def played() -> list[Any]:
+            Call.of(lambda: tracker.reset(source.info, rng, init=init), f"reset{suffix}", **_TRACKER_CALL).value()
+            return [
+                Call.of(lambda: tracker.step(frame), f"step, frame {frame.index}{suffix}", frame.index, **_TRACKER_CALL)
+                .value()
+                for frame in steps
+            ]
+
+        ran = Call.of(played, "run", **_TRACKER_CALL)
+        if ran.ending == "timeout":
+            raise CheckTimeout(ran.message)
+        if not ran.ok:
+            raise self.fail(ran.message)
+        return ran.value()
 
     def rng(self, seed: int = SEED, frames: FrameList | None = None) -> np.random.Generator:
         """The generator a cell of this tracker on ``frames`` (default: the subject's) gets for ``seed``."""
@@ -293,14 +311,16 @@ def prepare(
     source = sequence if sequence is not None else pick_sequence(registry, entry.modality)
     if source is None:
         return dataclasses.replace(subject, problem=f"no registered {entry.modality} sequence to run on")
-    try:
+
+    def read() -> FrameList:
         frames = FrameList.head(source, n_frames)
         for frame in frames.frame_list:
             modality.check_frame(frame, f"sequence {frames.info.name!r}, frame {frame.index}")
-    except PASS_THROUGH:
-        raise
-    except BaseException as exc:
-        return dataclasses.replace(subject, problem=f"reading {source!r}: {describe_exception(exc)}")
+        return frames
+
+    frames, problem = _value_or_problem(read, f"reading {source!r}: ")
+    if frames is None:
+        return dataclasses.replace(subject, problem=problem)
     if not frames.frame_list:
         return dataclasses.replace(subject, problem=f"sequence {frames.info.name!r} has no frames")
     subject = dataclasses.replace(subject, frames=frames)
@@ -309,20 +329,27 @@ def prepare(
     training = pick_training(registry, entry.modality, source)
     if training is None:
         return dataclasses.replace(subject, problem=f"it learns, but no other {entry.modality} sequence trains it")
-    try:
+
+    def fit() -> Any:
         head = FrameList.head(training, n_frames)
         rng = np.random.default_rng([zlib.crc32(entry.name.encode()), head.identity.seed_material])
-        model = entry.create().fit([head], rng)  # type: ignore[attr-defined]
-    except PASS_THROUGH:
-        raise
-    except BaseException as exc:
-        return dataclasses.replace(subject, problem=f"fit on {training!r} raised {describe_exception(exc)}")
+        return entry.create().fit([head], rng)  # type: ignore[attr-defined]
+
+    model, problem = _value_or_problem(fit, f"fit on {training!r} raised ")
+    if problem:
+        return dataclasses.replace(subject, problem=problem)
     packages = storage.packages_of(entry.tracker_class)
     try:  # as a run stores the model and every cell reads it back
         model = storage.loads(storage.dumps(model, packages), packages, "the fitted model")
     except storage.StorageError as exc:
         return dataclasses.replace(subject, problem=f"its fitted model cannot be stored: {exc}")
     return dataclasses.replace(subject, model=model)
+
+
+def _value_or_problem(function: Callable[[], T], saying: str) -> tuple[T | None, str]:
+    """``function()``'s value and no problem, or None and ``saying`` followed by the fault (see :meth:`Subject.attempt`)."""
+    call = Call.of(function, saying, reraise=PASS_THROUGH)
+    return (call.value(), "") if call.ok else (None, f"{saying}{call.summary}")
 
 
 def same(a: Any, b: Any) -> bool:
@@ -390,12 +417,8 @@ def check_metadata(subject: Subject) -> str:
             f"expected_failed_checks must map names of checks ({', '.join(known)}) to the reason each fails, "
             f"not {expected!r}"
         )
-    try:
-        defaults = cls.make_params()
-    except PASS_THROUGH:
-        raise
-    except BaseException as exc:
-        raise subject.fail(f"the default parameters do not validate: {describe_exception(exc)}") from exc
+    saying = "the default parameters do not validate: "
+    defaults = subject.attempt(cls.make_params, "making the default parameters", saying=saying)
     return f"{cls.name} {cls.version}, {cls.modality}, {len(dataclasses.fields(defaults))} parameters"
 
 
@@ -414,10 +437,8 @@ def _valid_run(
     steps = own.frame_list if frames is None else frames.frame_list if isinstance(frames, FrameList) else frames
     suffix = f", {label}" if label else ""
     for frame, estimate in zip(steps, estimates):
-        try:
-            modality.check_estimate(estimate)
-        except Exception as exc:
-            raise subject.fail(f"invalid estimate at frame {frame.index}{suffix}: {describe_exception(exc)}") from exc
+        saying = f"invalid estimate at frame {frame.index}{suffix}: "
+        subject.attempt(lambda: modality.check_estimate(estimate), "checking the estimate", saying=saying)
     return estimates, sum(estimate is not None for estimate in estimates)
 
 
@@ -639,16 +660,12 @@ def _hard_runs(subject: Subject) -> list[tuple[str, str, list[Frame]]]:
     own = frames.frame_list
     start, stop = _hard_stretch(own)
     rng = np.random.default_rng(SEED)
-    try:
-        made = [
-            modality.hard_observations(frame, frames.info, rng) if start <= index < stop else {}
-            for index, frame in enumerate(own)
-        ]
-    except Exception as exc:
-        raise subject.fail(
-            f"modality {modality.name!r} could not make hard observations (not the tracker's fault): "
-            f"{describe_exception(exc)}"
-        ) from exc
+    make = modality.hard_observations
+    made = subject.attempt(
+        lambda: [make(frame, frames.info, rng) if start <= index < stop else {} for index, frame in enumerate(own)],
+        "making hard observations",
+        saying=f"modality {modality.name!r} could not make hard observations (not the tracker's fault): ",
+    )
     runs = []
     for kind in dict.fromkeys(kind for observations in made for kind in observations):
         hard = [
@@ -721,33 +738,22 @@ def check_pickles(subject: Subject) -> str:
         Naming what could not be pickled and after which frame, or the frame where the copy differs.
     """
     _, frames = subject.ready()
-    try:
-        pickle.loads(pickle.dumps(subject.entry))
-    except PASS_THROUGH:
-        raise
-    except BaseException as exc:
-        raise subject.fail(f"its registry entry does not pickle: {describe_exception(exc)}") from exc
+    saying = "its registry entry does not pickle: "
+    subject.attempt(lambda: pickle.loads(pickle.dumps(subject.entry)), "pickling", saying=saying)
     steps = frames.frame_list
     points = sorted({1, len(steps) // 2, len(steps) - 1} - {0}) or [1]
     for point in points:
         tracker = subject.create()
         subject.run(tracker, steps[:point])
         after = steps[min(point, len(steps)) - 1].index
-        try:
-            copy = pickle.loads(pickle.dumps(tracker))
-        except PASS_THROUGH:
-            raise
-        except BaseException as exc:
-            raise subject.fail(f"an instance after frame {after} does not pickle: {describe_exception(exc)}") from exc
+        saying = f"an instance after frame {after} does not pickle: "
+        copy = subject.attempt(lambda: pickle.loads(pickle.dumps(tracker)), "pickling", saying=saying)
         if point >= len(steps):
             continue
         following = steps[point]
-        try:
-            original, copied = tracker.step(following), copy.step(following)
-        except PASS_THROUGH:
-            raise
-        except BaseException as exc:
-            raise subject.fail(f"{describe_exception(exc)} (step after pickling, frame {following.index})") from exc
+        original, copied = subject.attempt(
+            lambda: (tracker.step(following), copy.step(following)), f"step after pickling, frame {following.index}"
+        )
         if not same(original, copied):
             raise subject.fail(f"the unpickled instance's estimate at frame {following.index} differs: {copied}")
     return f"pickled after frames {', '.join(str(steps[min(p, len(steps)) - 1].index) for p in points)}; the copies step alike"
@@ -755,7 +761,8 @@ def check_pickles(subject: Subject) -> str:
 
 def check_step_time(subject: Subject) -> str:
     """Milliseconds per ``step``, for the report; never fails."""
-    try:
+
+    def timed() -> str:
         _, frames = subject.ready()
         tracker = subject.create()
         tracker.reset(frames.info, subject.rng(), init=frames.frame_list[0].truth)
@@ -764,11 +771,10 @@ def check_step_time(subject: Subject) -> str:
             tick = time.perf_counter()
             tracker.step(frame)
             elapsed += time.perf_counter() - tick
-    except PASS_THROUGH:
-        raise
-    except BaseException as exc:
-        return f"not timed: {describe_exception(exc)}"
-    return f"{1000.0 * elapsed / len(frames.frame_list):.2f} ms per frame over {len(frames.frame_list)} frames"
+        return f"{1000.0 * elapsed / len(frames.frame_list):.2f} ms per frame over {len(frames.frame_list)} frames"
+
+    ended = Call.of(timed, "timing", reraise=PASS_THROUGH)
+    return ended.value() if ended.ok else f"not timed: {ended.summary}"
 
 
 def _belief_problems(tracker: Tracker) -> tuple[list[str], list[str]]:
@@ -845,9 +851,7 @@ def check_belief_invariants(subject: Subject) -> str:
         or the frame whose update does.
     """
     _, frames = subject.ready()
-    kinds: set[str] = set()
-    updated: set[str] = set()
-    held = points = updates = 0
+    tally = _BeliefTally()
     runs: list[tuple[str, str, list[Frame]]] = [("", "", frames.frame_list)]
     declared = declares_belief(subject.entry.tracker_class)
     if declared:
@@ -856,40 +860,10 @@ def check_belief_invariants(subject: Subject) -> str:
         except AssertionError:  # the modality cannot make them: check_hard_observations says so
             pass
     for kind, label, steps in runs:
-        tracker = subject.create()
-        where = "reset"
-        try:
-            tracker.reset(frames.info, subject.rng(), init=steps[0].truth)
-            for frame in (None, *steps):
-                if frame is not None:
-                    where = f"step, frame {frame.index}"
-                    tracker.step(frame)
-                now, problems = _belief_problems(tracker)
-                among = f", {label}" if label else ""
-                if problems:
-                    point = "after reset" if frame is None else f"at frame {frame.index}"
-                    raise subject.fail(f"its {' and '.join(now)} belief is broken {point}{among}: {'; '.join(problems)}")
-                kinds.update(now)
-                held += bool(now)
-                points += 1
-                if frame is None:
-                    continue
-                compared, problems = _update_problems(tracker)
-                if problems:
-                    raise subject.fail(
-                        f"its {' and '.join(compared)} measurement update is broken at frame {frame.index}{among}: "
-                        + "; ".join(problems)
-                    )
-                updated.update(compared)
-                updates += bool(compared)
-        except AssertionError:
-            raise
-        except PASS_THROUGH:
-            raise
-        except BaseException as exc:
-            if kind:  # the hard_observations check reports it
-                continue
-            raise subject.fail(f"{describe_exception(exc)} ({where}, reading the belief)") from exc
+        ended = _observe_beliefs(subject, frames.info, steps, label, tally)
+        if not ended.ok and not kind:  # a hard run's fault: the hard_observations check reports it
+            raise subject.fail(ended.message)
+    kinds, updated, held, points, updates = tally.kinds, tally.updated, tally.held, tally.points, tally.updates
     if not declared and not kinds:
         raise subject.skip("exposes no belief (neither ParticleBelief nor GaussianBelief)")
     checked = (
@@ -901,6 +875,70 @@ def check_belief_invariants(subject: Subject) -> str:
         f"{' and '.join(sorted(kinds)) or 'no'} belief held at {held} of {points} points "
         f"({len(runs)} runs: reset and each frame); {checked}"
     )
+
+
+@dataclass
+class _BeliefTally:
+    """What :func:`check_beliefs` saw over its runs."""
+
+    kinds: set[str] = dataclasses.field(default_factory=set)
+    updated: set[str] = dataclasses.field(default_factory=set)
+    held: int = 0
+    points: int = 0
+    updates: int = 0
+
+
+_BELIEF_CALL: dict[str, Any] = {"reraise": (*PASS_THROUGH, AssertionError)}
+"""How :func:`_observe_beliefs` calls a tracker: its own failures, raised as assertion errors, go through."""
+
+
+def _observe_beliefs(
+    subject: Subject, info: SequenceInfo, steps: list[Frame], label: str, tally: _BeliefTally
+) -> Call[None]:
+    """Run a fresh instance over ``steps``, checking its belief after reset and each step; how the run ended.
+
+    Raises
+    ------
+    AssertionError
+        Naming the point where the belief, or an update, breaks an invariant.
+    """
+    tracker = subject.create()
+    among = f", {label}" if label else ""
+
+    def observe(frame: Frame | None) -> None:
+        if frame is not None:
+            tracker.step(frame)
+        now, problems = _belief_problems(tracker)
+        if problems:
+            point = "after reset" if frame is None else f"at frame {frame.index}"
+            raise subject.fail(f"its {' and '.join(now)} belief is broken {point}{among}: {'; '.join(problems)}")
+        tally.kinds.update(now)
+        tally.held += bool(now)
+        tally.points += 1
+        if frame is None:
+            return
+        compared, problems = _update_problems(tracker)
+        if problems:
+            raise subject.fail(
+                f"its {' and '.join(compared)} measurement update is broken at frame {frame.index}{among}: "
+                + "; ".join(problems)
+            )
+        tally.updated.update(compared)
+        tally.updates += bool(compared)
+
+    def observed() -> None:
+        rng = subject.rng()
+
+        def reset() -> None:
+            tracker.reset(info, rng, init=steps[0].truth)
+            observe(None)
+
+        Call.of(reset, "reset, reading the belief", **_BELIEF_CALL).value()
+        for frame in steps:
+            phase = f"step, frame {frame.index}, reading the belief"
+            Call.of(lambda: observe(frame), phase, frame.index, **_BELIEF_CALL).value()
+
+    return Call.of(observed, "reading the belief", **_BELIEF_CALL)
 
 
 CheckFunction = Callable[[Subject], str]

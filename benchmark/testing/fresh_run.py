@@ -28,9 +28,9 @@ fresh interpreter through a private folder:
 
 The program is this file run as a script (:func:`command`), not as a
 module of :mod:`benchmark.testing`, whose package imports pytest and
-pandas: the child imports only NumPy, :mod:`benchmark.storage` (with
-:mod:`benchmark`'s package), the tracker's module and what the records
-name.  Apart from the environment it is started with, the child is set up
+pandas: the child imports only NumPy, :mod:`benchmark.storage` and
+:mod:`benchmark.faults` (with :mod:`benchmark`'s package), the tracker's
+module and what the records name.  Apart from the environment it is started with, the child is set up
 as the checking process is: the same native thread counts (threadpoolctl's
 pools, OpenCV's, numba's), the same seed in NumPy's, Python's and OpenCV's
 global generators, the same generator handed to ``reset``.
@@ -49,6 +49,7 @@ from typing import Any
 import numpy as np
 
 from benchmark import storage
+from benchmark.faults import Call, Fault
 from benchmark.shared_modules import seed_global_generators
 
 JOB = "job.json"
@@ -181,15 +182,6 @@ def use_native_threads(counts: dict[str, int]) -> None:
         sys.modules["numba"].set_num_threads(counts["numba"])
 
 
-def _describe(exc: BaseException) -> str:
-    """``ExceptionType: message`` on one line, as :func:`benchmark.runner.describe_exception` (too heavy to import here)."""
-    try:
-        text = " ".join(str(exc).split())
-    except Exception:
-        text = "<cannot be shown>"
-    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
-
-
 def _limit_cpu(seconds: float | None) -> None:
     """Let the process use ``seconds`` of CPU time (rounded up), after which the kernel ends it with ``SIGXCPU``."""
     if seconds is None:
@@ -208,13 +200,13 @@ def _limit_cpu(seconds: float | None) -> None:
 def _tracker_class(name: str) -> type | dict[str, Any]:
     """The class ``module:qualname``, imported afresh, or the outcome that says why there is none."""
     module, _, qualname = name.partition(":")
-    try:
-        found: Any = importlib.import_module(module)
-    except ImportError as exc:
-        reason = f"its module {module!r} cannot be imported in a fresh interpreter: {_describe(exc)}"
+    imported = Call.of(lambda: importlib.import_module(module), f"importing {module!r}")
+    if imported.fault is not None and imported.fault.is_a(ImportError):
+        reason = f"its module {module!r} cannot be imported in a fresh interpreter: {imported.summary}"
         return _outcome(NOT_CHECKED, reason)
-    except BaseException as exc:
-        return _outcome(FAILED, f"importing its module {module!r} in a fresh interpreter raised {_describe(exc)}")
+    if not imported.ok:
+        return _outcome(FAILED, f"importing its module {module!r} in a fresh interpreter raised {imported.summary}")
+    found: Any = imported.value()
     try:
         for part in qualname.split("."):
             found = getattr(found, part)
@@ -247,33 +239,32 @@ def run(folder: Path, job: Job) -> dict[str, Any]:
     tracker_class = _tracker_class(job.tracker)
     if isinstance(tracker_class, dict):
         return tracker_class
-    try:
-        use_native_threads(job.threads)
-    except Exception as exc:
-        reason = f"the fresh interpreter cannot take the checking process's thread counts: {_describe(exc)}"
+    threads = Call.of(lambda: use_native_threads(job.threads), "setting the thread counts")
+    if not threads.ok:
+        reason = f"the fresh interpreter cannot take the checking process's thread counts: {threads.summary}"
         return _outcome(NOT_CHECKED, reason)
     try:
         inputs = storage.loads((folder / INPUT).read_bytes(), packages, "the check's input")
         rng = rebuild_generator(inputs["generator"])
     except (storage.StorageError, ValueError, TypeError, KeyError) as exc:
-        reason = f"the fresh interpreter cannot read its frames, parameters or model: {_describe(exc)}"
+        reason = f"the fresh interpreter cannot read its frames, parameters or model: {Fault.of(exc).text}"
         return _outcome(NOT_CHECKED, reason)
     seed_global_generators([inputs["global_seed"]])
     frames = inputs["frames"]
-    estimates: list[Any] = []
-    where = "creating an instance"
-    try:
-        tracker = tracker_class(inputs["params"])
+
+    def played() -> list[Any]:
+        tracker = Call.of(lambda: tracker_class(inputs["params"]), "creating an instance").value()
         if inputs["model"] is not None:
-            where = "use_model"
-            tracker.use_model(inputs["model"])
-        where = "reset"
-        tracker.reset(inputs["info"], rng, init=inputs["init"])
-        for frame in frames:
-            where = f"step, frame {frame.index}"
-            estimates.append(tracker.step(frame))
-    except BaseException as exc:
-        return _outcome(FAILED, f"{_describe(exc)} ({where})")
+            Call.of(lambda: tracker.use_model(inputs["model"]), "use_model").value()
+        Call.of(lambda: tracker.reset(inputs["info"], rng, init=inputs["init"]), "reset").value()
+        return [
+            Call.of(lambda: tracker.step(frame), f"step, frame {frame.index}", frame.index).value() for frame in frames
+        ]
+
+    ran = Call.of(played, "creating an instance")
+    if not ran.ok:
+        return _outcome(FAILED, ran.message)
+    estimates = ran.value()
     for frame, estimate in zip(frames, estimates):
         try:
             storage.dumps(estimate, packages)

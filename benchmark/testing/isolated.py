@@ -22,9 +22,8 @@ import functools
 from collections.abc import Iterator, Sequence
 from typing import Any
 
-from benchmark.executors.local import WorkerDied, hard_limit_s, value_from_future, worker_pool
+from benchmark.executors.local import call_of_future, hard_limit_s, worker_pool
 from benchmark.registry import Registry
-from benchmark.runner import describe_exception
 from benchmark.testing import (
     DEFAULT_FRAMES,
     DEFAULT_TIME_LIMIT_S,
@@ -94,16 +93,21 @@ def check_in_workers(
         _REGISTRY = None
 
 
+WHY_THE_CHECK_FAILED = {
+    "timeout": "its worker was still busy after {limit:g} s and was stopped: does it hang in native code?",
+    "died": "{summary} during the check: os._exit, or a crash?",
+    "retired": "{summary} during the check: os._exit, or a crash?",
+    "error": "the worker could not return the result: {summary}",
+}
+"""A failed check's reason, by how its task ended, when the worker did not return the check's own result."""
+
+
 def _result(name: str, check: str, future: Any, limit: float) -> CheckResult:
     """The check's own result, or a failure saying what became of its worker."""
-    try:
-        return value_from_future(future, limit)
-    except TimeoutError:
-        reason = f"its worker was still busy after {limit:g} s and was stopped: does it hang in native code?"
-    except WorkerDied as exc:
-        reason = f"{exc} during the check: os._exit, or a crash?"
-    except BaseException as exc:
-        reason = f"the worker could not return the result: {describe_exception(exc)}"
+    ended = call_of_future(future, "", limit)
+    if ended.ok:
+        return ended.value()
+    reason = WHY_THE_CHECK_FAILED[ended.ending].format(limit=limit, summary=ended.summary)
     return CheckResult(name, check, "failed", f"tracker {name!r}: {reason}")
 
 
