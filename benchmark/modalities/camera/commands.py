@@ -1,4 +1,4 @@
-"""The camera modality's own commands: ``trackbench diagnose`` and ``trackbench pose-table``.
+"""The camera modality's own commands: ``diagnose``, ``pose-table`` and ``import`` (``labels``, ``rosbag``).
 
 Added to the command line through the ``trackbench_register_commands``
 hook, under the entry point ``modality-camera`` of the
@@ -9,6 +9,7 @@ little: each command imports what it needs when it runs.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -20,6 +21,7 @@ from benchmark.hookspecs import hookimpl
 if TYPE_CHECKING:
     from benchmark.cli.discovery import CommandRegistry
     from benchmark.cli.session import Session
+    from benchmark.modalities.camera.importers.sidecar import SidecarCamera
 
 
 @click.command("diagnose")
@@ -103,8 +105,84 @@ def pose_table_command(
     click.echo(f"wrote {path}", err=True)
 
 
+def _calibration_options(command: Callable[..., None]) -> Callable[..., None]:
+    """The options of the sidecar's ``[camera]`` table and frame interval."""
+    options = [
+        click.option("--focal-px", type=float, help="Focal length over pixel pitch (seeds/004 eq. 3), for the sidecar."),
+        click.option("--pipe-diameter-m", type=float, help="Diameter of the pipe or cable in m, for the sidecar."),
+        click.option("--tilt-deg", type=float, help="Camera mounting tilt in degrees (seeds/004 Fig. 2a), for the sidecar."),
+    ]
+    for option in reversed(options):
+        command = option(command)
+    return command
+
+
+def _sidecar_camera(focal_px: float | None, pipe_diameter_m: float | None, tilt_deg: float | None) -> SidecarCamera | None:
+    """The ``[camera]`` table of the options, None without them; all three or none must be given."""
+    from benchmark.modalities.camera.importers.sidecar import SidecarCamera
+    from benchmark.scenes.spec import validate_table
+
+    given = {"focal_px": focal_px, "pipe_diameter_m": pipe_diameter_m, "tilt_deg": tilt_deg}
+    if all(value is None for value in given.values()):
+        return None
+    missing = [f"--{name.replace('_', '-')}" for name, value in given.items() if value is None]
+    if missing:
+        raise click.UsageError(f"the camera calibration needs {', '.join(missing)} too")
+    return validate_table(SidecarCamera, given, "camera calibration options")
+
+
+@click.group("import")
+def import_group() -> None:
+    """Bring outside camera data in as image sequence files: labels from other tools, ROS bags."""
+
+
+@import_group.command("labels")
+@click.argument("labels", type=click.Path(path_type=Path))
+@click.option(
+    "--images",
+    required=True,
+    type=click.Path(path_type=Path),
+    help="The folder the labels name their images in.",
+)
+@click.option("--out", required=True, type=click.Path(path_type=Path), help="The image sequence file to write.")
+@click.option(
+    "--frame-interval-s",
+    type=click.FloatRange(min=0, min_open=True),
+    help="Time between frames in s, for the sidecar.",
+)
+@_calibration_options
+def import_labels_command(
+    labels: Path,
+    images: Path,
+    out: Path,
+    frame_interval_s: float | None,
+    focal_px: float | None,
+    pipe_diameter_m: float | None,
+    tilt_deg: float | None,
+) -> None:
+    """Write an image sequence file from LABELS: a CSV file or a CVAT 1.1 XML export.
+
+    CSV: a header, then one row per frame, either ``image,d,alpha,w,beta``
+    (the cable state, px, rad, px, rad) or
+    ``image,x1a,y1a,x2a,y2a,x1b,y1b,x2b,y2b`` (each border's two end points
+    in pixels).  CVAT: per ``<image>``, two ``<polyline>`` borders, or none
+    where no cable is seen.  With the calibration options or
+    ``--frame-interval-s`` the sidecar OUT with suffix ``.toml`` is written too.
+    """
+    from benchmark.modalities.camera.importers.labels import import_labels
+    from benchmark.modalities.camera.importers.sidecar import write_sidecar
+
+    camera = _sidecar_camera(focal_px, pipe_diameter_m, tilt_deg)
+    path = import_labels(labels, images, out)
+    click.echo(f"wrote {path}", err=True)
+    if camera is not None or frame_interval_s is not None:
+        sidecar = write_sidecar(path, frame_interval_s=frame_interval_s, camera=camera)
+        click.echo(f"wrote {sidecar}", err=True)
+
+
 @hookimpl
 def trackbench_register_commands(registry: CommandRegistry) -> None:
-    """Add ``diagnose`` and ``pose-table``."""
+    """Add ``diagnose``, ``pose-table`` and ``import``."""
     registry.add_command(diagnose_command)
     registry.add_command(pose_table_command)
+    registry.add_command(import_group)
