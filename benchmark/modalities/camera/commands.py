@@ -180,6 +180,45 @@ def import_labels_command(
         click.echo(f"wrote {sidecar}", err=True)
 
 
+@import_group.command("rosbag")
+@click.argument("bag", type=click.Path(path_type=Path))
+@click.option("--image-topic", required=True, metavar="TOPIC", help="Topic of sensor_msgs Image or CompressedImage.")
+@click.option(
+    "--nav-topic",
+    metavar="TOPIC",
+    help="Topic of nav_msgs Odometry or geometry_msgs TwistStamped: the vehicle speeds.",
+)
+@click.option(
+    "--out",
+    required=True,
+    type=click.Path(file_okay=False, path_type=Path),
+    help="Folder for the frames, the sequence file, its sidecar and the navigation file.",
+)
+@_calibration_options
+def import_rosbag_command(
+    bag: Path,
+    image_topic: str,
+    nav_topic: str | None,
+    out: Path,
+    focal_px: float | None,
+    pipe_diameter_m: float | None,
+    tilt_deg: float | None,
+) -> None:
+    """Write the images of the ROS 1 bag or ROS 2 bag folder BAG as an unlabelled image sequence file.
+
+    OUT receives frame_00000.png, ..., NAME.txt (NAME the bag's stem, every
+    frame nan: unlabelled) and the sidecar NAME.toml with the median frame
+    interval; with --nav-topic also NAME.nav.csv, the speeds interpolated
+    to each image's time (lateral = -y, vertical = -z, frontal = x of the
+    ROS body frame).
+    """
+    from benchmark.modalities.camera.importers.rosbag import import_rosbag
+
+    camera = _sidecar_camera(focal_px, pipe_diameter_m, tilt_deg)
+    path = import_rosbag(bag, image_topic, out, nav_topic, camera)
+    click.echo(f"wrote {path} and its frames", err=True)
+
+
 @hookimpl
 def trackbench_register_commands(registry: CommandRegistry) -> None:
     """Add ``diagnose``, ``pose-table`` and ``import``."""
