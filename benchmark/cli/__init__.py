@@ -11,6 +11,7 @@
     tables        a suite's results of the latest run as one table per case (stereo: Tables 6-8 of seeds/002)
     diagnose      the likelihood ceiling of a tracker's observation model on camera sequences
     pose-table    a camera tracker's pose estimates beside the truth, frame by frame (seeds/004)
+    import        labels (CSV, CVAT) or a ROS bag in as an image sequence file with its sidecar
     make-dataset  write a suite's sequences to disk (PNG frames plus sequence files, or swath files)
     cache         the frame cache: info (what it holds) and clear
     nightly       run, add the run to the history database, report its changes, rewrite the site
@@ -20,7 +21,7 @@
     new-tracker   write the skeleton of a tracker plugin package (pyproject, tracker, one-line test)
 
 Each built-in command is a module of this package (``run``, ``boards``,
-``history``, ...); ``diagnose`` and ``pose-table`` are the camera
+``history``, ...); ``diagnose``, ``pose-table`` and ``import`` are the camera
 modality's (:mod:`benchmark.modalities.camera.commands`), added through the
 ``trackbench_register_commands`` hook as any plugin's commands are
 (:mod:`benchmark.cli.discovery`).

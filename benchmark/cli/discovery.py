@@ -1,8 +1,8 @@
 """Commands that plugins add to the command line, through the ``trackbench_register_commands`` hook.
 
 Such plugins are modules named in the entry-point group
-``trackbench.commands`` (trackbench's own camera modality adds ``diagnose``
-and ``pose-table`` this way).  They are a group of their own so that
+``trackbench.commands`` (trackbench's own camera modality adds ``diagnose``,
+``pose-table`` and ``import`` this way).  They are a group of their own so that
 listing the commands imports those modules only, not every tracker of the
 ``trackbench`` group with its dependencies.  Loading goes through
 :func:`benchmark.plugins.load_plugins`, so a command plugin is disabled,

@@ -106,18 +106,20 @@ def pose_table_command(
 
 
 def _calibration_options(command: Callable[..., None]) -> Callable[..., None]:
-    """The options of the sidecar's ``[camera]`` table and frame interval."""
+    """The options of the sidecar's ``[camera]`` table."""
     options = [
-        click.option("--focal-px", type=float, help="Focal length over pixel pitch (seeds/004 eq. 3), for the sidecar."),
+        click.option("--focal-px", type=float, help="f / pixel pitch in px (seeds/004 eq. 3), for the sidecar."),
         click.option("--pipe-diameter-m", type=float, help="Diameter of the pipe or cable in m, for the sidecar."),
-        click.option("--tilt-deg", type=float, help="Camera mounting tilt in degrees (seeds/004 Fig. 2a), for the sidecar."),
+        click.option("--tilt-deg", type=float, help="Mounting tilt in deg (seeds/004 Fig. 2a), for the sidecar."),
     ]
     for option in reversed(options):
         command = option(command)
     return command
 
 
-def _sidecar_camera(focal_px: float | None, pipe_diameter_m: float | None, tilt_deg: float | None) -> SidecarCamera | None:
+def _sidecar_camera(
+    focal_px: float | None, pipe_diameter_m: float | None, tilt_deg: float | None
+) -> SidecarCamera | None:
     """The ``[camera]`` table of the options, None without them; all three or none must be given."""
     from benchmark.modalities.camera.importers.sidecar import SidecarCamera
     from benchmark.scenes.spec import validate_table

@@ -23,6 +23,7 @@ time between consecutive images.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -201,9 +202,14 @@ def import_rosbag(
                 for connection, recorded_ns, raw in reader.messages(connections=[*images, *navigation]):
                     message = reader.deserialize(raw, connection.msgtype)
                     if connection.msgtype in NAVIGATION_TYPES:
-                        recording.navigation_times_ns.append(_time_ns(message, recorded_ns))
                         linear = NAVIGATION_TYPES[connection.msgtype](message)
-                        recording.navigation.append((linear.x, linear.y, linear.z))
+                        velocity = (float(linear.x), float(linear.y), float(linear.z))
+                        if not all(math.isfinite(v) for v in velocity):
+                            index = len(recording.navigation)
+                            where = f"{bag}: topic {navigation_topic!r}: message {index}"
+                            raise DataError(f"{where}: linear velocity {velocity} is not finite")
+                        recording.navigation_times_ns.append(_time_ns(message, recorded_ns))
+                        recording.navigation.append(velocity)
                         continue
                     index = len(recording.image_times_ns)
                     where = f"{bag}: topic {image_topic!r}: message {index}"
@@ -211,7 +217,8 @@ def import_rosbag(
                     size = size_of(image)
                     first_size = first_size or size
                     if size != first_size:
-                        raise DataError(f"{where}: image is {size[0]}x{size[1]} px, the first {first_size[0]}x{first_size[1]} px")
+                        width, height = first_size
+                        raise DataError(f"{where}: image is {size[0]}x{size[1]} px, the first {width}x{height} px")
                     file_name = f"frame_{index:05d}.png"
                     write_png(folder / file_name, image, where=f"{where}: ")
                     recording.image_times_ns.append(_time_ns(message, recorded_ns))

@@ -187,7 +187,9 @@ def test_without_navigation_stamps_of_zero_fall_back_to_the_recorded_times_and_c
     tmp_path: Path,
 ) -> None:
     messages = Messages(ROS2.typestore)
-    image_messages = [(START_NS + i * 50_000_000, messages.compressed_image(0, grey[:, :, 0])) for i, grey in enumerate(frames())]
+    image_messages = [
+        (START_NS + i * 50_000_000, messages.compressed_image(0, bgr[:, :, 0])) for i, bgr in enumerate(frames())
+    ]
     bag = write_bag(ROS2, tmp_path, {"/image": image_messages})
     out = tmp_path / "out"
     calibration = ["--focal-px", "800", "--pipe-diameter-m", "0.3", "--tilt-deg", "30"]
@@ -217,6 +219,10 @@ def bag(tmp_path: Path) -> Path:
             "/bad_png": [(START_NS, bad_compressed(messages, grey))],
             "/short": [(START_NS, short_image(messages, grey))],
             "/odom": [(START_NS, messages.odometry(START_NS, (1.0, 0.0, 0.0)))],
+            "/twist": [
+                (START_NS, messages.twist_stamped(START_NS, (1.0, 0.0, 0.0))),
+                (START_NS + 1, messages.twist_stamped(START_NS + 1, (1.0, float("nan"), 0.0))),
+            ],
         },
     )
 
@@ -238,8 +244,9 @@ def short_image(messages: Messages, grey: np.ndarray) -> Any:
     [
         (["--image-topic", "/camera"], "no image topic '/camera'; its topics: "),
         (["--image-topic", "/odom"], "image topic '/odom' carries nav_msgs/msg/Odometry, not one of"),
-        (["--image-topic", "/image", "--nav-topic", "/image"], "navigation topic '/image' carries sensor_msgs/msg/Image"),
+        (["--image-topic", "/image", "--nav-topic", "/image"], "navigation topic '/image' carries sensor_msgs/msg/"),
         (["--image-topic", "/image", "--nav-topic", "/gps"], "no navigation topic '/gps'"),
+        (["--image-topic", "/image", "--nav-topic", "/twist"], "topic '/twist': message 1: linear velocity (1.0, nan"),
         (["--image-topic", "/depth"], "topic '/depth': message 0: image encoding '16UC1' is not one of mono8"),
         (["--image-topic", "/bad_png"], "topic '/bad_png': message 0: cannot decode its 'png' data"),
         (["--image-topic", "/short"], "topic '/short': message 0: 8x6 mono8 image with a row step of 8 bytes"),
