@@ -39,16 +39,11 @@ NAVIGATION_HEADER = "frame,lateral_mps,vertical_mps,frontal_mps"
 
 @pydantic.dataclasses.dataclass(frozen=True)
 class SidecarCamera:
-    """The ``[camera]`` table: what seeds/004's pose model needs to know of the camera and the pipe.
+    """The ``[camera]`` table, in the file's units: :class:`~benchmark.modalities.camera.model.CameraCalibration`.
 
-    Attributes
-    ----------
-    focal_px : float
-        Focal length over pixel pitch, ``f / delta_x`` (seeds/004 eq. 3).
-    pipe_diameter_m : float
-        Diameter of the pipe or cable.
-    tilt_deg : float
-        The tilt ``phi`` the camera is mounted at, in degrees (seeds/004, Fig. 2a).
+    The fields are those of the calibration, the mounting tilt in degrees
+    (``tilt_deg``) where the calibration holds radians (``nominal_tilt``);
+    each is checked when the table is made.
     """
 
     focal_px: Positive
