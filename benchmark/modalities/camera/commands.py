@@ -16,6 +16,7 @@ import click
 
 from benchmark.cli.options import OUT_OPTION
 from benchmark.hookspecs import hookimpl
+from benchmark.modalities.camera.labeller.command import label_command
 
 if TYPE_CHECKING:
     from benchmark.cli.discovery import CommandRegistry
@@ -105,6 +106,7 @@ def pose_table_command(
 
 @hookimpl
 def trackbench_register_commands(registry: CommandRegistry) -> None:
-    """Add ``diagnose`` and ``pose-table``."""
+    """Add ``diagnose``, ``pose-table`` and ``label``."""
     registry.add_command(diagnose_command)
     registry.add_command(pose_table_command)
+    registry.add_command(label_command)
