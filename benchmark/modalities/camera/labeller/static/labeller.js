@@ -28,6 +28,18 @@ function busy(delta) {
   root.dataset.pending = String(pending);
 }
 
+function tracked(action) {
+  // The page is busy (data-pending > 0) from an action's start to its last redraw.
+  return async (...args) => {
+    busy(1);
+    try {
+      await action(...args);
+    } finally {
+      busy(-1);
+    }
+  };
+}
+
 async function call(path, body) {
   busy(1);
   try {
@@ -275,7 +287,7 @@ view.addEventListener("pointermove", (event) => {
   setLine(drag.border, draggedSegments(event)[drag.border]);
 });
 
-view.addEventListener("pointerup", async (event) => {
+view.addEventListener("pointerup", tracked(async (event) => {
   if (!drag) return;
   const segments = draggedSegments(event);
   drag = null;
@@ -287,15 +299,15 @@ view.addEventListener("pointerup", async (event) => {
     message("cannot use these borders: " + error.message);
     await render();
   }
-});
+}));
 
-strip.addEventListener("click", (event) => {
+strip.addEventListener("click", tracked((event) => {
   const box = strip.getBoundingClientRect();
-  go(Math.floor((event.clientX - box.left) / box.width * frames.length));
-});
+  return go(Math.floor((event.clientX - box.left) / box.width * frames.length));
+}));
 
-slider.addEventListener("input", () => go(Number(slider.value)));
-inputs.forEach((input) => input.addEventListener("change", typed));
+slider.addEventListener("input", tracked(() => go(Number(slider.value))));
+inputs.forEach((input) => input.addEventListener("change", tracked(typed)));
 
 const ACTIONS = {
   ArrowRight: (event) => go(current + (event.shiftKey ? 10 : 1)),
@@ -315,7 +327,7 @@ const BUTTONS = {
   previous: () => go(current - 1), next: () => go(current + 1), copy: copyToNext, keep, interpolate,
   unlabelled: nextUnlabelled, none: toggleNone, undo, save,
 };
-Object.entries(BUTTONS).forEach(([id, action]) => document.getElementById(id).addEventListener("click", action));
+Object.entries(BUTTONS).forEach(([id, action]) => document.getElementById(id).addEventListener("click", tracked(action)));
 
 document.addEventListener("keydown", (event) => {
   if (event.target.type === "number" || event.altKey) return;
@@ -324,7 +336,7 @@ document.addEventListener("keydown", (event) => {
   const action = ACTIONS[key];
   if (!action) return;
   event.preventDefault();
-  action(event);
+  tracked(action)(event);
 });
 
 function layout() {
