@@ -330,7 +330,12 @@ const BUTTONS = {
 Object.entries(BUTTONS).forEach(([id, action]) => document.getElementById(id).addEventListener("click", tracked(action)));
 
 document.addEventListener("keydown", (event) => {
-  if (event.target.type === "number" || event.altKey) return;
+  if (event.target.type === "number") {
+    // Enter or Escape leaves a spin box (Enter applies its value), so that the shortcuts work again.
+    if (event.key === "Enter" || event.key === "Escape") event.target.blur();
+    return;
+  }
+  if (event.altKey) return;
   const key = event.key.length === 1 ? event.key.toLowerCase() : event.key;
   if ((event.ctrlKey || event.metaKey) && key !== "z" && key !== "s") return;
   const action = ACTIONS[key];

@@ -6,6 +6,7 @@ as the site's browser test launches it); skipped without them.
 
 from __future__ import annotations
 
+import math
 import urllib.error
 import urllib.request
 from collections.abc import Iterator
@@ -144,3 +145,40 @@ def test_the_server_refuses_a_missing_token_and_a_path_traversal(
         with pytest.raises(urllib.error.HTTPError) as refused:
             urllib.request.urlopen(root + "api/sequence")
         assert refused.value.code == 403
+
+
+def test_typed_values_copy_no_cable_next_unlabelled_and_undo_by_keyboard(
+    chromium: sync_api.Browser, image_folder: Path
+) -> None:
+    document = open_document(image_folder)
+    typed = {"#d": "2", "#alpha": "5", "#w": "10", "#beta": "1"}
+    with served(document) as url:
+        page = chromium.new_page(viewport={"width": 1400, "height": 900})
+        page.goto(url)
+        settle(page)
+        for selector, value in typed.items():
+            page.fill(selector, value)
+            page.press(selector, "Enter")
+            settle(page)
+        assert page.inner_text("#kind") == "key frame"
+        for key, position, kind in [
+            ("c", 2, "key frame"),
+            ("ArrowRight", 3, "unlabelled"),
+            ("x", 3, "no cable visible"),
+            ("n", 4, "unlabelled"),
+            ("z", 3, "unlabelled"),
+            ("x", 3, "no cable visible"),
+            ("ArrowLeft", 2, "key frame"),
+        ]:
+            page.keyboard.press(key)
+            settle(page)
+            assert page.inner_text("#position").startswith(f"frame {position} / {N_FRAMES}"), key
+            assert page.inner_text("#kind") == kind, key
+        page.keyboard.press("Control+s")
+        settle(page)
+        assert page.inner_text("#saved") == "saved"
+    rows = read_sequence_file(document.output)
+    expected = [2.0, math.radians(5.0), 10.0, math.radians(1.0)]
+    for row in rows[:2]:
+        assert row.cable.as_array().tolist() == pytest.approx(expected)
+    assert [row.cable.is_known for row in rows] == [True, True] + [False] * (N_FRAMES - 2)
