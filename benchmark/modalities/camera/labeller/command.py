@@ -13,7 +13,7 @@ import click
     "--out",
     type=click.Path(dir_okay=False, path_type=Path),
     default=None,
-    help="The image sequence file to save to (default: PATH itself, F.txt beside a folder F, V.txt beside a video V.avi).",
+    help="The image sequence file to save to (default: PATH itself; F.txt beside a folder F; V.txt beside V.avi).",
 )
 @click.option(
     "--port",

@@ -11,8 +11,8 @@ import pytest
 from starlette.testclient import TestClient
 
 from benchmark.modalities.camera.geometry import Line, cable_borders, pixel_to_model
-from benchmark.modalities.camera.labeller.app import create_app
 from benchmark.modalities.camera.io.sequence_file import read_sequence_file
+from benchmark.modalities.camera.labeller.app import create_app
 from benchmark.modalities.camera.labeller.document import LabelDocument, open_document
 from benchmark.modalities.camera.model import CableState
 

@@ -1,7 +1,7 @@
 """The labeller in a real browser: drag borders on two key frames, reload, interpolate, save, read the file back.
 
-Needs Python playwright and a Chromium at ``/usr/bin/chromium`` (launched
-as the site's browser test launches it); skipped without them.
+Needs Python playwright and a Chromium at ``/usr/bin/chromium`` (the
+``chromium`` fixture of ``tests/benchmark/conftest.py``); skipped without them.
 """
 
 from __future__ import annotations
@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 import urllib.error
 import urllib.request
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -21,19 +20,7 @@ from benchmark.modalities.camera.model import CableState
 
 from .conftest import N_FRAMES, SIZE, served
 
-CHROMIUM = Path("/usr/bin/chromium")
-ARGS = [
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
-
 sync_api = pytest.importorskip("playwright.sync_api", reason="the browser tests need Python playwright")
-pytestmark = pytest.mark.skipif(not CHROMIUM.exists(), reason=f"the browser tests need Chromium at {CHROMIUM}")
 
 Point = tuple[float, float]
 KEY_FRAMES: dict[int, dict[str, tuple[Point, Point]]] = {
@@ -41,16 +28,6 @@ KEY_FRAMES: dict[int, dict[str, tuple[Point, Point]]] = {
     N_FRAMES - 1: {"left": ((10.0, 0.0), (17.0, 47.0)), "right": ((29.0, 0.0), (33.0, 47.0))},
 }
 """Where the ends of each border are dragged, top end first, in pixels: on the top and bottom rows."""
-
-
-@pytest.fixture(scope="module")
-def chromium() -> Iterator[sync_api.Browser]:
-    with sync_api.sync_playwright() as playwright:
-        launched = playwright.chromium.launch(executable_path=str(CHROMIUM), args=ARGS)
-        try:
-            yield launched
-        finally:
-            launched.close()
 
 
 def settle(page: sync_api.Page) -> None:
