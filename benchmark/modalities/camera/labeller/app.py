@@ -1,8 +1,9 @@
 """The labeller's web app: the page, the frames by index, conversions between states and borders, saving.
 
 Every URL starts with a random token (``/TOKEN/...``); any other request is
-refused with 403, so another page of the browser, or another user of the
-machine, cannot read the frames or overwrite the labels.  Frames are served
+refused with 403, and one addressed to a host name other than ``127.0.0.1``
+or ``localhost`` with 400, so that another page of the browser, or another
+user of the machine, cannot read the frames or overwrite the labels.  Frames are served
 by their index only, and the page's files by a fixed list of names: no URL
 names a path on disk.  The server is meant for ``127.0.0.1`` only
 (:func:`bind`).
@@ -26,6 +27,7 @@ from typing import Annotated, Any
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 from starlette.applications import Starlette
 from starlette.concurrency import run_in_threadpool
+from starlette.middleware.trustedhost import TrustedHostMiddleware
 from starlette.requests import Request
 from starlette.responses import JSONResponse, PlainTextResponse, Response
 from starlette.routing import Mount, Route
@@ -94,11 +96,13 @@ def bind(port: int) -> socket.socket:
 def border_segment(line: Line, size: ImageSize) -> list[list[float]]:
     """Two pixel points of a border, top one first: the ends of its chord through the image.
 
-    A border that misses the image gets the points half an image diagonal
-    either side of its point nearest the image centre.
+    A border that misses the image, or only grazes a corner (a chord
+    shorter than a pixel, whose ends could not be dragged apart), gets the
+    points half an image diagonal either side of its point nearest the
+    image centre.
     """
     ends = chord_ends(line, size)
-    if ends is None:
+    if ends is None or math.dist(*ends) < 1.0:
         x0, y0 = line.nearest_point_to_origin()
         reach = math.hypot(*size) / 2.0
         ends = (x0 - reach * line.dx, y0 - reach * line.dy), (x0 + reach * line.dx, y0 + reach * line.dy)
@@ -233,4 +237,6 @@ def create_app(document: LabelDocument, token: str) -> Starlette:
     ]
     app = Starlette(routes=[Mount(f"/{token}", routes=routes)])
     app.add_middleware(TokenGate, token=token)
+    # A page of another site that points a name of its own at 127.0.0.1 (DNS rebinding) sends that name.
+    app.add_middleware(TrustedHostMiddleware, allowed_hosts=[HOST, "localhost"])
     return app

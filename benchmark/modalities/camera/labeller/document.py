@@ -151,7 +151,9 @@ def _document(sequence: Sequence, output: Path | None) -> LabelDocument:
 
 @_document.register
 def _(sequence: ImageSequenceFile, output: Path | None) -> LabelDocument:
-    return _made(sequence, [row.cable for row in sequence.rows], output or sequence.path)
+    elsewhere = output is not None and resolved(output) != resolved(sequence.path)
+    target = _new_output(output) if output is not None and elsewhere else sequence.path
+    return _made(sequence, [row.cable for row in sequence.rows], target)
 
 
 @_document.register
@@ -164,6 +166,8 @@ def _(sequence: ImageFolder, output: Path | None) -> LabelDocument:
 @_document.register
 def _(sequence: VideoFile, output: Path | None) -> LabelDocument:
     target = _new_output(output or sequence.path.with_suffix(".txt"))
+    if target.with_suffix("").exists():
+        raise DataError(f"{target.with_suffix('')}: exists already; the video's frames would be written into it")
     written = export_camera_sequence(sequence, target.parent, target.stem)
     if written != target:
         written.replace(target)
@@ -171,8 +175,11 @@ def _(sequence: VideoFile, output: Path | None) -> LabelDocument:
 
 
 def _new_output(output: Path) -> Path:
+    """A sequence file to create: refused if it exists (it holds someone's labels) or its folder does not."""
     if output.exists():
         raise DataError(f"{output}: exists already; label it with 'trackbench label {output}', or choose --out")
+    if not output.absolute().parent.is_dir():
+        raise DataError(f"{output}: no such folder to save the image sequence file in")
     return output.absolute()
 
 

@@ -8,13 +8,15 @@ from pathlib import Path
 import cv2
 import numpy as np
 import pytest
+from hypothesis import given
 from starlette.testclient import TestClient
 
 from benchmark.modalities.camera.geometry import Line, cable_borders, pixel_to_model
 from benchmark.modalities.camera.io.sequence_file import read_sequence_file
-from benchmark.modalities.camera.labeller.app import create_app
+from benchmark.modalities.camera.labeller.app import BordersBody, create_app, drawing, state_of_borders
 from benchmark.modalities.camera.labeller.document import LabelDocument, open_document
 from benchmark.modalities.camera.model import CableState
+from benchmark.modalities.camera.strategies import cable_states
 
 from .conftest import N_FRAMES, SIZE
 
@@ -40,6 +42,11 @@ def distance(line: Line, pixel: tuple[float, float]) -> float:
 @pytest.mark.parametrize("path", ["/", "/api/sequence", "/frames/0", "/wrong-token/frames/0", f"/{TOKEN}x/frames/0"])
 def test_a_request_without_the_token_is_forbidden(client: TestClient, path: str) -> None:
     assert client.get(path).status_code == 403
+
+
+def test_a_request_for_another_host_name_is_refused(client: TestClient) -> None:
+    assert client.get(f"/{TOKEN}/api/sequence", headers={"Host": "attacker.example"}).status_code == 400
+    assert client.get(f"/{TOKEN}/api/sequence", headers={"Host": "localhost:8765"}).status_code == 200
 
 
 def test_a_save_without_the_token_is_forbidden_and_writes_nothing(client: TestClient, document: LabelDocument) -> None:
@@ -140,3 +147,12 @@ def test_a_save_with_the_wrong_number_of_frames_is_refused(client: TestClient, d
     response = client.post(f"/{TOKEN}/api/save", json={"states": [None]})
     assert response.status_code == 409 and "1 states for 6 frames" in response.json()["error"]
     assert not document.output.exists()
+
+
+@given(cable_states(*SIZE))
+def test_a_states_drawn_borders_give_back_a_state_with_the_same_borders(state: CableState) -> None:
+    drawn = drawing(state, SIZE)
+    back = state_of_borders(BordersBody(left=drawn["left"], right=drawn["right"]), SIZE)
+    for line, segment in zip(cable_borders(back), (drawn["left"], drawn["right"]), strict=True):
+        assert max(distance(line, tuple(point)) for point in segment) < 1e-6
+    assert math.dist(*drawn["left"]) >= 1.0 and math.dist(*drawn["right"]) >= 1.0

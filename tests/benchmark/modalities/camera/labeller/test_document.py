@@ -61,12 +61,17 @@ def test_a_folder_whose_sequence_file_exists_is_refused(image_folder: Path) -> N
         open_document(image_folder)
 
 
-def test_a_video_is_written_out_as_frames_and_an_unlabelled_sequence_file(tmp_path: Path) -> None:
-    video = tmp_path / "clip.avi"
-    writer = cv2.VideoWriter(str(video), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, SIZE, isColor=False)
-    for index in range(3):
+def write_video(path: Path, n_frames: int) -> Path:
+    """A grey MJPG video of ``n_frames`` frames of :data:`SIZE`."""
+    writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), 10.0, SIZE, isColor=False)
+    for index in range(n_frames):
         writer.write(np.full((SIZE[1], SIZE[0]), 50 * index, np.uint8))
     writer.release()
+    return path
+
+
+def test_a_video_is_written_out_as_frames_and_an_unlabelled_sequence_file(tmp_path: Path) -> None:
+    video = write_video(tmp_path / "clip.avi", 3)
     document = open_document(video)
     assert document.output == tmp_path / "clip.txt"
     assert [image.relative_to(tmp_path).as_posix() for image in document.images] == [
@@ -85,3 +90,26 @@ def test_the_wrong_number_of_states_is_not_saved(image_folder: Path) -> None:
 def test_what_the_camera_readers_cannot_open_is_an_error_naming_it(tmp_path: Path) -> None:
     with pytest.raises(DataError, match="missing"):
         open_document(tmp_path / "missing")
+
+
+def test_a_sequence_file_saved_elsewhere_goes_to_a_new_file_only(image_folder: Path, tmp_path: Path) -> None:
+    file = tmp_path / "S.txt"
+    write_sequence_file(file, ((UNKNOWN_CABLE, image) for image in sorted(image_folder.iterdir())))
+    assert open_document(file, tmp_path / "T.txt").output == tmp_path / "T.txt"
+    assert open_document(file, file).output == file
+    (tmp_path / "U.txt").write_text("someone's labels")
+    with pytest.raises(DataError, match=r"U\.txt: exists already"):
+        open_document(file, tmp_path / "U.txt")
+
+
+def test_an_output_in_a_missing_folder_is_refused(image_folder: Path, tmp_path: Path) -> None:
+    with pytest.raises(DataError, match="no such folder"):
+        open_document(image_folder, tmp_path / "nowhere" / "S.txt")
+
+
+def test_a_video_whose_frame_folder_exists_is_refused(tmp_path: Path) -> None:
+    video = write_video(tmp_path / "clip.avi", 1)
+    (tmp_path / "clip").mkdir()
+    with pytest.raises(DataError, match="clip: exists already"):
+        open_document(video)
+    assert not (tmp_path / "clip.txt").exists()
