@@ -204,6 +204,8 @@ function keep() {
   return change([[current, { s: shown.state, k: "key" }]]);
 }
 
+// Linear in d, alpha, w and beta between consecutive key frames; a "no cable" frame breaks the pair.
+// alpha comes from the server in (-90, 90] deg, so a cable turning through the horizontal needs its own key frames.
 function interpolate() {
   const edits = [];
   let last = null;
