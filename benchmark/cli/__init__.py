@@ -12,6 +12,7 @@
     diagnose      the likelihood ceiling of a tracker's observation model on camera sequences
     pose-table    a camera tracker's pose estimates beside the truth, frame by frame (seeds/004)
     import        labels (CSV, CVAT) or a ROS bag in as an image sequence file with its sidecar
+    label         label a camera sequence's cable by hand in the browser (seeds/000, appendix B)
     make-dataset  write a suite's sequences to disk (PNG frames plus sequence files, or swath files)
     cache         the frame cache: info (what it holds) and clear
     nightly       run, add the run to the history database, report its changes, rewrite the site

@@ -1,4 +1,4 @@
-"""The camera modality's own commands: ``diagnose``, ``pose-table`` and ``import`` (``labels``, ``rosbag``).
+"""The camera modality's own commands: ``diagnose``, ``pose-table``, ``import`` (``labels``, ``rosbag``) and ``label``.
 
 Added to the command line through the ``trackbench_register_commands``
 hook, under the entry point ``modality-camera`` of the
@@ -17,6 +17,7 @@ import click
 
 from benchmark.cli.options import OUT_OPTION
 from benchmark.hookspecs import hookimpl
+from benchmark.modalities.camera.labeller.command import label_command
 
 if TYPE_CHECKING:
     from benchmark.cli.discovery import CommandRegistry
@@ -223,7 +224,6 @@ def import_rosbag_command(
 
 @hookimpl
 def trackbench_register_commands(registry: CommandRegistry) -> None:
-    """Add ``diagnose``, ``pose-table`` and ``import``."""
-    registry.add_command(diagnose_command)
-    registry.add_command(pose_table_command)
-    registry.add_command(import_group)
+    """Add ``diagnose``, ``pose-table``, ``import`` and ``label``."""
+    for command in (diagnose_command, pose_table_command, import_group, label_command):
+        registry.add_command(command)

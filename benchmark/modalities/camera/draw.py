@@ -79,7 +79,7 @@ def _draw_borders(picture: np.ndarray, state: CableState, size: ImageSize, colou
         return
     factors = (picture.shape[1] / size[0], picture.shape[0] / size[1])
     for line in borders:
-        chord = _chord(line, size)
+        chord = chord_ends(line, size)
         if chord is not None:
             start, end = (_fixed_point(model_to_pixel(x, y, size), factors) for x, y in chord)
             cv2.line(picture, start, end, colour, 1, cv2.LINE_8, _SHIFT)
@@ -91,7 +91,7 @@ def _fixed_point(pixel: tuple[float, float], factors: tuple[float, float]) -> tu
     return round(((u + 0.5) * factor_u - 0.5) * 2**_SHIFT), round(((v + 0.5) * factor_v - 0.5) * 2**_SHIFT)
 
 
-def _chord(line: Line, size: ImageSize) -> tuple[tuple[float, float], tuple[float, float]] | None:
+def chord_ends(line: Line, size: ImageSize) -> tuple[tuple[float, float], tuple[float, float]] | None:
     """The ends of a line's chord through the rectangle of pixel centres, in model coordinates; None if it misses."""
     half_w, half_h = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
     x0, y0 = line.nearest_point_to_origin()
