@@ -156,6 +156,9 @@ class NamedSequence(Sequence):
     def conditions(self) -> Mapping[str, Any]:
         return self.inner.conditions()
 
+    def lacks(self, needs: Iterable[str]) -> dict[str, str]:
+        return self.inner.lacks(needs)
+
     def frames(self) -> Iterator[Frame]:
         return self.inner.frames()
 
