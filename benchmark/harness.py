@@ -1,7 +1,10 @@
 """The run sequence: resume, run, store and publish a benchmark.
 
 A benchmark run takes the cells a :class:`~benchmark.selection.Selection`
-asks for (:func:`benchmark.selection.select_cells`) and
+asks for (:func:`benchmark.selection.select_cells`), leaves out those
+whose tracker needs what their sequence lacks (a camera calibration that
+a sequence file's sidecar does not give, :func:`benchmark.selection.unmet_needs`),
+saying so before any cell runs and listing them with the run's problems, and
 
 1. takes the lock of ``OUT`` (``OUT/results.sqlite.lock``), so that two
    runs never write one database and compute the same cells twice;
@@ -62,6 +65,7 @@ from benchmark.report import write_condition_board, write_leaderboards
 from benchmark.report.display import one_line, printable
 from benchmark.results import CellResult
 from benchmark.runner import DEFAULT_TIMEOUT_S, Cell
+from benchmark.selection import unmet_needs
 from benchmark.store import DATABASE_NAME, ResultStore
 from benchmark.training import fit_models
 
@@ -316,7 +320,11 @@ def run_benchmark(
         The command line and its parsed options, recorded with the run.
     problems : sequence of str
         Plugins left out (:attr:`benchmark.registry.Registry.problems`),
-        recorded with the run and shown on its boards.
+        recorded with the run and shown on its boards.  The cells whose
+        tracker needs what their sequence lacks
+        (:func:`benchmark.selection.unmet_needs`) are not run: each such
+        pair is logged before any cell runs and joins these problems, so
+        the run is not :attr:`~RunSummary.clean`.
     log : callable
         Receives a line for the resumed cells, the frame cache, every
         training and every finished cell.
@@ -337,7 +345,10 @@ def run_benchmark(
         If ``out`` cannot be written, another run holds its lock, or its
         database is not a trackbench database.
     """
-    todo = list(cells)
+    todo, unmet = unmet_needs(cells)
+    for line in unmet:
+        log(line)
+    problems = [*problems, *unmet]
     statuses: collections.Counter[str] = collections.Counter()
     ran = rendered = 0
     step_s = read_s = 0.0

@@ -16,6 +16,7 @@ tracker states what it reads.
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Iterator, Mapping
@@ -98,6 +99,10 @@ class SequenceInfo:
     extra: Mapping[str, Any] = field(default_factory=dict)
 
 
+INFO_FIELDS: frozenset[str] = frozenset(item.name for item in dataclasses.fields(SequenceInfo))
+"""The names of :class:`SequenceInfo`'s fields: what a tracker may declare it :attr:`~benchmark.tracker.Tracker.needs`."""
+
+
 class Sequence(ABC):
     """A stream of frames with its :class:`SequenceInfo`.
 
@@ -157,7 +162,7 @@ class Sequence(ABC):
             focal_px, pipe_diameter_m, tilt_deg under [camera] in S.toml"``).
         """
         info = self.info
-        return {need: need.replace("_", " ") for need in needs if getattr(info, need) is None}
+        return {need: need for need in needs if getattr(info, need) is None}
 
     def conditions(self) -> Mapping[str, Any]:
         """The conditions the sequence was made under, by name, for boards that split results by them.
