@@ -62,7 +62,7 @@ from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
 from benchmark.progress import Progress, SilentProgress
 from benchmark.report import write_condition_board, write_leaderboards
-from benchmark.report.display import one_line, printable
+from benchmark.report.display import NO_TRUTH, one_line, printable
 from benchmark.results import CellResult
 from benchmark.runner import DEFAULT_TIMEOUT_S, Cell
 from benchmark.selection import unmet_needs
@@ -166,13 +166,15 @@ def _cpu_s() -> float:
 
 
 def describe_result(result: CellResult) -> str:
-    """One line on a finished cell: tracker, dataset, seed, status, correct %, fps, frames and time."""
+    """One line on a finished cell: tracker, dataset, seed, status, correct % (or no truth), fps, frames and time."""
     summary = result.summary()
     correct = summary.get("correct_pct", math.nan)
     fps = summary.get("fps", math.nan)
+    unscored = result.status == "ok" and result.scores and not summary.get("frames")
+    rate = NO_TRUTH if unscored else f"correct {correct:.1f}%"
     line = (
         f"{result.tracker}  {result.dataset}  seed {result.seed}  {result.status}  "
-        f"correct {correct:.1f}%  {fps:.0f} fps  ({len(result.scores)} frames, {result.elapsed_s:.1f} s)"
+        f"{rate}  {fps:.0f} fps  ({len(result.scores)} frames, {result.elapsed_s:.1f} s)"
     )
     return printable(f"{line}  {one_line(result.message)}" if result.message else line)
 

@@ -199,3 +199,14 @@ def test_a_tracker_that_needs_what_a_sequence_lacks_is_reported_before_the_run_a
     assert summary.publication.problems == expected and not summary.clean
     assert summary.statuses == {"ok": 4}
     assert "calibrated cannot run on fake/S1: it needs calibration" in (tmp_path / "leaderboard.md").read_text()
+
+
+def test_a_cell_on_frames_without_truth_is_described_as_such(registry: Registry, fakes: types.ModuleType) -> None:
+    @dataclasses.dataclass(frozen=True)
+    class Unlabelled(fakes.FakeSequence):
+        def frames(self):
+            return (dataclasses.replace(frame, truth=None) for frame in super().frames())
+
+    cell = fakes.make_cell(registry.trackers["blind"], Unlabelled("video", 3))
+    line = describe_result(run_cell(cell))
+    assert line.startswith("blind  video  seed 0  ok  no truth  ") and "(3 frames," in line
