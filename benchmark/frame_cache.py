@@ -50,7 +50,7 @@ import itertools
 import os
 import uuid
 import warnings
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Any
@@ -299,7 +299,7 @@ def _remove_if_same(path: Path, opened: os.stat_result) -> None:
 
 @dataclass(frozen=True)
 class CachedSequence(Sequence):
-    """A sequence whose frames come from a :class:`FrameCache`; info, identity and conditions are the inner sequence's."""
+    """A sequence whose frames come from a :class:`FrameCache`; info, identity, conditions and what it lacks are the inner sequence's."""
 
     inner: Sequence
     cache: FrameCache
@@ -315,6 +315,9 @@ class CachedSequence(Sequence):
 
     def conditions(self) -> Mapping[str, Any]:
         return self.inner.conditions()
+
+    def lacks(self, needs: Iterable[str]) -> dict[str, str]:
+        return self.inner.lacks(needs)
 
     def frames(self) -> Iterator[Frame]:
         return self.cache.frames(self.inner, self.key)

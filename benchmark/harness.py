@@ -1,7 +1,10 @@
 """The run sequence: resume, run, store and publish a benchmark.
 
 A benchmark run takes the cells a :class:`~benchmark.selection.Selection`
-asks for (:func:`benchmark.selection.select_cells`) and
+asks for (:func:`benchmark.selection.select_cells`), leaves out those
+whose tracker needs what their sequence lacks (a camera calibration that
+a sequence file's sidecar does not give, :func:`benchmark.selection.unmet_needs`),
+saying so before any cell runs and listing them with the run's problems, and
 
 1. takes the lock of ``OUT`` (``OUT/results.sqlite.lock``), so that two
    runs never write one database and compute the same cells twice;
@@ -59,9 +62,10 @@ from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
 from benchmark.progress import Progress, SilentProgress
 from benchmark.report import write_condition_board, write_leaderboards
-from benchmark.report.display import one_line, printable
+from benchmark.report.display import NO_TRUTH, one_line, printable
 from benchmark.results import CellResult
 from benchmark.runner import DEFAULT_TIMEOUT_S, Cell
+from benchmark.selection import unmet_needs
 from benchmark.store import DATABASE_NAME, ResultStore
 from benchmark.training import fit_models
 
@@ -162,13 +166,15 @@ def _cpu_s() -> float:
 
 
 def describe_result(result: CellResult) -> str:
-    """One line on a finished cell: tracker, dataset, seed, status, correct %, fps, frames and time."""
+    """One line on a finished cell: tracker, dataset, seed, status, correct % (or no truth), fps, frames and time."""
     summary = result.summary()
     correct = summary.get("correct_pct", math.nan)
     fps = summary.get("fps", math.nan)
+    unscored = result.status == "ok" and result.scores and not summary.get("frames")
+    rate = NO_TRUTH if unscored else f"correct {correct:.1f}%"
     line = (
         f"{result.tracker}  {result.dataset}  seed {result.seed}  {result.status}  "
-        f"correct {correct:.1f}%  {fps:.0f} fps  ({len(result.scores)} frames, {result.elapsed_s:.1f} s)"
+        f"{rate}  {fps:.0f} fps  ({len(result.scores)} frames, {result.elapsed_s:.1f} s)"
     )
     return printable(f"{line}  {one_line(result.message)}" if result.message else line)
 
@@ -316,7 +322,11 @@ def run_benchmark(
         The command line and its parsed options, recorded with the run.
     problems : sequence of str
         Plugins left out (:attr:`benchmark.registry.Registry.problems`),
-        recorded with the run and shown on its boards.
+        recorded with the run and shown on its boards.  The cells whose
+        tracker needs what their sequence lacks
+        (:func:`benchmark.selection.unmet_needs`) are not run: each such
+        pair is logged before any cell runs and joins these problems, so
+        the run is not :attr:`~RunSummary.clean`.
     log : callable
         Receives a line for the resumed cells, the frame cache, every
         training and every finished cell.
@@ -337,7 +347,10 @@ def run_benchmark(
         If ``out`` cannot be written, another run holds its lock, or its
         database is not a trackbench database.
     """
-    todo = list(cells)
+    todo, unmet = unmet_needs(cells)
+    for line in unmet:
+        log(line)
+    problems = [*problems, *unmet]
     statuses: collections.Counter[str] = collections.Counter()
     ran = rendered = 0
     step_s = read_s = 0.0

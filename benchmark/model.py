@@ -16,9 +16,10 @@ tracker states what it reads.
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 from abc import ABC, abstractmethod
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any, ClassVar, Generic, TypeVar
 
@@ -98,6 +99,10 @@ class SequenceInfo:
     extra: Mapping[str, Any] = field(default_factory=dict)
 
 
+INFO_FIELDS: frozenset[str] = frozenset(item.name for item in dataclasses.fields(SequenceInfo))
+"""The names of :class:`SequenceInfo`'s fields: what a tracker may declare it :attr:`~benchmark.tracker.Tracker.needs`."""
+
+
 class Sequence(ABC):
     """A stream of frames with its :class:`SequenceInfo`.
 
@@ -137,6 +142,27 @@ class Sequence(ABC):
         info = self.info
         generator = f"{type(self).__module__}.{type(self).__qualname__}"
         return DatasetIdentity(info.name, info.modality, source=generator, fingerprint=digest(info.name))
+
+    def lacks(self, needs: Iterable[str]) -> dict[str, str]:
+        """Of the :class:`SequenceInfo` fields ``needs`` (a tracker's :attr:`~benchmark.tracker.Tracker.needs`), those the sequence does not give.
+
+        It is asked in the coordinating process before any cell runs, so
+        that a tracker that cannot run on a sequence is reported instead of
+        failing in every cell.  This default reads :attr:`info`, which
+        costs nothing for a sequence defined by a spec; a sequence that
+        reads a frame to describe itself (a frame size from its first
+        image) answers from what it holds instead, and tells how its data
+        could give what is missing.
+
+        Returns
+        -------
+        dict
+            Field name to a phrase that names what is missing and, where the
+            sequence knows, how to add it (``"camera calibration: add
+            focal_px, pipe_diameter_m, tilt_deg under [camera] in S.toml"``).
+        """
+        info = self.info
+        return {need: need for need in needs if getattr(info, need) is None}
 
     def conditions(self) -> Mapping[str, Any]:
         """The conditions the sequence was made under, by name, for boards that split results by them.

@@ -22,7 +22,7 @@ from benchmark.errors import ParameterError, PluginError
 from benchmark.identity import code_digest
 from benchmark.metrics import CORE, Metric, Metrics
 from benchmark.modality import Modality, SceneFactory
-from benchmark.model import Sequence
+from benchmark.model import INFO_FIELDS, Sequence
 from benchmark.parameters import params_key
 from benchmark.tracker import Tracker
 
@@ -267,6 +267,12 @@ class Registry(PluginRecords):
             raise _InvalidTracker(
                 f"tracker {tracker_class.name!r} has modality {tracker_class.modality!r}, which no plugin "
                 f"registered (registered: {known})"
+            )
+        unknown_needs = [need for need in tracker_class.needs if need not in INFO_FIELDS]
+        if unknown_needs:
+            raise _InvalidTracker(
+                f"tracker {tracker_class.name!r}: needs must be a tuple of SequenceInfo fields "
+                f"({', '.join(sorted(INFO_FIELDS))}), got {tracker_class.needs!r}"
             )
         params_class = tracker_class.Params
         if not (dataclasses.is_dataclass(params_class) and params_class.__dataclass_params__.frozen):

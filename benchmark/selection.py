@@ -156,6 +156,9 @@ class NamedSequence(Sequence):
     def conditions(self) -> Mapping[str, Any]:
         return self.inner.conditions()
 
+    def lacks(self, needs: Iterable[str]) -> dict[str, str]:
+        return self.inner.lacks(needs)
+
     def frames(self) -> Iterator[Frame]:
         return self.inner.frames()
 
@@ -282,6 +285,45 @@ def make_cells(
             f"(trackers: {tracker_modalities}; sequences: {sequence_modalities})"
         )
     return cells
+
+
+def unmet_needs(cells: Iterable[Cell]) -> tuple[list[Cell], list[str]]:
+    """The cells whose tracker can run on their sequence, and a line for each pair that cannot.
+
+    A tracker declares the :class:`~benchmark.model.SequenceInfo` fields
+    it cannot run without (:attr:`benchmark.tracker.Tracker.needs`); each
+    sequence is asked once which of them it lacks
+    (:meth:`benchmark.model.Sequence.lacks`), reading no frame.  The cells
+    of a pair that lacks one are dropped, every seed of it, so that they
+    are reported once before the run instead of failing cell by cell.
+
+    Returns
+    -------
+    tuple of (list of Cell, list of str)
+        The runnable cells in their order, and one line per tracker,
+        dataset and missing field, e.g. ``"foresti_ekf cannot run on
+        S.txt: it needs camera calibration: add focal_px, pipe_diameter_m,
+        tilt_deg under [camera] in S.toml"``.
+    """
+    runnable: list[Cell] = []
+    lacking: dict[tuple[str, tuple[str, ...]], dict[str, str]] = {}
+    problems: dict[str, None] = {}
+    for cell in cells:
+        needs = tuple(cell.tracker.tracker_class.needs)
+        if not needs:
+            runnable.append(cell)
+            continue
+        asked = (cell.identity.key, needs)
+        if asked not in lacking:
+            try:
+                lacking[asked] = cell.sequence.lacks(needs)
+            except Exception:  # noqa: BLE001 - the cell itself then fails reading the info, with its own message
+                lacking[asked] = {}
+        if not lacking[asked]:
+            runnable.append(cell)
+        for what in lacking[asked].values():
+            problems.setdefault(f"{cell.tracker.name} cannot run on {cell.dataset}: it needs {what}")
+    return runnable, list(problems)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -75,6 +75,13 @@ class Tracker(ABC, Generic[TruthT, EstimateT]):
         each with the reason; the kit reports them as expected failures
         (``xfail``), and as a failure if one passes, so the list stays true
         (scikit-learn's ``expected_failed_checks``).
+    needs : tuple of str
+        Fields of :class:`~benchmark.model.SequenceInfo` the tracker cannot
+        run without, e.g. ``("calibration", "frame_interval_s")``.  Before
+        any cell runs, the harness asks every sequence which of them it
+        lacks (:meth:`benchmark.model.Sequence.lacks`); a tracker is not run
+        on a sequence that lacks one, and the run reports the pair with
+        what to add (:func:`benchmark.selection.unmet_needs`).
     """
 
     name: ClassVar[str]
@@ -84,6 +91,7 @@ class Tracker(ABC, Generic[TruthT, EstimateT]):
     deterministic: ClassVar[bool] = False
     starts_without_truth: ClassVar[bool] = True
     expected_failed_checks: ClassVar[Mapping[str, str]] = {}
+    needs: ClassVar[tuple[str, ...]] = ()
 
     def __init__(self, params: Any = None) -> None:
         self.params = params if params is not None else self.Params()

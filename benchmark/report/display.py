@@ -86,15 +86,31 @@ def _shown_columns(board: pd.DataFrame, metrics: Metrics) -> list[str]:
     return [column for column in board.columns if column not in hidden]
 
 
+NO_TRUTH = "no truth"
+"""What a board shows in place of the detection rates of a row whose frames had no ground truth to score against."""
+
+
+def without_truth(board: pd.DataFrame) -> pd.Series:
+    """The rows of a board that ran cleanly on frames of which none had a truth: ``frames`` (scored) 0, status ``ok``."""
+    if not {"frames", "status"} <= set(board.columns):
+        return pd.Series(False, index=board.index)
+    return (board["frames"] == 0) & (board["status"] == "ok")
+
+
 def display_table(board: pd.DataFrame, metrics: Metrics = CORE) -> pd.DataFrame:
     """The board as rounded text, for Markdown, HTML and the terminal.
 
     A metric with an interval over seeds (columns ``*_lo_*`` and ``*_hi_*``,
     :attr:`benchmark.metrics.Metric.interval_columns`) is shown as
     ``value [low, high]`` in its own column, and ``deterministic`` as yes or no.
+    A row without truth (:func:`without_truth`: a video, an image folder, a
+    sequence file of ``nan`` rows) shows :data:`NO_TRUTH` where its
+    detection rates would be, since nothing was scored; the board itself
+    keeps them NaN.
     """
     ends = _intervals(board, metrics)
     shown = _shown_columns(board, metrics)
+    unscored = without_truth(board).tolist()
     table = {}
     for column in shown:
         if column in ends:
@@ -107,6 +123,9 @@ def display_table(board: pd.DataFrame, metrics: Metrics = CORE) -> pd.DataFrame:
             table[column] = ["" if pd.isna(value) else ("yes" if value else "no") for value in board[column]]
         else:
             table[column] = [format_value(column, value, metrics) for value in board[column].tolist()]
+        metric = metrics.named(str(column))
+        if metric is not None and metric.kind == "detection":
+            table[column] = [NO_TRUTH if none else text for text, none in zip(table[column], unscored, strict=True)]
     return pd.DataFrame(table, columns=shown, dtype=object)
 
 

@@ -37,9 +37,12 @@ Every frame (Fig. 3):
 The filter equations are the shared core :mod:`benchmark.filters.kalman`
 (whose covariance update is the Joseph form of eq. 16c).  The intrinsics,
 the pipe's diameter and the mounting tilt ``phi_0`` come from the
-sequence's calibration, ``tau`` from its frame interval.  A sequence
-without navigation (frames from a file) is predicted with zero speeds: the
-camera is assumed to hover, and the process noise ``Q`` carries its motion.
+sequence's calibration, ``tau`` from its frame interval (the tracker
+``needs`` them: a sequence file gives them in its sidecar, ``S.toml``
+beside ``S.txt``, :mod:`benchmark.modalities.camera.io.sidecar`).  A frame
+without navigation (a sequence file whose sidecar gives none, or none for
+that frame) is predicted with zero speeds: the camera is assumed to hover,
+and the process noise ``Q`` carries its motion.
 
 Defaults are section VI-A's: ``R = 16 I`` (4 px on each abscissa),
 ``Q = diag(0.01, 0.01, 0.0012, 0.087)``, ``x_0 = (0, 2, 0, 0.78)`` and
@@ -130,6 +133,7 @@ class ForestiEkfTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
     version = "1.1"
     modality = "camera"
     deterministic = True
+    needs = ("calibration", "frame_size", "frame_interval_s")
     Params = ForestiParams
 
     def __init__(self, params: ForestiParams | None = None) -> None:

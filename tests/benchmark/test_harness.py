@@ -180,3 +180,33 @@ def test_conditions_the_store_holds_are_not_measured_again(fakes: types.ModuleTy
     assert sorted(asked) == ["world/A", "world/B"]  # the second run into the folder asks nobody
     assert not first.empty
     pd.testing.assert_frame_equal(first.reset_index(drop=True), second.reset_index(drop=True))
+
+
+def test_a_tracker_that_needs_what_a_sequence_lacks_is_reported_before_the_run_and_not_run(
+    fakes: types.ModuleType, tmp_path: Path
+) -> None:
+    class Calibrated(fakes.Perfect):
+        name = "calibrated"
+        needs = ("calibration", "frame_interval_s")
+
+    registry = fakes.make_registry((fakes.Perfect, Calibrated))
+    cells = select_cells(registry, Selection(suites=("fake",), seeds=2))
+    lines: list[str] = []
+    summary = run_benchmark(cells, registry.modalities, tmp_path, jobs=0, log=lines.append)
+    expected = [f"calibrated cannot run on fake/{name}: it needs calibration" for name in ("S1", "S2")]
+    assert lines[:2] == expected and len(lines) == 2 + 4
+    assert {row[1] for row in stored(tmp_path)} == {"perfect"}
+    assert summary.publication.problems == expected and not summary.clean
+    assert summary.statuses == {"ok": 4}
+    assert "calibrated cannot run on fake/S1: it needs calibration" in (tmp_path / "leaderboard.md").read_text()
+
+
+def test_a_cell_on_frames_without_truth_is_described_as_such(registry: Registry, fakes: types.ModuleType) -> None:
+    @dataclasses.dataclass(frozen=True)
+    class Unlabelled(fakes.FakeSequence):
+        def frames(self):
+            return (dataclasses.replace(frame, truth=None) for frame in super().frames())
+
+    cell = fakes.make_cell(registry.trackers["blind"], Unlabelled("video", 3))
+    line = describe_result(run_cell(cell))
+    assert line.startswith("blind  video  seed 0  ok  no truth  ") and "(3 frames," in line

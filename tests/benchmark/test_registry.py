@@ -277,3 +277,14 @@ def test_a_bad_metric_names_the_plugin(registry, metric, modality, message):
             registry.add_metric(metric, modality)
     assert registry.add_metric(FAILURES, "camera") is FAILURES
     assert [m.name for m in registry.metrics.for_board("camera", ())][-1] == FAILURES.name
+
+
+def test_a_tracker_that_needs_what_no_sequence_info_holds_is_left_out(fakes) -> None:
+    class Needy(fakes.Perfect):
+        name = "needy"
+        needs = ("calibration", "focal_length")
+
+    registry = fakes.make_registry((fakes.Perfect, Needy))
+    assert "needy" not in registry.trackers and "perfect" in registry.trackers
+    assert "needy" in registry.problems[-1] and "'focal_length'" in registry.problems[-1]
+    assert "calibration, extra, frame_interval_s" in registry.problems[-1]

@@ -55,3 +55,36 @@ def test_printable_writes_control_characters_as_escapes(text: str, shown: str) -
 
 def test_one_line_is_printable_and_on_one_line() -> None:
     assert one_line("a\n\x1b[2Jb\t c") == "a \\x1b[2Jb c"
+
+
+def _cells_and_frames(outcomes: dict[tuple[str, str], list[object]]) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Cells of tracker ``a`` by (dataset, status), with frames of the given outcomes (None: no truth), 2 ms a step."""
+    cells, frames = [], []
+    for cell_id, ((dataset, status), frame_outcomes) in enumerate(outcomes.items(), start=1):
+        cells.append(
+            {"id": cell_id, "tracker": "a", "tracker_key": "k", "dataset": dataset, "dataset_key": dataset,
+             "modality": "camera", "seed": 0, "init": "truth", "status": status, "message": ""}
+        )
+        frames += [
+            {"cell_id": cell_id, "frame": index, "outcome": outcome, "step_ms": 2.0, "err_d_px": math.nan,
+             "err_alpha_deg": math.nan, "err_w_px": math.nan, "err_beta_deg": math.nan}
+            for index, outcome in enumerate(frame_outcomes)
+        ]
+    return pd.DataFrame(cells), pd.DataFrame(frames)
+
+
+def test_a_row_without_truth_says_so_where_its_rates_would_be_and_keeps_its_speed() -> None:
+    from benchmark.leaderboard import leaderboards
+    from benchmark.modalities.camera.modality import CAMERA
+
+    cells, frames = _cells_and_frames(
+        {("video", "ok"): [None, None], ("labelled", "ok"): ["correct", "false"], ("broken", "error"): []}
+    )
+    board = leaderboards(cells, frames, {"camera": CAMERA})["camera"]
+    shown = display_table(board).set_index(board["dataset"])
+    assert shown.loc["video", ["correct_pct", "false_pct", "missed_pct"]].tolist() == ["no truth"] * 3
+    assert shown.loc["video", "fps"] == "500" and shown.loc["video", "frames"] == "0"
+    assert shown.loc["labelled", ["correct_pct", "false_pct"]].tolist() == ["50.0", "50.0"]
+    assert shown.loc["broken", "correct_pct"] == ""  # a cell that failed before any frame is not a row without truth
+    assert shown.loc["(all)", "correct_pct"] == "50.0"
+    assert math.isnan(board.set_index("dataset").loc["video", "correct_pct"])  # the board keeps NaN

@@ -14,6 +14,11 @@ these becomes a lazy, picklable :class:`~benchmark.model.Sequence`:
 * :class:`~benchmark.modalities.camera.io.video.VideoFile`: the frames of a
   video OpenCV decodes.
 
+Each may carry a sidecar, ``S.toml`` beside ``S.txt``
+(:mod:`~benchmark.modalities.camera.io.sidecar`): the camera calibration,
+the frame interval and each frame's navigation, which the thesis' format
+has no place for.
+
 :mod:`~benchmark.modalities.camera.io.export` writes any camera sequence
 as PNG images plus a sequence file.  Frames are decoded one at a time while
 a sequence is iterated; a missing, corrupt or malformed input raises

@@ -22,6 +22,7 @@ from pathlib import Path
 from benchmark.errors import DataError
 from benchmark.modalities.camera.io.image_list import ImageListSequence
 from benchmark.modalities.camera.io.images import IMAGE_EXTENSIONS, is_image_name
+from benchmark.modalities.camera.io.sidecar import read_sidecar
 from benchmark.modalities.camera.model import UNKNOWN_CABLE
 
 _DIGITS = re.compile(r"(\d+)")
@@ -49,7 +50,12 @@ class ImageFolder(ImageListSequence):
     path : str or path-like
         The folder.  ``info.name`` is this path as given.
     frame_interval_s : float, optional
-        Time between frames in s; without it ``time_s`` counts frames.
+        Time between frames in s; without it or a sidecar's, ``time_s``
+        counts frames.
+
+    The sidecar ``DIR.toml`` beside the folder ``DIR``, where there is one,
+    gives the calibration, the frame interval and each frame's navigation
+    (:mod:`benchmark.modalities.camera.io.sidecar`).
 
     Raises
     ------
@@ -83,4 +89,5 @@ class ImageFolder(ImageListSequence):
             frame_interval_s=frame_interval_s,
             # The folder's own size and mtime change with any file added to it; its images are its content.
             content=b"",
+            sidecar=read_sidecar(folder, n_frames=len(images)),
         )

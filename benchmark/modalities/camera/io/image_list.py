@@ -26,12 +26,14 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Iterator
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from benchmark.errors import DataError
 from benchmark.identity import DatasetIdentity, file_fingerprint, resolved_source
 from benchmark.modalities.camera.io.images import read_grey, size_of
+from benchmark.modalities.camera.io.sidecar import Sidecar, sidecar_path
 from benchmark.modalities.camera.model import CableState, CameraTruth
 from benchmark.model import Frame, Sequence, SequenceInfo
 
@@ -67,6 +69,10 @@ class ImageListSequence(Sequence):
         The bytes of ``source`` where it is a file the caller has read (an
         image sequence file); its identity hashes them.  Without them the
         size and modification time of ``source`` stand in.
+    sidecar : Sidecar, optional
+        What the sequence's sidecar says (:mod:`benchmark.modalities.camera.io.sidecar`):
+        its calibration and navigation, and its frame interval where
+        ``frame_interval_s`` is not given; it enters the identity.
 
     References
     ----------
@@ -82,6 +88,7 @@ class ImageListSequence(Sequence):
         frame_interval_s: float | None = None,
         *,
         content: bytes | None = None,
+        sidecar: Sidecar | None = None,
     ) -> None:
         self._name = name
         self._source = source
@@ -89,13 +96,14 @@ class ImageListSequence(Sequence):
         self._cables: tuple[CableState, ...] = tuple(cables)
         if len(self._images) != len(self._cables):
             raise ValueError(f"{len(self._images)} images but {len(self._cables)} cable states")
+        self._sidecar = sidecar if sidecar is not None else Sidecar(sidecar_path(source))
+        if frame_interval_s is None:
+            frame_interval_s = self._sidecar.frame_interval_s
         self._frame_interval_s = check_frame_interval(frame_interval_s)
         self._frame_size: tuple[int, int] | None = None
+        fingerprint = file_fingerprint(source, content=content, named=self._images)
         self._identity = DatasetIdentity(
-            name,
-            "camera",
-            source=resolved_source(source),
-            fingerprint=file_fingerprint(source, content=content, named=self._images),
+            name, "camera", source=resolved_source(source), fingerprint=self._sidecar.fingerprint_of(fingerprint)
         )
 
     def _where(self, index: int) -> str:
@@ -126,8 +134,14 @@ class ImageListSequence(Sequence):
             n_frames=len(self._images),
             frame_size=self._frame_size,
             frame_interval_s=self._frame_interval_s,
+            calibration=self._sidecar.calibration,
             extra={"source": str(self._source)},
         )
+
+    def lacks(self, needs: Iterable[str]) -> dict[str, str]:
+        """What a tracker needs that the sidecar would give and nothing does, with the line to add; no image is read."""
+        given: dict[str, Any] = {"calibration": self._sidecar.calibration, "frame_interval_s": self._frame_interval_s}
+        return self._sidecar.lacks(needs, given)
 
     def frames(self) -> Iterator[Frame]:
         """Yield the frames in order, decoding one image per frame.
@@ -139,6 +153,7 @@ class ImageListSequence(Sequence):
             from the first image; the message names the image.
         """
         interval = self._frame_interval_s
+        navigation = self._sidecar.navigation
         for index, (path, cable) in enumerate(zip(self._images, self._cables, strict=True)):
             image = self._read(index)
             size = size_of(image)
@@ -151,7 +166,8 @@ class ImageListSequence(Sequence):
                     f"but the sequence's frames are {width}x{height} px"
                 )
             time_s = index * interval if interval is not None else float(index)
-            yield Frame(index=index, observation=image, truth=CameraTruth(cable=cable), time_s=time_s)
+            truth = CameraTruth(cable=cable)
+            yield Frame(index=index, observation=image, truth=truth, navigation=navigation.get(index), time_s=time_s)
 
     def __len__(self) -> int:
         return len(self._images)

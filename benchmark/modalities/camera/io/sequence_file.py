@@ -37,6 +37,7 @@ from benchmark.errors import DataError
 from benchmark.files import atomic_writer, resolved
 from benchmark.io import read_regular_file
 from benchmark.modalities.camera.io.image_list import ImageListSequence
+from benchmark.modalities.camera.io.sidecar import read_sidecar
 from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState
 
 MAX_LINES = 1_000_000
@@ -253,13 +254,18 @@ class ImageSequenceFile(ImageListSequence):
         The sequence file.  ``info.name`` is this path as given.
     frame_interval_s : float, optional
         Time between frames in s.  The format has no time stamps; without
-        this, ``time_s`` counts frames and ``info.frame_interval_s`` is None.
+        this or a sidecar's, ``time_s`` counts frames and
+        ``info.frame_interval_s`` is None.
+
+    The file's sidecar ``S.toml`` beside ``S.txt``, where there is one,
+    gives the calibration, the frame interval and each frame's navigation
+    (:mod:`benchmark.modalities.camera.io.sidecar`).
 
     Raises
     ------
     DataError
         As :func:`read_sequence_file` (a FIFO or a device is refused
-        unopened); later, while iterating, for a missing, corrupt or
+        unopened) and :func:`~benchmark.modalities.camera.io.sidecar.read_sidecar`; later, while iterating, for a missing, corrupt or
         differently sized image, naming the image and the line of the
         sequence file it is listed on.
 
@@ -279,6 +285,7 @@ class ImageSequenceFile(ImageListSequence):
             cables=(row.cable for row in self._rows),
             frame_interval_s=frame_interval_s,
             content=content,
+            sidecar=read_sidecar(self._path, n_frames=len(self._rows)),
         )
 
     @property

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 
 import cv2
@@ -26,6 +26,7 @@ import numpy as np
 from benchmark.errors import DataError
 from benchmark.identity import DatasetIdentity, file_fingerprint, resolved_source
 from benchmark.modalities.camera.io.images import size_of
+from benchmark.modalities.camera.io.sidecar import read_sidecar
 from benchmark.modalities.camera.model import UNKNOWN_CABLE, CameraTruth
 from benchmark.model import Frame, Sequence, SequenceInfo
 
@@ -118,13 +119,22 @@ class VideoFile(Sequence):
         The container's frame count, or None where it does not say; some
         containers only estimate it.
     info.frame_interval_s
-        ``1 / fps`` from the container, or None where it does not say.
+        The sidecar's ``frame_interval_s``, else ``1 / fps`` from the
+        container, or None where neither says.
+    info.calibration
+        The sidecar's camera calibration, or None.
+
+    The sidecar ``V.toml`` beside ``V.mp4``, where there is one, gives the
+    calibration, the frame interval (the user's word over a container's,
+    which may be wrong) and each frame's navigation
+    (:mod:`benchmark.modalities.camera.io.sidecar`); it is part of the
+    identity.
 
     Raises
     ------
     DataError
-        If the file is missing, cannot be opened, or no frame decodes;
-        later, if a frame has a different size than the first.
+        If the file is missing, cannot be opened, or no frame decodes, or
+        the sidecar is malformed (naming it and the key); later, if a frame has a different size than the first.
 
     References
     ----------
@@ -145,10 +155,12 @@ class VideoFile(Sequence):
             capture.release()
         self._frame_size = size_of(first)
         self._n_frames = int(round(count)) if math.isfinite(count) and count > 0 else None
-        self._frame_interval_s = 1.0 / fps if math.isfinite(fps) and fps > 0 else None
-        self._identity = DatasetIdentity(
-            self._name, "camera", source=resolved_source(self._path), fingerprint=file_fingerprint(self._path)
-        )
+        # The container's count is an estimate for some formats: navigation columns are not held to it.
+        self._sidecar = read_sidecar(path)
+        container_interval = 1.0 / fps if math.isfinite(fps) and fps > 0 else None
+        self._frame_interval_s = self._sidecar.frame_interval_s or container_interval
+        fingerprint = self._sidecar.fingerprint_of(file_fingerprint(self._path))
+        self._identity = DatasetIdentity(self._name, "camera", source=resolved_source(self._path), fingerprint=fingerprint)
 
     @property
     def path(self) -> Path:
@@ -169,8 +181,14 @@ class VideoFile(Sequence):
             n_frames=self._n_frames,
             frame_size=self._frame_size,
             frame_interval_s=self._frame_interval_s,
+            calibration=self._sidecar.calibration,
             extra={"source": self._name},
         )
+
+    def lacks(self, needs: Iterable[str]) -> dict[str, str]:
+        """What a tracker needs that neither the sidecar nor the container gives, with the line to add."""
+        given = {"calibration": self._sidecar.calibration, "frame_interval_s": self._frame_interval_s}
+        return self._sidecar.lacks(needs, given)
 
     def frames(self) -> Iterator[Frame]:
         """Decode and yield the frames in order; ``time_s`` is index times the frame interval.
@@ -180,6 +198,7 @@ class VideoFile(Sequence):
         capture = _open(self._path)
         interval = self._frame_interval_s
         truth = CameraTruth(cable=UNKNOWN_CABLE)
+        navigation = self._sidecar.navigation
         try:
             index = 0
             while True:
@@ -193,7 +212,7 @@ class VideoFile(Sequence):
                         f"but the video's frames are {self._frame_size[0]}x{self._frame_size[1]} px"
                     )
                 time_s = index * interval if interval is not None else float(index)
-                yield Frame(index=index, observation=grey, truth=truth, time_s=time_s)
+                yield Frame(index=index, observation=grey, truth=truth, navigation=navigation.get(index), time_s=time_s)
                 index += 1
         finally:
             capture.release()
