@@ -22,7 +22,7 @@ from benchmark.modalities.camera.labeller.command import label_command
 if TYPE_CHECKING:
     from benchmark.cli.discovery import CommandRegistry
     from benchmark.cli.session import Session
-    from benchmark.modalities.camera.importers.sidecar import SidecarCamera
+    from benchmark.modalities.camera.io.sidecar import CameraTable
 
 
 @click.command("diagnose")
@@ -120,9 +120,9 @@ def _calibration_options(command: Callable[..., None]) -> Callable[..., None]:
 
 def _sidecar_camera(
     focal_px: float | None, pipe_diameter_m: float | None, tilt_deg: float | None
-) -> SidecarCamera | None:
+) -> CameraTable | None:
     """The ``[camera]`` table of the options, None without them; all three or none must be given."""
-    from benchmark.modalities.camera.importers.sidecar import SidecarCamera
+    from benchmark.modalities.camera.io.sidecar import CameraTable
     from benchmark.scenes.spec import validate_table
 
     given = {"focal_px": focal_px, "pipe_diameter_m": pipe_diameter_m, "tilt_deg": tilt_deg}
@@ -131,7 +131,7 @@ def _sidecar_camera(
     missing = [f"--{name.replace('_', '-')}" for name, value in given.items() if value is None]
     if missing:
         raise click.UsageError(f"the camera calibration needs {', '.join(missing)} too")
-    return validate_table(SidecarCamera, given, "camera calibration options")
+    return validate_table(CameraTable, given, "camera calibration options")
 
 
 @click.group("import")
@@ -173,7 +173,7 @@ def import_labels_command(
     ``--frame-interval-s`` the sidecar OUT with suffix ``.toml`` is written too.
     """
     from benchmark.modalities.camera.importers.labels import import_labels
-    from benchmark.modalities.camera.importers.sidecar import write_sidecar
+    from benchmark.modalities.camera.io.sidecar import write_sidecar
 
     camera = _sidecar_camera(focal_px, pipe_diameter_m, tilt_deg)
     path = import_labels(labels, images, out)

@@ -34,7 +34,7 @@ import numpy as np
 
 from benchmark.errors import DataError
 from benchmark.files import make_folder
-from benchmark.modalities.camera.importers.sidecar import SidecarCamera, write_navigation_file, write_sidecar
+from benchmark.modalities.camera.io.sidecar import CameraTable, write_navigation_file, write_sidecar
 from benchmark.modalities.camera.io.images import size_of, write_png
 from benchmark.modalities.camera.io.sequence_file import write_sequence_file
 from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState, VehicleSpeeds
@@ -142,7 +142,7 @@ def import_rosbag(
     image_topic: str,
     out: Path,
     navigation_topic: str | None = None,
-    camera: SidecarCamera | None = None,
+    camera: CameraTable | None = None,
 ) -> Path:
     """Write the images of ``bag`` as PNG frames, an unlabelled image sequence file and its sidecar.
 
@@ -156,7 +156,7 @@ def import_rosbag(
         The folder to write into; created if missing.
     navigation_topic : str, optional
         A topic of ``nav_msgs/msg/Odometry`` or ``geometry_msgs/msg/TwistStamped``.
-    camera : SidecarCamera, optional
+    camera : CameraTable, optional
         The sidecar's ``[camera]`` table.
 
     Returns
@@ -235,7 +235,7 @@ def import_rosbag(
     return sequence_file
 
 
-def _write_sidecar(sequence_file: Path, recording: _Recording, camera: SidecarCamera | None) -> None:
+def _write_sidecar(sequence_file: Path, recording: _Recording, camera: CameraTable | None) -> None:
     """The sidecar of an imported bag, with its navigation file when the bag had a navigation topic."""
     image_times = np.asarray(recording.image_times_ns, dtype=np.int64)
     periods = np.diff(image_times) / 1e9

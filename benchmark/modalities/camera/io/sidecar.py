@@ -35,7 +35,8 @@ the rule; a malformed CSV row names the CSV file and its line.
 The sidecar is part of what the data is: its bytes and the navigation
 file's enter the sequence's fingerprint (:meth:`Sidecar.fingerprint_of`),
 so an edited sidecar is another dataset to ``--resume``, while a sequence
-without one keeps the fingerprint it always had.
+without one keeps the fingerprint it always had.  :func:`write_sidecar` and
+:func:`write_navigation_file` write the format (``trackbench import``).
 """
 
 from __future__ import annotations
@@ -43,6 +44,7 @@ from __future__ import annotations
 import csv
 import hashlib
 import io
+import json
 import math
 import os
 import tomllib
@@ -55,6 +57,7 @@ import pydantic
 from annotated_types import Ge, Interval
 
 from benchmark.errors import DataError
+from benchmark.files import atomic_writer, write_text_atomically
 from benchmark.identity import digest
 from benchmark.io import read_regular_file
 from benchmark.modalities.camera.model import CameraCalibration, VehicleSpeeds
@@ -300,3 +303,76 @@ def read_navigation_csv(file: Path, content: bytes, n_frames: int | None = None)
             raise DataError(f"{at}: frame {parsed.frame} is beyond the sequence's {n_frames} frames")
         speeds[parsed.frame] = parsed.speeds()
     return speeds
+
+
+def _number_text(value: float) -> str:
+    # repr is the shortest text that reads back as the same float; valid TOML and CSV for finite values.
+    if not math.isfinite(value):
+        raise ValueError(f"{value!r} cannot be written to a sidecar")
+    return repr(float(value))
+
+
+def write_sidecar(
+    sequence_file: Path,
+    *,
+    frame_interval_s: float | None = None,
+    camera: CameraTable | None = None,
+    navigation_file: str | None = None,
+) -> Path:
+    """Write the sidecar of ``sequence_file`` with the parts given.
+
+    Parameters
+    ----------
+    sequence_file : pathlib.Path
+        The image sequence file the sidecar belongs to.
+    frame_interval_s : float, optional
+        Time between frames in s.
+    camera : CameraTable, optional
+        The ``[camera]`` table.
+    navigation_file : str, optional
+        Name of the navigation file, relative to the sidecar.
+
+    Returns
+    -------
+    pathlib.Path
+        The sidecar, :func:`sidecar_path` of ``sequence_file``.
+
+    Raises
+    ------
+    DataError
+        If the file cannot be written, naming it.
+    """
+    lines = []
+    if frame_interval_s is not None:
+        lines.append(f"frame_interval_s = {_number_text(frame_interval_s)}")
+    if camera is not None:
+        lines += [
+            "[camera]",
+            f"focal_px = {_number_text(camera.focal_px)}",
+            f"pipe_diameter_m = {_number_text(camera.pipe_diameter_m)}",
+            f"tilt_deg = {_number_text(camera.tilt_deg)}",
+        ]
+    if navigation_file is not None:
+        # A JSON string is a valid TOML basic string: the same escapes.
+        lines += ["[navigation]", f"file = {json.dumps(navigation_file, ensure_ascii=False)}"]
+    return write_text_atomically(sidecar_path(sequence_file), "".join(f"{line}\n" for line in lines), "sidecar")
+
+
+def write_navigation_file(path: Path, speeds: Iterable[VehicleSpeeds]) -> Path:
+    """Write one row of vehicle speeds per frame, from frame 0, under the header :data:`NAVIGATION_COLUMNS`.
+
+    Raises
+    ------
+    DataError
+        If the file cannot be written, naming it.
+
+    References
+    ----------
+    seeds/004 eq. (7): ``(s_x, s_y, s_z)`` are the lateral, vertical and frontal speeds.
+    """
+    with atomic_writer(path, "navigation file") as handle:
+        handle.write(",".join(NAVIGATION_COLUMNS) + "\n")
+        for frame, speed in enumerate(speeds):
+            values = ",".join(_number_text(v) for v in (speed.lateral, speed.vertical, speed.frontal))
+            handle.write(f"{frame},{values}\n")
+    return path

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import pickle
+import tomllib
 from pathlib import Path
 
 import cv2
@@ -13,7 +14,14 @@ import pytest
 from benchmark.errors import DataError
 from benchmark.modalities.camera.io.image_folder import ImageFolder
 from benchmark.modalities.camera.io.sequence_file import ImageSequenceFile, write_sequence_file
-from benchmark.modalities.camera.io.sidecar import read_sidecar, sidecar_path
+from benchmark.modalities.camera.io.sidecar import (
+    NAVIGATION_COLUMNS,
+    CameraTable,
+    read_sidecar,
+    sidecar_path,
+    write_navigation_file,
+    write_sidecar,
+)
 from benchmark.modalities.camera.io.video import VideoFile
 from benchmark.modalities.camera.model import UNKNOWN_CABLE, CameraCalibration, VehicleSpeeds
 
@@ -181,3 +189,47 @@ def test_a_sequence_file_named_toml_is_not_its_own_sidecar(tmp_path, make_image)
     write_sequence_file(path, [(UNKNOWN_CABLE, "0.png")])
     assert read_sidecar(path).content_digest is None
     assert ImageSequenceFile(path).info.calibration is None
+
+
+def test_every_part_is_written_in_the_fixed_order_and_reads_back(tmp_path: Path) -> None:
+    camera = CameraTable(focal_px=800, pipe_diameter_m=0.3, tilt_deg=30)
+    path = write_sidecar(tmp_path / "S.txt", frame_interval_s=0.04, camera=camera, navigation_file='odd "name" é.csv')
+    text = path.read_text(encoding="utf-8")
+    assert text.splitlines()[:5] == [
+        "frame_interval_s = 0.04",
+        "[camera]",
+        "focal_px = 800.0",
+        "pipe_diameter_m = 0.3",
+        "tilt_deg = 30.0",
+    ]
+    assert tomllib.loads(text)["navigation"] == {"file": 'odd "name" é.csv'}
+
+
+def test_parts_not_given_are_left_out(tmp_path: Path) -> None:
+    path = write_sidecar(tmp_path / "S.txt", navigation_file="S.nav.csv")
+    assert path.read_text() == '[navigation]\nfile = "S.nav.csv"\n'
+
+
+def test_the_camera_table_is_validated() -> None:
+    with pytest.raises(ValueError, match="focal_px"):
+        CameraTable(focal_px=0.0, pipe_diameter_m=0.3, tilt_deg=30)
+
+
+def test_the_navigation_file_has_one_row_per_frame_from_0(tmp_path: Path) -> None:
+    path = write_navigation_file(tmp_path / "n.csv", [VehicleSpeeds(0.1, -0.2, 1.5), VehicleSpeeds(0.0, 0.0, 1.25)])
+    assert path.read_text() == f"{','.join(NAVIGATION_COLUMNS)}\n0,0.1,-0.2,1.5\n1,0.0,0.0,1.25\n"
+
+
+def test_an_unwritable_sidecar_is_a_data_error_naming_it(tmp_path: Path) -> None:
+    with pytest.raises(DataError, match="S.toml"):
+        write_sidecar(tmp_path / "missing" / "S.txt", frame_interval_s=0.04)
+
+
+def test_what_is_written_reads_back_as_the_same_calibration_interval_and_speeds(tmp_path: Path) -> None:
+    speeds = [VehicleSpeeds(0.1, -0.2, 1.5), VehicleSpeeds(0.0, 0.0, 1.25)]
+    write_navigation_file(tmp_path / "S.nav.csv", speeds)
+    camera = CameraTable(focal_px=812.5, pipe_diameter_m=0.3, tilt_deg=31.0)
+    write_sidecar(tmp_path / "S.txt", frame_interval_s=0.04, camera=camera, navigation_file="S.nav.csv")
+    sidecar = read_sidecar(tmp_path / "S.txt", n_frames=2)
+    assert sidecar.calibration == camera.calibration() and sidecar.frame_interval_s == 0.04
+    assert [sidecar.navigation.get(frame) for frame in (0, 1)] == speeds
