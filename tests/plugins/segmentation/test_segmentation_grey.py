@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import cv2
 import numpy as np
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from trackbench_segmentation.grey import grey_quantiles, normalised_grey
 
@@ -42,6 +42,9 @@ def test_a_weaker_contrast_gives_the_same_normalised_levels(seed, gain, offset):
     # The same scene at a fraction of its contrast, shifted: its normalised levels differ only by rounding.
     scene = textured(seed, level=128.0, spread=40.0)
     murky = as_uint8(np.float32(128.0 + offset) + np.float32(gain) * (scene - np.float32(128.0)))
+    # A shift that clips as many pixels as a quantile holds moves that quantile onto the clipped level: the frame
+    # then lost part of its scene, which is not the weaker contrast this property is about.
+    assume(np.mean((murky == 0) | (murky == 255)) < QUANTILES[0] / 2)
     reference = normalised_grey(as_uint8(scene), 1.0, QUANTILES).astype(int)
     weak = normalised_grey(murky, 1.0, QUANTILES).astype(int)
     # Rounding the murky image to integers moves a level by up to half a grey level, i.e. 0.5 / gain of the
