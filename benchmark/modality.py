@@ -274,7 +274,7 @@ class Modality:
 
     @property
     def claims(self) -> tuple[str, ...]:
-        """What its readers open: ``"files ending .x"`` per suffix, ``"any other file"``, ``"folders"`` (holding some names)."""
+        """What its readers open: ``"files ending .x"``, ``"any other file"``, ``"folders"`` (holding names)."""
         return tuple(
             claim
             for reader in self.readers

@@ -112,7 +112,7 @@ def read_frame_csv(
 
 
 def number_text(value: float) -> str:
-    """``value`` as the shortest text that reads back as the same float: valid TOML and CSV; ``ValueError`` unless finite."""
+    """``value`` as the shortest text that reads back as the same float (TOML and CSV); ``ValueError`` unless finite."""
     if not math.isfinite(value):
         raise ValueError(f"{value!r} cannot be written to a sidecar")
     return repr(float(value))

@@ -198,7 +198,8 @@ def test_export_calls_the_exporter_of_the_sequence_s_modality_with_the_default_s
 
 def test_a_modality_without_exporter_or_not_registered_cannot_export(tmp_path):
     modalities = {"camera": CAMERA, "sonar": SONAR, "stereo": STEREO, "scans": modality("scans")}
-    with pytest.raises(DataError, match=r"s/1: scans sequences cannot be exported \(exportable: camera, sonar, stereo\)"):
+    message = r"s/1: scans sequences cannot be exported \(exportable: camera, sonar, stereo\)"
+    with pytest.raises(DataError, match=message):
         export_sequence(Named("s/1", "scans"), tmp_path, modalities)
     with pytest.raises(DataError, match=r"s/1: lidar sequences cannot be exported"):
         export_sequence(Named("s/1", "lidar"), tmp_path, modalities)

@@ -215,7 +215,8 @@ def test_folders_holding_names_are_a_claim_of_their_own(registry):
     assert pairs.folder_claim == "folders holding left, right" and reader(suffixes=(".scan",)).folder_claim is None
     registry.add_modality(modality(readers=(pairs,)))
     assert registry.modalities["scan"].claims == ("folders holding left, right",)
-    with pytest.raises(PluginError, match=r"modality 'scan2': folders holding left, right is already read by modality 'scan'"):
+    message = r"modality 'scan2': folders holding left, right is already read by modality 'scan'"
+    with pytest.raises(PluginError, match=message):
         registry.add_modality(modality("scan2", readers=(reader(folders=True, folder_holds=("left", "right")),)))
 
 

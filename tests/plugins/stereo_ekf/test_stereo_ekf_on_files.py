@@ -1,4 +1,4 @@
-"""The stereo EKF on a stereo folder on disk gives what it gives on the rendered sequence the folder was written from."""
+"""The stereo EKF on a stereo folder gives what it gives on the rendered sequence the folder was written from."""
 
 from __future__ import annotations
 

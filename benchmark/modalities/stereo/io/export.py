@@ -1,4 +1,4 @@
-"""Export a stereo sequence of image pairs as a stereo folder that :class:`~benchmark.modalities.stereo.io.folder.StereoFolder` reads.
+"""Export a stereo sequence of image pairs as a stereo folder (:mod:`benchmark.modalities.stereo.io.folder`).
 
 For a stem ``stem`` it writes::
 

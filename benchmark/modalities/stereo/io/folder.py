@@ -206,7 +206,8 @@ class StereoFolder(Sequence):
         images = [image for pair in self._pairs for image in pair]
         # The folder's own size and mtime change with any file added to it; its images are its content.
         own = file_fingerprint(folder, content=b"", named=images)
-        fingerprint = digest(own, *(hashlib.sha256(part).hexdigest() for part in (sidecar_bytes, navigation_bytes, target_bytes)))
+        parts = (sidecar_bytes, navigation_bytes, target_bytes)
+        fingerprint = digest(own, *(hashlib.sha256(part).hexdigest() for part in parts))
         self._identity = DatasetIdentity(self._name, "stereo", source=resolved_source(folder), fingerprint=fingerprint)
 
     @property
@@ -316,14 +317,17 @@ def _pair_names(folder: Path) -> list[str]:
             raise DataError(f"{folder / side}: missing; a stereo folder holds the folders {' and '.join(SIDES)}")
     left, right = (set(_image_names(folder / side)) for side in SIDES)
     if not left:
-        raise DataError(f"{folder / 'left'}: no image files in folder (looked for {' '.join(sorted(IMAGE_EXTENSIONS))})")
+        endings = " ".join(sorted(IMAGE_EXTENSIONS))
+        raise DataError(f"{folder / 'left'}: no image files in folder (looked for {endings})")
     for name in sorted(left ^ right, key=natural_key):
         has, lacks = ("left", "right") if name in left else ("right", "left")
         raise DataError(f"{folder / lacks / name}: missing; the {lacks} image of {folder / has / name}")
     return sorted(left, key=natural_key)
 
 
-def _frame_csv(file: Path, row_type: type[Any], columns: tuple[str, ...], n_frames: int) -> tuple[dict[int, Any], bytes]:
+def _frame_csv(
+    file: Path, row_type: type[Any], columns: tuple[str, ...], n_frames: int
+) -> tuple[dict[int, Any], bytes]:
     """The rows by frame of an optional CSV file of the folder, and its bytes (empty without the file)."""
     if not file.exists():
         return {}, b""

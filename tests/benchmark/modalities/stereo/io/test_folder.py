@@ -19,6 +19,7 @@ from benchmark.modalities.stereo.io.folder import StereoFolder
 from benchmark.modalities.stereo.model import ChaseNavigation, StereoCalibration, StereoTruth, TargetEstimate
 from benchmark.modalities.stereo.modality import STEREO
 from benchmark.modalities.stereo.scenes.images import StereoImageScene
+from benchmark.modalities.stereo.scenes.scene import StereoScene
 
 TINY = {"name": "stereo-images/tiny", "n_frames": 3, "camera": {"width_px": 64}, "render": {"height_px": 48}}
 
@@ -120,8 +121,14 @@ def test_the_identity_follows_the_sidecar_and_the_csv_files_and_survives_picklin
 @pytest.mark.parametrize(
     ("change", "message"),
     [
-        (lambda f: (f / "right" / "frame_00001.png").unlink(), r"tiny/right/frame_00001.png: missing; the right image of .*tiny/left/frame_00001.png"),
-        (lambda f: shutil.rmtree(f / "right"), r"tiny/right: missing; a stereo folder holds the folders left and right"),
+        (
+            lambda f: (f / "right" / "frame_00001.png").unlink(),
+            r"tiny/right/frame_00001.png: missing; the right image of .*tiny/left/frame_00001.png",
+        ),
+        (
+            lambda f: shutil.rmtree(f / "right"),
+            r"tiny/right: missing; a stereo folder holds the folders left and right",
+        ),
         (
             lambda f: (f / "targets.csv").write_text((f / "targets.csv").read_text() + "3,1,2,3\n"),
             r"tiny/targets.csv:5: expected 8 values",
@@ -138,7 +145,10 @@ def test_the_identity_follows_the_sidecar_and_the_csv_files_and_survives_picklin
             lambda f: (f / "navigation.csv").write_text("frame,x_m,y_m,heading_rad\n"),
             r"tiny/navigation.csv:1: expected the header 'frame,north_m,east_m,heading_rad'",
         ),
-        (lambda f: (f.parent / "tiny.toml").write_text("[camera]\nfocal_mm = 4\n"), r"tiny.toml: camera: unknown key .focal_mm."),
+        (
+            lambda f: (f.parent / "tiny.toml").write_text("[camera]\nfocal_mm = 4\n"),
+            r"tiny.toml: camera: unknown key .focal_mm.",
+        ),
         (lambda f: (f.parent / "tiny.toml").write_text("frame_interval_s = -1\n"), r"tiny.toml.*frame_interval_s"),
     ],
 )
@@ -159,7 +169,10 @@ def test_bad_folders_are_refused_when_opened_naming_the_file_and_line_or_key(fol
             lambda f: cv2.imwrite(str(f / "right" / "frame_00000.png"), np.zeros((48, 60, 3), np.uint8)),
             r"frame 0: the right image .*tiny/right/frame_00000.png is 60x48 px, but the left image is 64x48 px",
         ),
-        (lambda f: (f / "left" / "frame_00002.png").write_bytes(b"not a png"), r"cannot decode image .*frame_00002.png"),
+        (
+            lambda f: (f / "left" / "frame_00002.png").write_bytes(b"not a png"),
+            r"cannot decode image .*frame_00002.png",
+        ),
         (
             lambda f: (f.parent / "tiny.toml").write_text("[camera]\nwidth_px = 320\n"),
             r"tiny.toml: camera.width_px: is 320, but the images of .*tiny are 64 px wide",
@@ -174,8 +187,7 @@ def test_bad_images_are_refused_while_reading_naming_the_image(folder, change, m
 
 
 def test_only_image_pairs_are_exported(tmp_path):
-    from benchmark.modalities.stereo.scenes.scene import StereoScene
-
     scene = StereoScene.from_dict({"name": "stereo/demo", "n_frames": 2})
-    with pytest.raises(DataError, match=r"stereo/demo: frame 0: the observation is a StereoMeasurement, not an image pair"):
+    message = r"stereo/demo: frame 0: the observation is a StereoMeasurement, not an image pair"
+    with pytest.raises(DataError, match=message):
         export_stereo_sequence(scene, tmp_path, "demo")
