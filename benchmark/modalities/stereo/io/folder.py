@@ -38,7 +38,8 @@ stereo trackers say so before they run.  The CSV files have the headers
 :data:`NAVIGATION_COLUMNS` and :data:`TARGET_COLUMNS`, one row per frame
 index from 0; positions North-East in m, velocities in m/s, headings in rad
 clockwise from north (``conventions.md``; seeds/002, eq. 10 and Fig. 3).  A
-frame without a navigation row has no navigation, and one without a
+frame without a navigation row has no navigation (a tracker that measures
+the target there stops with an error naming the frame), and one without a
 target row no truth: it is not scored.
 
 Images are decoded one pair at a time while frames are produced.  The
