@@ -4,7 +4,8 @@ Researchers bring their own labelled sequences: an image sequence file in
 the thesis' format (seeds/000, section 4.7.3; ``conventions.md``
 section 2), a folder of images, a video, a swath file of sonar pings.
 Each modality declares the :class:`~benchmark.modality.Reader` objects that
-open its files (by suffix, or any folder); :func:`open_sequence` picks the
+open its files (by suffix, any folder, or a folder holding certain names);
+:func:`open_sequence` picks the
 one a path calls for, which is how ``trackbench run --dataset PATH`` reads
 a dataset made anywhere else.  In the other direction,
 :func:`export_sequence` writes any sequence with its modality's exporter
@@ -104,7 +105,9 @@ def read_regular_file(path: str | os.PathLike[str], what: str) -> bytes:
 
 def _choose_reader(target: Path, is_folder: bool, readers: list[Reader]) -> Reader | None:
     if is_folder:
-        return next((reader for reader in readers if reader.folders), None)
+        # A reader that knows the folder by names in it goes before one that takes any folder.
+        takers = sorted((reader for reader in readers if reader.opens_folder(target)), key=lambda r: not r.folder_holds)
+        return next(iter(takers), None)
     suffix = target.suffix.lower()
     claimed = next((reader for reader in readers if suffix and suffix in reader.suffixes), None)
     return claimed or next((reader for reader in readers if ANY_FILE in reader.suffixes), None)

@@ -170,12 +170,29 @@ class Reader:
         :data:`ANY_FILE` for files whose ending no other reader claims.
     folders : bool
         Whether it opens a folder.
+    folder_holds : tuple of str
+        Names a folder must hold for this reader to open it (a stereo
+        folder's ``("left", "right")``); a folder reader that asks for
+        them is chosen before one that asks for nothing (a plain image
+        folder), and two modalities may not ask for the same names.
     """
 
     open: Callable[[str | os.PathLike[str]], Sequence]
     description: str
     suffixes: tuple[str, ...] = ()
     folders: bool = False
+    folder_holds: tuple[str, ...] = ()
+
+    @property
+    def folder_claim(self) -> str | None:
+        """``"folders"``, ``"folders holding left, right"``, or None for a reader of files only."""
+        if not self.folders:
+            return None
+        return f"folders holding {', '.join(self.folder_holds)}" if self.folder_holds else "folders"
+
+    def opens_folder(self, folder: Path) -> bool:
+        """Whether this reader takes the folder ``folder``: a folder reader whose names are all in it."""
+        return self.folders and all((folder / name).exists() for name in self.folder_holds)
 
 
 @dataclass(frozen=True, eq=False)
@@ -257,13 +274,13 @@ class Modality:
 
     @property
     def claims(self) -> tuple[str, ...]:
-        """What its readers open: ``"files ending .x"`` per suffix, ``"any other file"``, ``"folders"``."""
+        """What its readers open: ``"files ending .x"``, ``"any other file"``, ``"folders"`` (holding names)."""
         return tuple(
             claim
             for reader in self.readers
             for claim in (
                 *("any other file" if suffix == ANY_FILE else f"files ending {suffix}" for suffix in reader.suffixes),
-                *(["folders"] if reader.folders else []),
+                *([reader.folder_claim] if reader.folder_claim else []),
             )
         )
 

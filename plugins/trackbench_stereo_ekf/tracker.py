@@ -150,6 +150,7 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
     modality = "stereo"
     deterministic = True
     Params = StereoEkfParams
+    needs = ("calibration", "frame_interval_s")
 
     def __init__(self, params: StereoEkfParams | None = None) -> None:
         super().__init__(params)

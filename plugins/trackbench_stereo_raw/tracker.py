@@ -67,6 +67,7 @@ class StereoRawTracker(Tracker[StereoTruth, TargetEstimate]):
     version = "1.1"
     modality = "stereo"
     deterministic = True
+    needs = ("calibration", "frame_interval_s")  # the calibration for the front end on image pairs
     Params = StereoRawParams
 
     def __init__(self, params: StereoRawParams | None = None) -> None:

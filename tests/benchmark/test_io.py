@@ -128,6 +128,23 @@ def test_a_folder_goes_to_the_folder_reader_whatever_its_name(tmp_path):
     assert open_sequence(folder, DISPATCH) == Opened("folder", str(folder))
 
 
+@pytest.mark.parametrize("order", [1, -1])
+@pytest.mark.parametrize(("holds", "reader"), [(("left", "right"), "pairs"), (("left",), "folder"), ((), "folder")])
+def test_a_folder_holding_a_reader_s_names_goes_to_it_before_the_plain_folder_reader(tmp_path, order, holds, reader):
+    folder = tmp_path / "looks_like.scan"
+    folder.mkdir()
+    for name in holds:
+        (folder / name).mkdir()
+    stereo = modality("stereo", recording("pairs", folders=True, folder_holds=("left", "right")))
+    assert open_sequence(folder, (*DISPATCH, stereo)[::order]) == Opened(reader, str(folder))
+
+
+def test_a_folder_no_reader_takes_is_a_data_error(tmp_path):
+    stereo = modality("stereo", recording("pairs", folders=True, folder_holds=("left", "right")))
+    with pytest.raises(DataError, match=r"no registered reader opens this \(readers: the pairs reader\)"):
+        open_sequence(tmp_path, (stereo,))
+
+
 def test_the_reader_gets_the_path_as_given(tmp_path):
     path = tmp_path / "a.scan"
     path.write_text("x", encoding="utf-8")
@@ -180,13 +197,14 @@ def test_export_calls_the_exporter_of_the_sequence_s_modality_with_the_default_s
 
 
 def test_a_modality_without_exporter_or_not_registered_cannot_export(tmp_path):
-    modalities = {"camera": CAMERA, "sonar": SONAR, "stereo": STEREO}
-    with pytest.raises(DataError, match=r"s/1: stereo sequences cannot be exported \(exportable: camera, sonar\)"):
-        export_sequence(Named("s/1", "stereo"), tmp_path, modalities)
+    modalities = {"camera": CAMERA, "sonar": SONAR, "stereo": STEREO, "scans": modality("scans")}
+    message = r"s/1: scans sequences cannot be exported \(exportable: camera, sonar, stereo\)"
+    with pytest.raises(DataError, match=message):
+        export_sequence(Named("s/1", "scans"), tmp_path, modalities)
     with pytest.raises(DataError, match=r"s/1: lidar sequences cannot be exported"):
         export_sequence(Named("s/1", "lidar"), tmp_path, modalities)
     with pytest.raises(DataError, match=r"exportable: none"):
-        export_sequence(Named("s/1", "stereo"), tmp_path, {"stereo": STEREO})
+        export_sequence(Named("s/1", "scans"), tmp_path, {"scans": modality("scans")})
     assert list(tmp_path.iterdir()) == []
 
 

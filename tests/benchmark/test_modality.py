@@ -71,7 +71,7 @@ def test_error_columns_and_claims_come_from_the_declaration() -> None:
     assert SONAR.error_columns == ("err_across_m",)
     assert "folders" in CAMERA.claims and "any other file" in CAMERA.claims and "files ending .avi" in CAMERA.claims
     assert SONAR.claims == ("files ending .swaths",)
-    assert STEREO.claims == ()
+    assert STEREO.claims == ("folders holding left, right",)
 
 
 @dataclass(frozen=True)

@@ -210,6 +210,16 @@ def test_what_another_modality_reads_or_simulates_is_refused_naming_both(registr
     assert "scan" not in registry.modalities
 
 
+def test_folders_holding_names_are_a_claim_of_their_own(registry):
+    pairs = reader(folders=True, folder_holds=("left", "right"))
+    assert pairs.folder_claim == "folders holding left, right" and reader(suffixes=(".scan",)).folder_claim is None
+    registry.add_modality(modality(readers=(pairs,)))
+    assert registry.modalities["scan"].claims == ("folders holding left, right",)
+    message = r"modality 'scan2': folders holding left, right is already read by modality 'scan'"
+    with pytest.raises(PluginError, match=message):
+        registry.add_modality(modality("scan2", readers=(reader(folders=True, folder_holds=("left", "right")),)))
+
+
 def test_modalities_that_claim_different_things_live_side_by_side(registry):
     registry.add_modality(SONAR)
     registry.add_modality(modality(readers=(reader(suffixes=(".scan", ".sc2")),), kinds={"scan": None}))

@@ -9,11 +9,13 @@ from __future__ import annotations
 from benchmark.hookspecs import hookimpl
 from benchmark.modalities.stereo.draw import draw_stereo_frame
 from benchmark.modalities.stereo.hard_observations import hard_observations
+from benchmark.modalities.stereo.io.export import export_stereo_sequence
+from benchmark.modalities.stereo.io.folder import SIDES, StereoFolder
 from benchmark.modalities.stereo.model import StereoMeasurement, StereoTruth, TargetEstimate
 from benchmark.modalities.stereo.scenes.images import StereoImageScene
 from benchmark.modalities.stereo.scenes.scene import StereoScene
 from benchmark.modalities.stereo.scoring import StereoScorer
-from benchmark.modality import Modality, Starter, sequences_in
+from benchmark.modality import Modality, Reader, Starter, sequences_in
 from benchmark.registry import Registry
 
 STEREO = Modality(
@@ -22,6 +24,8 @@ STEREO = Modality(
     truth_type=StereoTruth,
     estimate_type=TargetEstimate,
     scorer=StereoScorer(),
+    readers=(Reader(StereoFolder, "a stereo folder (left/ and right/ images)", folders=True, folder_holds=SIDES),),
+    exporter=export_stereo_sequence,
     scene_kinds={"stereo": StereoScene.from_dict, "stereo-images": StereoImageScene.from_dict},
     description="a target boat seen from a chase boat; estimates are its position and velocity",
     draw=draw_stereo_frame,

@@ -41,13 +41,10 @@ without one keeps the fingerprint it always had.  :func:`write_sidecar` and
 
 from __future__ import annotations
 
-import csv
 import hashlib
-import io
 import json
 import math
 import os
-import tomllib
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -61,7 +58,8 @@ from benchmark.files import atomic_writer, write_text_atomically
 from benchmark.identity import digest
 from benchmark.io import read_regular_file
 from benchmark.modalities.camera.model import CameraCalibration, VehicleSpeeds
-from benchmark.scenes.spec import SPEC_CONFIG, Finite, Name, Positive, validate_table
+from benchmark.scenes.spec import SPEC_CONFIG, Finite, Name, Positive
+from benchmark.sidecar import number_text, read_frame_csv, read_toml_table, sidecar_path
 
 NAVIGATION_COLUMNS = ("frame", "lateral_mps", "vertical_mps", "frontal_mps")
 """The header of a navigation CSV file, in this order."""
@@ -192,15 +190,6 @@ class Sidecar:
         }
 
 
-def sidecar_path(path: str | os.PathLike[str]) -> Path:
-    """Where the sidecar of the sequence at ``path`` is: suffix replaced by ``.toml``; ``DIR.toml`` beside a folder."""
-    target = Path(path)
-    if target.is_dir():
-        folder = target.absolute().resolve()
-        return folder.parent / f"{folder.name}.toml"
-    return target.with_suffix(".toml")
-
-
 def read_sidecar(path: str | os.PathLike[str], n_frames: int | None = None) -> Sidecar:
     """Read the sidecar of the sequence at ``path``, if it has one.
 
@@ -231,12 +220,7 @@ def read_sidecar(path: str | os.PathLike[str], n_frames: int | None = None) -> S
     where = sidecar_path(path)
     if not where.exists() or where.absolute() == Path(path).absolute():
         return Sidecar(where)
-    content = read_regular_file(where, "sidecar")
-    try:
-        data = tomllib.loads(content.decode("utf-8-sig"))
-    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-        raise DataError(f"{where}: not a valid TOML sidecar: {exc}") from None
-    table: SidecarTable = validate_table(SidecarTable, data, str(where))
+    table, content = read_toml_table(where, SidecarTable)
     hashes = [hashlib.sha256(content).hexdigest()]
     navigation: dict[int, VehicleSpeeds] = {}
     if table.navigation is not None:
@@ -280,36 +264,8 @@ def read_navigation_csv(file: Path, content: bytes, n_frames: int | None = None)
         is not a finite number or a frame index that is not an integer
         >= 0, a frame index twice or (with ``n_frames``) beyond the sequence.
     """
-    try:
-        text = content.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise DataError(f"{file}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
-    lines = [(number, row) for number, row in enumerate(csv.reader(io.StringIO(text)), start=1) if any(row)]
-    header = ",".join(NAVIGATION_COLUMNS)
-    if not lines or [cell.strip() for cell in lines[0][1]] != list(NAVIGATION_COLUMNS):
-        found = ",".join(lines[0][1]) if lines else "nothing"
-        raise DataError(f"{file}:{lines[0][0] if lines else 1}: expected the header {header!r}, found {found!r}")
-    speeds: dict[int, VehicleSpeeds] = {}
-    for number, row in lines[1:]:
-        at = f"{file}:{number}"
-        if len(row) != len(NAVIGATION_COLUMNS):
-            raise DataError(f"{at}: expected {len(NAVIGATION_COLUMNS)} values ({header}), found {len(row)}")
-        parsed: NavigationRow = validate_table(
-            NavigationRow, dict(zip(NAVIGATION_COLUMNS, (cell.strip() for cell in row), strict=True)), at
-        )
-        if parsed.frame in speeds:
-            raise DataError(f"{at}: frame {parsed.frame} is listed twice")
-        if n_frames is not None and parsed.frame >= n_frames:
-            raise DataError(f"{at}: frame {parsed.frame} is beyond the sequence's {n_frames} frames")
-        speeds[parsed.frame] = parsed.speeds()
-    return speeds
-
-
-def _number_text(value: float) -> str:
-    # repr is the shortest text that reads back as the same float; valid TOML and CSV for finite values.
-    if not math.isfinite(value):
-        raise ValueError(f"{value!r} cannot be written to a sidecar")
-    return repr(float(value))
+    rows = read_frame_csv(file, content, NavigationRow, NAVIGATION_COLUMNS, n_frames)
+    return {frame: row.speeds() for frame, row in rows.items()}
 
 
 def write_sidecar(
@@ -344,13 +300,13 @@ def write_sidecar(
     """
     lines = []
     if frame_interval_s is not None:
-        lines.append(f"frame_interval_s = {_number_text(frame_interval_s)}")
+        lines.append(f"frame_interval_s = {number_text(frame_interval_s)}")
     if camera is not None:
         lines += [
             "[camera]",
-            f"focal_px = {_number_text(camera.focal_px)}",
-            f"pipe_diameter_m = {_number_text(camera.pipe_diameter_m)}",
-            f"tilt_deg = {_number_text(camera.tilt_deg)}",
+            f"focal_px = {number_text(camera.focal_px)}",
+            f"pipe_diameter_m = {number_text(camera.pipe_diameter_m)}",
+            f"tilt_deg = {number_text(camera.tilt_deg)}",
         ]
     if navigation_file is not None:
         # A JSON string is a valid TOML basic string: the same escapes.
@@ -373,6 +329,6 @@ def write_navigation_file(path: Path, speeds: Iterable[VehicleSpeeds]) -> Path:
     with atomic_writer(path, "navigation file") as handle:
         handle.write(",".join(NAVIGATION_COLUMNS) + "\n")
         for frame, speed in enumerate(speeds):
-            values = ",".join(_number_text(v) for v in (speed.lateral, speed.vertical, speed.frontal))
+            values = ",".join(number_text(v) for v in (speed.lateral, speed.vertical, speed.frontal))
             handle.write(f"{frame},{values}\n")
     return path

@@ -5,6 +5,8 @@ import pytest
 
 from benchmark.errors import DataError
 from benchmark.modalities.stereo import modality
+from benchmark.modalities.stereo.io.export import export_stereo_sequence
+from benchmark.modalities.stereo.io.folder import StereoFolder
 from benchmark.modalities.stereo.model import StereoMeasurement, StereoTruth, TargetEstimate
 from benchmark.modalities.stereo.scenes.images import StereoImageScene
 from benchmark.modalities.stereo.scenes.scene import StereoScene
@@ -20,11 +22,13 @@ def test_it_registers_itself_through_its_hook() -> None:
     assert registry.scene_kinds == {"stereo": StereoScene.from_dict, "stereo-images": StereoImageScene.from_dict}
 
 
-def test_it_declares_target_truths_and_estimates_and_neither_reads_nor_writes_files() -> None:
+def test_it_declares_target_truths_and_estimates_and_reads_and_writes_stereo_folders() -> None:
     stereo = modality.STEREO
     assert (stereo.truth_type, stereo.estimate_type) == (StereoTruth, TargetEstimate)
     assert isinstance(stereo.scorer, StereoScorer)
-    assert stereo.readers == () and stereo.exporter is None
+    assert [reader.open for reader in stereo.readers] == [StereoFolder]
+    assert stereo.claims == ("folders holding left, right",)
+    assert stereo.exporter is export_stereo_sequence
 
 
 @pytest.mark.parametrize(

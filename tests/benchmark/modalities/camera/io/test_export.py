@@ -121,8 +121,8 @@ def test_exporting_under_a_file_is_a_data_error_naming_the_output_folder(tmp_pat
 
 
 def test_sequences_of_a_modality_without_exporter_are_refused(tmp_path):
-    with pytest.raises(DataError, match="tiny/one: stereo sequences cannot be exported.*camera"):
-        export_sequence(TinySequence(modality="stereo"), tmp_path)
+    with pytest.raises(DataError, match="tiny/one: lidar sequences cannot be exported.*camera"):
+        export_sequence(TinySequence(modality="lidar"), tmp_path)
     assert list(tmp_path.iterdir()) == []
 
 
