@@ -40,7 +40,7 @@ from benchmark.plugins import load_registry
 
 from .importers.test_rosbag import ROS2, Messages, write_bag
 from .labeller.conftest import served
-from .labeller.test_browser import distance, drag, settle
+from .labeller.test_browser import distance, drag, interpolate_and_save, settle
 
 sync_api = pytest.importorskip("playwright.sync_api", reason="the walkthrough labels in a browser: Python playwright")
 
@@ -130,12 +130,7 @@ def label_key_frames(browser: Any, sequence_file: Path, scene: CameraScene) -> N
                 for end, target in enumerate(true_borders[border]):
                     drag(page, border, end, tuple(target))
             assert page.inner_text("#kind") == "key frame"
-        page.keyboard.press("i")
-        settle(page)
-        assert page.inner_text("#message") == f"interpolated {N_FRAMES - len(KEY_FRAMES)} frames"
-        page.keyboard.press("s")
-        settle(page)
-        assert page.inner_text("#saved") == "saved"
+        interpolate_and_save(page, N_FRAMES - len(KEY_FRAMES))
         assert problems == []
 
 
