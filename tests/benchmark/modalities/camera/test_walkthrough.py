@@ -7,8 +7,9 @@ rosbag`` turns it into frames, an unlabelled sequence file and a sidecar
 with the scene's calibration; the labeller, served from a thread as
 ``trackbench label`` serves it, gets both borders dragged onto the rendered
 cable at five key frames in Chromium, interpolates and saves; ``trackbench
-run --dataset`` then runs every camera tracker of the registry on the labelled file (no ``--tracker``
-selects them all), in this process (``--in-process``) to save the workers' start-up.
+run --dataset`` then runs every camera tracker of the registry on the
+labelled file (no ``--tracker`` selects them all), in this process
+(``--in-process``) to save the workers' start-up.
 
 ``texture`` learns from labelled sequences and a user's own file names no
 training suite, so the run trains it (``--train``) on a second dive of the
@@ -154,7 +155,8 @@ def test_a_bag_imported_labelled_in_the_browser_and_run_by_every_camera_tracker_
     cli("import", "rosbag", bag, "--image-topic", "/camera/image", "--nav-topic", "/odom", "--out", out, *options)
     sequence_file = out / f"{bag.name}.txt"
     sidecar = read_sidecar(sequence_file, N_FRAMES)
-    assert sidecar.calibration is not None and sidecar.frame_interval_s == pytest.approx(0.04)
+    assert sidecar.calibration == scene.info.calibration
+    assert sidecar.frame_interval_s == pytest.approx(scene.info.frame_interval_s)
     for index in range(N_FRAMES):
         recorded, imported = scene.navigation(index), sidecar.navigation[index]
         np.testing.assert_allclose(
