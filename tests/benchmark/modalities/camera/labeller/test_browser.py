@@ -51,6 +51,16 @@ def drag(page: sync_api.Page, border: str, end: int, target: Point) -> None:
     settle(page)
 
 
+def interpolate_and_save(page: sync_api.Page, between: int) -> None:
+    """Press ``I`` and ``S``; the page must say it interpolated ``between`` frames, then that it saved."""
+    page.keyboard.press("i")
+    settle(page)
+    assert page.inner_text("#message") == f"interpolated {between} frames"
+    page.keyboard.press("s")
+    settle(page)
+    assert page.inner_text("#saved") == "saved"
+
+
 def state_through(borders: dict[str, tuple[Point, Point]]) -> CableState:
     return cable_from_borders(*(Line.from_pixels(*borders[side], SIZE) for side in ("left", "right")))
 
@@ -79,12 +89,7 @@ def test_drag_two_key_frames_interpolate_and_save(chromium: sync_api.Browser, im
         page.reload()  # the unsaved key frames survive in the page's draft
         settle(page)
         assert page.inner_text("#saved") == "unsaved changes"
-        page.keyboard.press("i")
-        settle(page)
-        assert page.inner_text("#message") == f"interpolated {N_FRAMES - 2} frames"
-        page.keyboard.press("s")
-        settle(page)
-        assert page.inner_text("#saved") == "saved"
+        interpolate_and_save(page, N_FRAMES - 2)
         assert problems == []
     first, last = (state_through(KEY_FRAMES[index]) for index in sorted(KEY_FRAMES))
     rows = read_sequence_file(document.output)
