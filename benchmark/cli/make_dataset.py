@@ -19,7 +19,8 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
     """Write every sequence of SUITE to disk in its modality's form.
 
     Camera sequences become PNG frames plus an image sequence file, sonar
-    sequences a swath file.
+    sequences a swath file, stereo image pairs left/ and right/ folders with
+    their sidecar.
     """
     from benchmark.io import export_sequence
     from benchmark.selection import SelectionError
