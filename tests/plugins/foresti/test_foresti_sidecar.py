@@ -95,3 +95,14 @@ def test_the_ekf_runs_as_a_cell_on_a_sequence_file_with_a_sidecar_and_is_refused
     assert unmet_needs([cell]) == ([cell], [])
     result = run_cell(cell)
     assert result.status == "ok" and len(result.scores) == N_FRAMES
+
+
+def test_an_export_carries_its_sidecar_so_the_ekf_runs_on_it_as_on_the_sequence(draw, tmp_path):
+    drawn = Drawn(draw)
+    path = export_camera_sequence(drawn, tmp_path, "S")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["S", "S.nav.csv", "S.toml", "S.txt"]
+    from_file = ImageSequenceFile(path)
+    assert from_file.info.calibration == drawn.info.calibration
+    assert from_file.info.frame_interval_s == drawn.info.frame_interval_s
+    assert [frame.navigation for frame in from_file.frames()] == [frame.navigation for frame in drawn.frames()]
+    assert estimates(from_file) == estimates(drawn)

@@ -12,14 +12,22 @@ labelled, inspected or tracked with other tools, and read back with
     out_dir/<stem>/frame_00001.png
     ...
 
-with the image paths in the sequence file relative to ``out_dir``.  Frames
-are written as they are produced, one in memory at a time; the sequence
-file appears only once every image is written.  It is the camera
+with the image paths in the sequence file relative to ``out_dir``, and,
+where the sequence knows them, its sidecar (:mod:`benchmark.modalities.camera.io.sidecar`)::
+
+    out_dir/<stem>.toml                frame interval and camera calibration
+    out_dir/<stem>.nav.csv             the vehicle's speeds, when every frame has them
+
+so that a tracker that needs them (``foresti_ekf``) runs on the export as on
+the sequence.  Frames are written as they are produced, one in memory at a
+time; the sequence file appears only once every image is written, its
+sidecar after it.  It is the camera
 modality's exporter (``trackbench make-dataset``, :func:`benchmark.io.export_sequence`).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -27,8 +35,9 @@ from benchmark.errors import DataError
 from benchmark.files import make_folder
 from benchmark.modalities.camera.io.images import size_of, write_png
 from benchmark.modalities.camera.io.sequence_file import write_sequence_file
-from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState, CameraTruth
-from benchmark.model import Sequence
+from benchmark.modalities.camera.io.sidecar import CameraTable, write_navigation_file, write_sidecar
+from benchmark.modalities.camera.model import UNKNOWN_CABLE, CableState, CameraCalibration, CameraTruth, VehicleSpeeds
+from benchmark.model import Sequence, SequenceInfo
 
 
 def _truth_cable(truth: object, where: str) -> CableState:
@@ -72,6 +81,7 @@ def export_camera_sequence(sequence: Sequence, out: Path, stem: str) -> Path:
     """
     info = sequence.info
     image_dir = make_folder(make_folder(out) / stem)
+    speeds: list[object] = []
 
     def rows() -> Iterator[tuple[CableState, str]]:
         first_size: tuple[int, int] | None = None
@@ -86,10 +96,26 @@ def export_camera_sequence(sequence: Sequence, out: Path, stem: str) -> Path:
             elif size != first_size:
                 width, height = first_size
                 raise DataError(f"{where}image is {size[0]}x{size[1]} px, but the first frame is {width}x{height} px")
+            speeds.append(frame.navigation)
             yield _truth_cable(frame.truth, where), f"{stem}/{file_name}"
         if count < 0:
             raise DataError(f"{info.name}: the sequence has no frames to export")
 
     sequence_path = out / f"{stem}.txt"
     write_sequence_file(sequence_path, rows())
+    _write_sidecar(sequence_path, info, speeds)
     return sequence_path
+
+
+def _write_sidecar(sequence_path: Path, info: SequenceInfo, speeds: list[object]) -> None:
+    """The sidecar of an exported sequence: what its info and navigation hold, nothing when they hold nothing."""
+    calibration = info.calibration if isinstance(info.calibration, CameraCalibration) else None
+    camera = None
+    if calibration is not None:
+        tilt_deg = math.degrees(calibration.nominal_tilt)
+        camera = CameraTable(calibration.focal_px, calibration.pipe_diameter_m, tilt_deg)
+    navigation = None
+    if speeds and all(isinstance(speed, VehicleSpeeds) for speed in speeds):
+        navigation = write_navigation_file(sequence_path.with_suffix(".nav.csv"), speeds).name
+    if camera is not None or navigation is not None or info.frame_interval_s is not None:
+        write_sidecar(sequence_path, frame_interval_s=info.frame_interval_s, camera=camera, navigation_file=navigation)
