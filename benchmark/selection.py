@@ -28,6 +28,7 @@ from collections.abc import Iterable, Iterator, Mapping
 from typing import Any
 
 from benchmark.errors import ParameterError, TrackbenchError
+from benchmark.faults import Call
 from benchmark.identity import DatasetIdentity
 from benchmark.io import open_sequence
 from benchmark.modality import Modality
@@ -315,10 +316,9 @@ def unmet_needs(cells: Iterable[Cell]) -> tuple[list[Cell], list[str]]:
             continue
         asked = (cell.identity.key, needs)
         if asked not in lacking:
-            try:
-                lacking[asked] = cell.sequence.lacks(needs)
-            except Exception:  # noqa: BLE001 - the cell itself then fails reading the info, with its own message
-                lacking[asked] = {}
+            # A sequence that cannot say is left to its cells, which then fail reading the info with their own message.
+            answer = Call.of(lambda: cell.sequence.lacks(needs), "asking what the sequence lacks")
+            lacking[asked] = answer.result if answer.ok and answer.result is not None else {}
         if not lacking[asked]:
             runnable.append(cell)
         for what in lacking[asked].values():
