@@ -46,7 +46,7 @@ def column(page: sync_api.Page, table: str, index: int) -> list[str]:
 def test_index_board_is_a_sortable_datatable(browser: Browser, nightly: Site, tmp_path: Path) -> None:
     page = browser.open(nightly.index)
     board = "#board-0"
-    page.wait_for_selector(f"{board}.dataTable", timeout=15_000)
+    page.wait_for_selector(f"{board}.dataTable")
     headers = [header.inner_text().strip() for header in page.query_selector_all(f"{board} thead th")]
     index = headers.index("correct_pct") + 1
     before = column(page, board, index)
@@ -71,7 +71,7 @@ def test_index_board_is_a_sortable_datatable(browser: Browser, nightly: Site, tm
 
 def test_tracker_and_cell_pages_load_cleanly(browser: Browser, nightly: Site) -> None:
     page = browser.open(nightly.root / "trackers" / "hough.html")
-    page.wait_for_selector("#cells.dataTable", timeout=15_000)
+    page.wait_for_selector("#cells.dataTable")
     assert page.evaluate("[...document.images].every(image => image.complete && image.naturalWidth > 0)")
     with page.expect_navigation(wait_until="load"):
         page.click("#cells tbody a")
@@ -83,7 +83,7 @@ def test_tracker_and_cell_pages_load_cleanly(browser: Browser, nightly: Site) ->
 
 def test_hostile_names_stay_text(browser: Browser, hostile: Site) -> None:
     page = browser.open(hostile.index)
-    page.wait_for_selector("#board-0.dataTable", timeout=15_000)
+    page.wait_for_selector("#board-0.dataTable")
     assert '<script>alert("tracker")</script>' in page.inner_text("#board-0")
     cells = [str(link.get_attribute("href")) for link in page.query_selector_all("#board-0 tbody a[href^='cells/']")]
     assert cells

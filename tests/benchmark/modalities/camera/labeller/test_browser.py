@@ -32,7 +32,7 @@ KEY_FRAMES: dict[int, dict[str, tuple[Point, Point]]] = {
 
 def settle(page: sync_api.Page) -> None:
     """Wait until the page has finished its last action and redrawn."""
-    page.wait_for_selector('#labeller[data-pending="0"]', timeout=15_000)
+    page.wait_for_selector('#labeller[data-pending="0"]')
 
 
 def drag(page: sync_api.Page, border: str, end: int, target: Point) -> None:
