@@ -74,13 +74,27 @@ def nightly(
 @click.argument("run_b", type=int)
 @history_option
 @threshold_options
+@click.option(
+    "--html",
+    "html",
+    type=click.Path(dir_okay=False, path_type=Path),
+    help="Also write the comparison as one self-contained HTML page to this file.",
+)
 @click.pass_obj
 def compare(
-    session: Session, run_a: int, run_b: int, history: str, min_effects: tuple[str, ...], window: int
+    session: Session,
+    run_a: int,
+    run_b: int,
+    history: str,
+    min_effects: tuple[str, ...],
+    window: int,
+    html: Path | None,
 ) -> None:
     """Print what changed from nightly run RUN_A to RUN_B of the history.
 
-    Speeds are compared only when both ran on the same machine.
+    Speeds are compared only when both ran on the same machine.  With
+    --html, the page shows the changes grouped by cause and every metric
+    of both runs side by side.
     """
     from benchmark.errors import DataError
     from benchmark.history.database import History
@@ -90,11 +104,17 @@ def compare(
     limits = thresholds(min_effects, window)
     with History(history, must_exist=True) as database:
         cells = database.cells([run_a, run_b])
-    missing = sorted({run_a, run_b} - set(cells["run_id"]))
-    if missing:
-        raise DataError(f"history database {history}: no run {', '.join(map(str, missing))}")
-    changes = find_changes(cells, run_b, limits, against=[run_a], metrics=session.registry.metrics)
-    click.echo(describe_changes(changes, f"Run {run_a} -> {run_b}"))
+        missing = sorted({run_a, run_b} - set(cells["run_id"]))
+        if missing:
+            raise DataError(f"history database {history}: no run {', '.join(map(str, missing))}")
+        changes = find_changes(cells, run_b, limits, against=[run_a], metrics=session.registry.metrics)
+        click.echo(describe_changes(changes, f"Run {run_a} -> {run_b}"))
+        if html is not None:
+            from benchmark.site.compare import write_comparison
+
+            registry = session.registry
+            write_comparison(html, database, run_a, run_b, changes, registry.modalities, limits, registry.metrics)
+            click.echo(f"wrote {html}", err=True)
 
 
 @click.command("report")
