@@ -178,6 +178,12 @@ history_cell_frames = sa.Table(
     sa.Column("frames", sa.LargeBinary, nullable=False),
 )
 history_cell_pictures = sa.Table("cell_pictures", HISTORY, *picture_columns("cells"))
+history_run_changes = sa.Table(
+    "run_changes",
+    HISTORY,
+    sa.Column("run_id", sa.Integer, sa.ForeignKey("runs.id"), primary_key=True),
+    sa.Column("changes", sa.Text, nullable=False),
+)
 
 
 def add_column(connection: sa.Connection, table: sa.Table, column: sa.Column) -> None:

@@ -44,7 +44,7 @@ def nightly(
     Takes every option of run.  Exits with 3 when a regression was found,
     else with 1 when a cell failed, as run does.
     """
-    from benchmark.history.nightly import describe_changes, run_nightly
+    from benchmark.history.nightly import CHANGES_NAME, describe_changes, run_nightly
 
     limits = thresholds(min_effects, window)
     run = functools.partial(run_benchmark, ctx, out, **options)
@@ -61,7 +61,8 @@ def nightly(
         seeds=options["seeds"],
         metrics=registry.metrics,
     )
-    click.echo(describe_changes(kept.changes, f"Changes of nightly run {kept.run_id}"))
+    title = f"Changes of nightly run {kept.run_id}"
+    click.echo(describe_changes(kept.changes, title, registry.metrics, out / CHANGES_NAME))
     click.echo(f"history {history}: run {kept.run_id}; site {kept.index}", err=True)
     if kept.regressed:
         ctx.exit(EXIT_REGRESSION)
@@ -108,7 +109,7 @@ def compare(
         if missing:
             raise DataError(f"history database {history}: no run {', '.join(map(str, missing))}")
         changes = find_changes(cells, run_b, limits, against=[run_a], metrics=session.registry.metrics)
-        click.echo(describe_changes(changes, f"Run {run_a} -> {run_b}"))
+        click.echo(describe_changes(changes, f"Run {run_a} -> {run_b}", session.registry.metrics))
         if html is not None:
             from benchmark.site.compare import write_comparison
 

@@ -10,6 +10,7 @@ row per cell to ``cells``, copied from the run's results database
           metrics JSON, deterministic)
     cell_frames(cell_id -> cells, frames BLOB)
     cell_pictures(cell_id -> cells, frame, outcome, png BLOB)
+    run_changes(run_id -> runs, changes JSON)
 
 These are the tables of :data:`benchmark.schema.HISTORY`, whose cells and
 pictures share their columns with the results database's.
@@ -20,7 +21,9 @@ earlier runs); ``cell_frames`` its frame table
 (outcome, errors and step time of every frame, compressed JSON) and
 ``cell_pictures`` the frames it failed on, drawn
 (:class:`benchmark.results.Picture`), so that the site can be rebuilt from
-the history alone.  Frames and pictures (about 0.5 MB for a camera cell
+the history alone.  ``run_changes`` keeps what the nightly said of its run
+(:func:`benchmark.history.regressions.find_changes`, after any repeat), so
+that the site tells the same story.  Frames and pictures (about 0.5 MB for a camera cell
 that failed often) are kept for the last :data:`DETAILED_RUNS` runs only;
 the summaries of every run stay, for the trends.
 
@@ -45,6 +48,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any, Concatenate, ParamSpec, TypeVar
 
+import numpy as np
 import pandas as pd
 import sqlalchemy as sa
 from sqlalchemy.exc import SQLAlchemyError
@@ -52,7 +56,7 @@ from sqlalchemy.exc import SQLAlchemyError
 from benchmark import schema
 from benchmark.errors import DataError
 from benchmark.files import resolved
-from benchmark.leaderboard import board_metrics
+from benchmark.leaderboard import board_metrics, error_columns
 from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
 from benchmark.results import Picture, summarise
@@ -64,11 +68,16 @@ DETAILED_RUNS = 30
 SERIES = ["tracker", "dataset_key", "seed", "init"]
 """The columns of :meth:`History.cells` that identify a series of comparable cells."""
 
+ESTIMATED = "estimated_frames"
+"""The column of :meth:`History.cells` counting a cell's frames with an estimate and a truth: the frames its RMSEs
+average over (empty for runs recorded before it was kept)."""
+
 _metadata = schema.HISTORY
 _runs = schema.history_runs
 _cells = schema.history_cells
 _cell_frames = schema.history_cell_frames
 _cell_pictures = schema.history_cell_pictures
+_run_changes = schema.history_run_changes
 
 _P = ParamSpec("_P")
 _T = TypeVar("_T")
@@ -222,7 +231,9 @@ class History:
             ).inserted_primary_key[0]
             for cell in cells.itertuples(index=False):
                 table = by_cell.get(int(cell.id), frames.iloc[0:0].drop(columns="cell_id"))
-                of_board = board_metrics(metrics, cell.modality, modalities.get(cell.modality), table)
+                modality = modalities.get(cell.modality)
+                of_board = board_metrics(metrics, cell.modality, modality, table)
+                summary = summarise(table, of_board) | {ESTIMATED: _estimated(table, error_columns(modality, table))}
                 cell_id = connection.execute(
                     _cells.insert().values(
                         run_id=history_run,
@@ -230,7 +241,7 @@ class History:
                         seed=int(cell.seed),
                         frames=int(cell.frames),
                         elapsed_s=float(cell.elapsed_s),
-                        metrics=json.dumps(summarise(table, of_board)),
+                        metrics=json.dumps(summary),
                     )
                 ).inserted_primary_key[0]
                 connection.execute(_cell_frames.insert().values(cell_id=cell_id, frames=_pack(table)))
@@ -252,6 +263,25 @@ class History:
             connection.execute(table.delete().where(table.c.cell_id.in_(old_cells.scalar_subquery())))
 
     @_reports_database_errors
+    def record_changes(self, run_id: int, changes: pd.DataFrame) -> None:
+        """Keep what the nightly said of run ``run_id``: its table of changes, replacing any kept before."""
+        text = changes.to_json(orient="split", index=False, double_precision=15)
+        with self._engine.begin() as connection:
+            connection.execute(_run_changes.delete().where(_run_changes.c.run_id == int(run_id)))
+            connection.execute(_run_changes.insert().values(run_id=int(run_id), changes=text))
+
+    @_reports_database_errors
+    def changes(self, run_id: int) -> pd.DataFrame | None:
+        """The changes the nightly of run ``run_id`` kept (:meth:`record_changes`); None where it kept none."""
+        from io import StringIO
+
+        with self._engine.connect() as connection:
+            text = connection.execute(
+                sa.select(_run_changes.c.changes).where(_run_changes.c.run_id == int(run_id))
+            ).scalar_one_or_none()
+        return None if text is None else pd.read_json(StringIO(text), orient="split")
+
+    @_reports_database_errors
     def runs(self) -> pd.DataFrame:
         """Every run, oldest first: ``id``, ``started``, ``finished``, ``version``, ``commit``, ``machine_key``,
         ``machine`` (a dict), ``argv`` (a list) and ``seeds``."""
@@ -270,8 +300,10 @@ class History:
         pandas.DataFrame
             The columns of ``cells`` (``params`` as a dict) with ``metrics``
             spread into a column per metric (``correct_pct``, ``rmse_*``,
-            ``fps``, ...; empty where a cell's run did not have it), plus the
-            run's ``started`` and ``machine_key``; ordered by run, then cell.
+            ``fps``, ...; empty where a cell's run did not have it) and
+            :data:`ESTIMATED` (frames with an
+            estimate and a truth), plus the run's ``started`` and
+            ``machine_key``; ordered by run, then cell.
         """
         query = sa.select(_cells, _runs.c.started, _runs.c.machine_key).join(_runs).order_by(_cells.c.id)
         if run_ids is not None:
@@ -305,6 +337,15 @@ class History:
         with self._engine.connect() as connection:
             rows = connection.execute(query).mappings().all()
         return [Picture(int(row["frame"]), str(row["outcome"]), bytes(row["png"])) for row in rows]
+
+
+def _estimated(frames: pd.DataFrame, errors: Sequence[str]) -> int:
+    """The frames of a frame table with a finite error: those with an estimate and a truth."""
+    present = [column for column in errors if column in frames]
+    if not present:
+        return 0
+    values = frames[present].apply(pd.to_numeric, errors="coerce").to_numpy(dtype=float)
+    return int(np.isfinite(values).any(axis=1).sum())
 
 
 _COPIED = (

@@ -20,15 +20,19 @@ import pandas as pd
 from benchmark import __version__
 from benchmark.history.database import History
 from benchmark.history.machine import describe_machine, git_commit, machine_key
-from benchmark.history.regressions import Thresholds, find_changes
+from benchmark.history.regressions import Thresholds, find_changes, group_changes
 from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
-from benchmark.report.display import alignment, display_table
+from benchmark.report.display import alignment, display_table, one_line
 from benchmark.site import build_site
 from benchmark.store import DATABASE_NAME, ResultStore
 
 if TYPE_CHECKING:
     from benchmark.harness import RunSummary
+
+
+CHANGES_NAME = "changes.csv"
+"""The file of the run's folder holding every change the nightly found, one row per tracker, dataset and metric."""
 
 
 @dataclass(frozen=True)
@@ -91,6 +95,8 @@ def run_nightly(
             metrics=metrics,
         )
         changes = find_changes(database.cells(), run_id, thresholds, metrics=metrics)
+        database.record_changes(run_id, changes)
+        changes.to_csv(out / CHANGES_NAME, index=False)
         index = build_site(database, site, modalities, thresholds=thresholds, metrics=metrics)
     return Nightly(summary, run_id, changes, index)
 
@@ -130,15 +136,46 @@ def record_nightly(
         )
 
 
-def describe_changes(changes: pd.DataFrame, title: str) -> str:
-    """The changes of :func:`~benchmark.history.regressions.find_changes` as a titled table for a terminal."""
+def describe_changes(changes: pd.DataFrame, title: str, metrics: Metrics = CORE, file: Path | None = None) -> str:
+    """The changes of :func:`~benchmark.history.regressions.find_changes` for a terminal: accuracy and speed apart,
+    one row per tracker and cause (:func:`~benchmark.history.regressions.group_changes`), the largest first.
+
+    ``file``, where given, is named as the place that holds every change.
+    """
     if changes.empty:
         return f"{title}: no change beyond the thresholds."
-    shown = changes.assign(
-        ratio=changes["after"] / changes["before"].where(changes["before"] != 0),
-    )[["verdict", "tracker", "dataset", "metric", "before", "after", "change", "ratio", "cause"]]
-    shown = shown.round({"before": 3, "after": 3, "change": 3, "ratio": 3})
-    table = display_table(shown).to_markdown(
-        index=False, tablefmt="simple", disable_numparse=True, colalign=alignment(shown)
-    )
-    return f"{title}\n\n{table}\n"
+    groups = group_changes(changes, metrics)
+    where = f"; every change in {file}" if file is not None else ""
+    parts = [f"{title}: {len(changes)} changes, {len(groups)} by tracker and cause{where}"]
+    for kind, of_kind in groups.groupby("kind", sort=False):
+        verdicts = of_kind["verdict"].value_counts()
+        counts = ", ".join(f"{verdicts[v]} {v}{'s' if verdicts[v] > 1 else ''}" for v in verdicts.index)
+        shown = pd.DataFrame(
+            {
+                "verdict": of_kind["verdict"],
+                "tracker": of_kind["tracker"],
+                "cause": [one_line(cause) or "(none found)" for cause in of_kind["cause"]],
+                "largest change": of_kind["headline"],
+                "datasets": [len(d) for d in of_kind["datasets"]],
+                "metrics": [_first(m) for m in of_kind["metrics"]],
+                "note": [_note(rows) for rows in of_kind["rows"]],
+            }
+        )
+        shown = shown.drop(columns=[c for c in ("note",) if (shown[c] == "").all()])
+        table = display_table(shown).to_markdown(
+            index=False, tablefmt="simple", disable_numparse=True, colalign=alignment(shown)
+        )
+        parts.append(f"{kind.capitalize()}: {counts}\n\n{table}")
+    return "\n\n".join(parts) + "\n"
+
+
+def _first(names: list[str], shown: int = 3) -> str:
+    """The first ``shown`` of ``names``, and how many more."""
+    more = f" (+{len(names) - shown})" if len(names) > shown else ""
+    return ", ".join(names[:shown]) + more
+
+
+def _note(rows: pd.DataFrame) -> str:
+    """What a reader must know of a group's changes: the first flag of its rows."""
+    flags = [flag for flag in rows.get("flag", pd.Series(dtype=str)).fillna("") if flag]
+    return flags[0] + (f" (+{len(flags) - 1})" if len(flags) > 1 else "") if flags else ""

@@ -37,8 +37,9 @@ import pandas as pd
 import ruptures
 from scipy.stats import DegenerateDataWarning, bootstrap
 
-from benchmark.history.database import SERIES
+from benchmark.history.database import ESTIMATED, SERIES
 from benchmark.metrics import CORE, SPEED, Metric, Metrics
+from benchmark.report.display import format_value
 
 CHANGE_COLUMNS = [
     "tracker",
@@ -52,8 +53,17 @@ CHANGE_COLUMNS = [
     "high",
     "verdict",
     "cause",
+    "effects",
+    "flag",
 ]
 """Columns of :func:`find_changes`'s table."""
+
+ESTIMATED_SHARE = 0.02
+"""How much the mean number of frames with an estimate may move (a share of the earlier count) before an RMSE
+change beside it is flagged: a few frames more or less do not change what an RMSE averages over."""
+
+GROUP_COLUMNS = ["verdict", "kind", "tracker", "cause", "datasets", "metrics", "count", "largest", "headline", "rows"]
+"""Columns of :func:`group_changes`'s table."""
 
 
 @dataclass(frozen=True)
@@ -148,6 +158,30 @@ def _cause(now: pd.DataFrame, earlier: pd.DataFrame) -> str:
     return "; ".join(causes)
 
 
+def _effects(change: float, minimum: float) -> float:
+    """The size of a change in minimum effects: what makes changes of different metrics comparable."""
+    return abs(change) / minimum if minimum > 0 else math.inf
+
+
+def _estimate_flag(metric: Metric, now: pd.DataFrame, earlier: pd.DataFrame) -> str:
+    """Why an RMSE change may not mean what it says: the frames it averages over changed in number with it.
+
+    An RMSE is taken over the frames with an estimate and a truth; a tracker
+    that stops reporting on its hardest frames "improves" its RMSE.  Empty
+    for other metrics, for cells recorded before the count was kept, and for
+    counts within :data:`ESTIMATED_SHARE` of each other.
+    """
+    if not any(column.startswith("err_") for column in metric.columns) or ESTIMATED not in now or ESTIMATED not in earlier:
+        return ""
+    after, before = now[ESTIMATED].dropna(), earlier[ESTIMATED].dropna()
+    if after.empty or before.empty:
+        return ""
+    after_mean, before_mean = float(after.mean()), float(before.mean())
+    if abs(after_mean - before_mean) <= max(ESTIMATED_SHARE * before_mean, 0.5):
+        return ""
+    return f"frames with an estimate {before_mean:.0f} -> {after_mean:.0f}"
+
+
 def _step_seconds(cells: pd.DataFrame) -> float:
     """The time the cells spent in their trackers' steps, from their frames and fps."""
     return float((cells["frames"] / cells[SPEED.name]).sum()) if SPEED.name in cells else 0.0
@@ -186,8 +220,11 @@ def find_changes(
         a verdict, the earlier and current values (mean over seeds, or
         median for speed), their difference with its interval, ``kind``
         (``speed`` for a metric of that kind, else ``accuracy``), ``verdict`` (``regression`` or
-        ``improvement``) and ``cause`` (the tracker's version or parameters
-        that changed, if any).  Only cells with status ``ok`` count.
+        ``improvement``), ``cause`` (the tracker's version or parameters
+        that changed, if any), ``effects`` (``|change|`` in minimum effects)
+        and ``flag`` (for an RMSE: the number of frames with an estimate
+        changed with it, see :func:`_estimate_flag`).  Only cells with status
+        ``ok`` count.
     """
     thresholds = thresholds or Thresholds()
     cells = history_cells[history_cells["status"] == "ok"]
@@ -218,7 +255,8 @@ def find_changes(
             if verdict:
                 rows.append(
                     dict(shared, metric=metric.name, kind="accuracy", before=float(before.mean()),
-                         after=float(after.mean()), change=change, low=low, high=high, verdict=verdict)
+                         after=float(after.mean()), change=change, low=low, high=high, verdict=verdict,
+                         effects=_effects(change, minimum), flag=_estimate_flag(metric, current, baseline))
                 )
         same_machine = earlier[earlier["machine_key"] == machine]
         speed_runs = sorted(same_machine["run_id"].unique())[-thresholds.window :]
@@ -230,16 +268,63 @@ def find_changes(
             if len(speeds) and math.isfinite(now_median) and step_s >= thresholds.min_step_s:
                 before_median = float(speeds.median())
                 change = now_median - before_median
-                verdict = _verdict(metric, change, True, thresholds.minimum_effect(metric, before_median))
+                minimum = thresholds.minimum_effect(metric, before_median)
+                verdict = _verdict(metric, change, True, minimum)
                 if verdict:
                     rows.append(
                         dict(shared, metric=metric.name, kind="speed", before=before_median, after=now_median,
-                             change=change, low=math.nan, high=math.nan, verdict=verdict)
+                             change=change, low=math.nan, high=math.nan, verdict=verdict,
+                             effects=_effects(change, minimum), flag="")
                     )
     table = pd.DataFrame(rows, columns=CHANGE_COLUMNS)
     order = table.assign(_regression=table["verdict"] != "regression")
     return order.sort_values(["_regression", "tracker", "dataset", "metric"]).drop(columns="_regression").reset_index(
         drop=True
+    )
+
+
+def group_changes(changes: pd.DataFrame, metrics: Metrics = CORE) -> pd.DataFrame:
+    """The changes of :func:`find_changes` folded into one row per verdict, kind, tracker and cause.
+
+    One parameter change moves many metrics on many datasets; a reader wants
+    to see it once, with its cause, its largest effect, and what it touched.
+
+    Parameters
+    ----------
+    changes : pandas.DataFrame
+        A table of :data:`CHANGE_COLUMNS`.
+    metrics : Metrics
+        The catalogue that rounds the headline's value.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns :data:`GROUP_COLUMNS`: ``datasets`` and ``metrics`` (lists,
+        in order of first appearance), ``count`` (changes folded in),
+        ``largest`` (the largest change in minimum effects), ``headline``
+        (that change as text: ``correct_pct -12.3 on camera/S1``) and
+        ``rows`` (the group's changes, largest first).  Regressions come
+        first, accuracy before speed, then the largest group first.
+    """
+    groups = []
+    for (verdict, kind, tracker, cause), rows in changes.groupby(["verdict", "kind", "tracker", "cause"], sort=False):
+        rows = rows.sort_values("effects", ascending=False, kind="stable").reset_index(drop=True)
+        top = rows.iloc[0]
+        change = format_value(str(top["metric"]), float(top["change"]), metrics)
+        groups.append(
+            dict(
+                verdict=verdict, kind=kind, tracker=tracker, cause=cause,
+                datasets=list(dict.fromkeys(rows["dataset"])), metrics=list(dict.fromkeys(rows["metric"])),
+                count=len(rows), largest=float(top["effects"]),
+                headline=f"{top['metric']} {'+' if top['change'] > 0 else ''}{change} on {top['dataset']}", rows=rows,
+            )
+        )
+    table = pd.DataFrame(groups, columns=GROUP_COLUMNS)
+    order = table.assign(_speed=table["kind"] == "speed", _regression=table["verdict"] != "regression")
+    return (
+        order.sort_values(["_regression", "_speed", "largest"], ascending=[True, True, False], kind="stable")
+        .drop(columns=["_speed", "_regression"])
+        .reset_index(drop=True)
     )
 
 

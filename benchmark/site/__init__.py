@@ -4,7 +4,6 @@
   only where their inputs changed; the atomic switch to the new build.
 * :mod:`benchmark.site.pages`: each kind of page and what it shows.
 * :mod:`benchmark.site.compare`: any two runs side by side (the compare page and ``trackbench compare --html``).
-* :mod:`benchmark.site.changes`: changes grouped by cause.
 * :mod:`benchmark.site.figures`: trends over the runs and a cell's frames, as interactive plotly figures.
 * :mod:`benchmark.site.tables`: tables that sort and filter in the browser (ITables, offline).
 """

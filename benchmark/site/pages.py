@@ -25,13 +25,12 @@ import pandas as pd
 from markupsafe import Markup, escape
 
 from benchmark.history.database import DETAILED_RUNS, History
-from benchmark.history.regressions import Step, Thresholds, find_changes, steps
+from benchmark.history.regressions import Step, Thresholds, find_changes, group_changes, steps
 from benchmark.leaderboard import error_columns, is_pooled, leaderboards
 from benchmark.metrics import Metric, Metrics, error_columns_of
 from benchmark.modality import Modality
 from benchmark.report.display import alignment, display_table, format_value
 from benchmark.results import Picture
-from benchmark.site.changes import group_changes
 from benchmark.site.figures import OUTCOME_COLOURS, cell_figure, plot, trend_figure
 from benchmark.site.tables import datatable, escaped, link
 

@@ -46,6 +46,7 @@ def test_a_recorded_run_keeps_cells_metrics_frames_and_pictures(invoke: Invoke, 
         mine = cells[same]
         frames = history.frames(int(mine["id"].iloc[0]))
         pd.testing.assert_frame_equal(frames, expected, check_dtype=False)
+        assert mine["estimated_frames"].iloc[0] == expected["err_d_px"].notna().sum() > 0
         assert history.pictures(int(mine["id"].iloc[0])) == pictures
         pooled = board[(board["tracker"] == "noisy") & (board["dataset"] != "(all)")]
         assert len(pooled) == cells["dataset_key"].nunique()
@@ -60,6 +61,24 @@ def test_pictures_round_trip_as_bytes(invoke: Invoke, tmp_path: Path) -> None:
         pictures = history.pictures(cell)
         assert pictures and all(isinstance(p, Picture) and p.png.startswith(b"\x89PNG") for p in pictures)
         assert {p.outcome for p in pictures} <= {"false", "missed"}
+
+
+def test_a_runs_changes_are_kept_as_they_were_said_and_replaced_when_said_again(
+    invoke: Invoke, tmp_path: Path
+) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "blind", "--in-process", "--out", str(out)).exit_code == 0
+    said = pd.DataFrame(
+        {"tracker": ["t"], "metric": ["cpu_fps"], "change": [-12.5], "confirmed": [False], "flag": [""]}
+    )
+    with History(tmp_path / "history.sqlite") as history:
+        run_id = record(history, out)
+        assert history.changes(run_id) is None
+        history.record_changes(run_id, said)
+        pd.testing.assert_frame_equal(history.changes(run_id), said)
+        history.record_changes(run_id, said.iloc[0:0])
+        kept = history.changes(run_id)
+        assert kept is not None and kept.empty and list(kept.columns) == list(said.columns)
 
 
 def test_urls_and_paths() -> None:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pandas as pd
+
 from benchmark.cli import EXIT_REGRESSION
 from benchmark.history.database import History
 
@@ -26,8 +28,14 @@ def test_a_worsened_parameter_is_a_regression_in_the_exit_status_the_output_and_
     second = nightly(invoke, tmp_path, "--param", "noisy.sigma_px=40")
     assert second.exit_code == EXIT_REGRESSION, second.output
     assert "regression" in second.stdout and "rmse_d_px" in second.stdout and "sigma_px" in second.stdout
+    assert "1 by tracker and cause" in second.stdout, second.stdout  # one parameter, one row
+    assert str(tmp_path / "out" / "changes.csv") in second.stdout
+    written = pd.read_csv(tmp_path / "out" / "changes.csv", keep_default_na=False)
     with History(tmp_path / "history.sqlite") as history:
         assert history.runs()["id"].tolist() == [1, 2]
+        kept = history.changes(2)
+        assert kept is not None and len(kept) == len(written) > 1
+        assert kept["metric"].tolist() == written["metric"].tolist()
     index = (tmp_path / "site" / "index.html").read_text()
     assert "regression" in index.lower() and "rmse_d_px" in index and "noisy" in index
 

@@ -6,7 +6,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from benchmark.history.regressions import Thresholds, find_changes, steps
+from benchmark.history.regressions import Thresholds, find_changes, group_changes, steps
 
 
 def cells(run_id: int, correct: list[float], rmse: float = 1.0, fps: float = 100.0, *, machine: str = "m",
@@ -116,3 +116,56 @@ def test_steps_of_a_noiseless_staircase(size: int) -> None:
     found = steps(pd.Series(values), minimum_effect=1.0)
     assert [s.run_id for s in found] == [size, 2 * size]
     assert np.allclose([(s.before, s.after) for s in found], [(10.0, 20.0), (20.0, 5.0)])
+
+
+def with_estimates(table: pd.DataFrame, estimated: float) -> pd.DataFrame:
+    return table.assign(estimated_frames=estimated)
+
+
+def test_an_rmse_change_over_fewer_estimated_frames_is_flagged() -> None:
+    before = with_estimates(cells(1, [90.0], rmse=2.0), 300)
+    fewer = with_estimates(cells(2, [90.0], rmse=1.0), 212)
+    row = find_changes(history(before, fewer), 2).set_index("metric").loc["rmse_d_px"]
+    assert row["verdict"] == "improvement"
+    assert row["flag"] == "frames with an estimate 300 -> 212"
+    same = with_estimates(cells(2, [90.0], rmse=1.0), 299)
+    assert find_changes(history(before, same), 2).set_index("metric").loc["rmse_d_px", "flag"] == ""
+    unknown = cells(2, [90.0], rmse=1.0)  # a run recorded before the count was kept
+    assert find_changes(history(cells(1, [90.0], rmse=2.0), unknown), 2).set_index("metric").loc["rmse_d_px", "flag"] == ""
+
+
+def test_a_rate_change_is_never_flagged_for_its_estimates() -> None:
+    changes = find_changes(history(with_estimates(cells(1, [90.0]), 300), with_estimates(cells(2, [70.0]), 100)), 2)
+    assert changes.set_index("metric").loc["correct_pct", "flag"] == ""
+
+
+def test_one_cause_on_many_datasets_and_metrics_is_one_group_led_by_its_largest_change() -> None:
+    runs = []
+    for run, correct, key in ((1, 90.0, "k1"), (2, 80.0, "k2")):
+        for dataset, drop in (("s/1", 0.0), ("s/2", 5.0), ("s/3", 1.0)):
+            runs.append(cells(run, [correct - drop * (run - 1)], key=key).assign(dataset=dataset, dataset_key=dataset))
+    changes = find_changes(history(*runs), 2)
+    groups = group_changes(changes)
+    regression = groups[groups["verdict"] == "regression"]
+    assert len(regression) == 1 and regression["count"].iloc[0] == len(changes[changes["verdict"] == "regression"])
+    group = regression.iloc[0]
+    assert group["cause"] == "a 1 -> 2" and group["tracker"] == "t"
+    assert set(group["datasets"]) == {"s/1", "s/2", "s/3"} and set(group["metrics"]) == {"correct_pct", "false_pct"}
+    assert group["headline"].startswith(("correct_pct -15.0 on s/2", "false_pct +15.0 on s/2"))
+    assert group["rows"]["effects"].is_monotonic_decreasing and group["largest"] == pytest.approx(15.0 / 2.0)
+
+
+def test_groups_put_regressions_first_then_accuracy_before_speed_then_the_largest() -> None:
+    rows = pd.DataFrame(
+        [
+            dict(tracker="a", dataset="d", metric="fps", kind="speed", change=-50.0, verdict="regression",
+                 cause="", effects=9.0),
+            dict(tracker="b", dataset="d", metric="correct_pct", kind="accuracy", change=3.0, verdict="improvement",
+                 cause="", effects=1.5),
+            dict(tracker="c", dataset="d", metric="correct_pct", kind="accuracy", change=-3.0, verdict="regression",
+                 cause="x", effects=1.5),
+            dict(tracker="d", dataset="d", metric="correct_pct", kind="accuracy", change=-9.0, verdict="regression",
+                 cause="y", effects=4.5),
+        ]
+    )
+    assert group_changes(rows)["tracker"].tolist() == ["d", "c", "a", "b"]
