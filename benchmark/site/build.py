@@ -57,7 +57,7 @@ import benchmark
 from benchmark.errors import DataError
 from benchmark.files import make_folder
 from benchmark.history.database import History
-from benchmark.history.regressions import Thresholds, find_changes
+from benchmark.history.regressions import Thresholds
 from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
 from benchmark.site.compare import compare_page
@@ -130,14 +130,18 @@ def _plan(night: Night) -> list[Page]:
     pages = [Page("assets", None, _digest(code)), Page("index", None, everything)]
     for position, run_id in enumerate(ids):
         following = ids[position + 1] if position + 1 < len(ids) else None
-        pages.append(Page("run", run_id, _digest(shared, ids[: position + 1], following, run_id in detailed)))
+        kept = night.kept.get(run_id)
+        pages.append(Page("run", run_id, _digest(shared, ids[: position + 1], following, run_id in detailed,
+                                                 None if kept is None else kept.to_json(orient="split"))))
     pages += [Page("tracker", str(tracker), everything) for tracker in sorted(night.latest["tracker"].unique())]
+    by_id = night.cells.set_index("id", drop=False)
     for cell in night.cells[night.cells["run_id"].isin(detailed)].to_dict("records"):
-        earlier = night.earlier_cells(int(cell["run_id"]), tracker=cell["tracker"], dataset_key=cell["dataset_key"],
-                                      seed=cell["seed"], init=cell["init"])
-        compared = earlier[["id", "run_id", "tracker_version", "params"]].to_dict("records")
-        pages.append(Page("cell", int(cell["id"]), _digest(shared, cell, compared,
-                                                           [c["run_id"] in detailed for c in compared])))
+        earlier = night.previous.get(int(cell["id"]))
+        compared = None
+        if earlier is not None:
+            row = by_id.loc[earlier]
+            compared = (earlier, int(row["run_id"]) in detailed, row["tracker_version"], row["params"])
+        pages.append(Page("cell", int(cell["id"]), _digest(shared, cell, compared)))
     pages += [Page("compare", None, everything), Page("runs", None, everything)]
     return pages
 
@@ -146,10 +150,9 @@ def _load(history: History, modalities: Mapping[str, Modality], metrics: Metrics
     runs = history.runs()
     if runs.empty:
         raise DataError(f"history database {history.location}: no runs yet, so no site to build")
-    cells = history.cells()
-    run_id = int(runs["id"].iloc[-1])
-    changes = find_changes(cells, run_id, thresholds, metrics=metrics) if len(runs) > 1 else None
-    return Night(history, modalities, metrics, thresholds, runs, cells, {}, changes)
+    kept = {int(run_id): history.changes(int(run_id)) for run_id in runs["id"]}
+    return Night(history, modalities, metrics, thresholds, runs, history.cells(), {},
+                 {run_id: changes for run_id, changes in kept.items() if changes is not None})
 
 
 _night: Night | None = None
@@ -221,6 +224,7 @@ def _write(night: Night, out: Path, shown: Path | None, report: Callable[[int, i
         for cell_id in night.latest["id"]:
             night.frames_of(int(cell_id))
     workers = min(workers, os.cpu_count() or 1)
+    night.changes  # found once here, not in each worker
     _night = night
     try:
         if workers > 1 and len(to_draw) >= POOL_FROM:

@@ -140,7 +140,7 @@ def write_comparison(
         If the page cannot be written, naming the file.
     """
     cells = history.cells([run_a, run_b])
-    night = Night(history, modalities, metrics, thresholds, history.runs(), cells, {}, None)
+    night = Night(history, modalities, metrics, thresholds, history.runs(), cells, {}, {})
     page = comparison_page(night, run_a, run_b, changes)
     try:
         path.write_text(page, encoding="utf-8")

@@ -11,6 +11,7 @@ history has, and which must be drawn again.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import math
 import re
@@ -24,7 +25,7 @@ import jinja2
 import pandas as pd
 from markupsafe import Markup, escape
 
-from benchmark.history.database import DETAILED_RUNS, History
+from benchmark.history.database import DETAILED_RUNS, SERIES, History
 from benchmark.history.regressions import Step, Thresholds, find_changes, group_changes, steps
 from benchmark.leaderboard import error_columns, is_pooled, leaderboards
 from benchmark.metrics import Metric, Metrics, error_columns_of
@@ -125,21 +126,33 @@ class Night:
     runs: pd.DataFrame
     cells: pd.DataFrame
     frames: dict[int, pd.DataFrame]
-    changes: pd.DataFrame | None
+    kept: Mapping[int, pd.DataFrame]
     run_facts: dict[int, dict[str, Any]] = field(default_factory=dict)
 
     @property
     def run(self) -> pd.Series:
         return self.runs.iloc[-1]
 
-    @property
+    @functools.cached_property
     def latest(self) -> pd.DataFrame:
         return self.cells_of(int(self.run["id"]))
 
-    @property
+    @functools.cached_property
     def detailed(self) -> set[int]:
         """The runs whose cells keep their frames and pictures, so have pages."""
         return {int(run) for run in self.runs["id"].iloc[-DETAILED_RUNS:]}
+
+    @functools.cached_property
+    def previous(self) -> dict[int, int]:
+        """Each cell's predecessor: the cell of its series (:data:`SERIES`) in the last run before its own."""
+        ordered = self.cells.sort_values(["run_id", "id"], kind="stable")
+        before = ordered.groupby(SERIES, sort=False)["id"].shift(1)
+        return {int(cell): int(earlier) for cell, earlier in zip(ordered["id"], before) if pd.notna(earlier)}
+
+    @functools.cached_property
+    def changes(self) -> pd.DataFrame | None:
+        """The changes of the latest run."""
+        return self.changes_of(int(self.run["id"]))
 
     def cells_of(self, run_id: int) -> pd.DataFrame:
         return self.cells[self.cells["run_id"] == run_id].reset_index(drop=True)
@@ -193,11 +206,15 @@ class Night:
         return cells[cells["run_id"] == cells["run_id"].max()] if len(cells) else cells
 
     def changes_of(self, run_id: int) -> pd.DataFrame | None:
-        """The changes of a run against the runs before it; None for the history's first run."""
-        if run_id == int(self.run["id"]):
-            return self.changes
+        """The changes of a run against the runs before it; None for the history's first run.
+
+        Those the nightly kept in the history where it did, else found now.
+        """
         if run_id == int(self.runs["id"].iloc[0]):
             return None
+        kept = self.kept.get(run_id)
+        if kept is not None:
+            return kept
         return find_changes(self.cells[self.cells["run_id"] <= run_id], run_id, self.thresholds, metrics=self.metrics)
 
 
@@ -308,7 +325,7 @@ def _summary_board(night: Night, cells: pd.DataFrame, modality: str, table_id: s
 def _run_page(night: Night, run_id: int, root: str, full_boards: bool) -> tuple[str, dict[str, Any]]:
     """The page of a run: its changes against the runs before it, grouped, and its boards."""
     cells = night.cells_of(run_id)
-    changes = night.changes_of(run_id)
+    changes = night.changes if run_id == int(night.run["id"]) else night.changes_of(run_id)
     if full_boards:
         frames = [night.frames_of(int(cell_id)).assign(cell_id=int(cell_id)) for cell_id in cells["id"]]
         boards = leaderboards(cells, pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(),
@@ -467,8 +484,7 @@ def cell_page(night: Night, cell_id: int, site: Path) -> Drawn:
     of_board = night.metrics.for_board(str(cell["modality"]), errors)
     summary = {metric.name: metric.format(cell[metric.name]) for metric in of_board if metric.name in cell}
     run_id = int(cell["run_id"])
-    earlier = night.earlier_cells(run_id, tracker=cell["tracker"], dataset_key=cell["dataset_key"],
-                                  seed=cell["seed"], init=cell["init"])
+    earlier = night.cells[night.cells["id"] == night.previous.get(cell_id, -1)]
     versions = sorted({str(version) for version in earlier["tracker_version"]})
     html = render(
         "cell.html", night, night.run_row(run_id).to_dict(), "../",

@@ -11,6 +11,7 @@ import types
 from html.parser import HTMLParser
 from pathlib import Path
 
+import pandas as pd
 import pytest
 from click.testing import CliRunner
 
@@ -368,3 +369,19 @@ def test_a_rebuild_reuses_the_pages_whose_inputs_did_not_change(fakes: types.Mod
     total = progress[-1][1]
     assert [done for done, _ in progress] == list(range(1, total + 1)) and {t for _, t in progress} == {total}
     assert total == len(after) + 1  # every page and the assets
+
+
+def test_pages_show_the_changes_the_nightly_kept(fakes: types.ModuleType, tmp_path: Path) -> None:
+    registry, history = fake_history(fakes, tmp_path, [10, 11])
+    kept = pd.DataFrame([dict(
+        tracker="noisy", dataset="fake/S1", metric="correct_pct", kind="accuracy", before=90.0, after=70.0,
+        change=-20.0, low=-25.0, high=-15.0, verdict="regression", cause="sigma_px 1.0 -> 9.0", effects=10.0, flag="",
+    )])
+    history.record_changes(2, kept)
+    site = tmp_path / "site"
+    build_site(history, site, registry.modalities)
+    for page in (site / "index.html", site / "runs" / "2.html"):
+        regressions = section(page, "Regressions", "Improvements")
+        assert "sigma_px 1.0 -&gt; 9.0" in regressions and "correct_pct -20.0 on fake/S1" in regressions
+    runs = section(site / "runs.html", "<tbody>", "</tr>")
+    assert re.findall(r'<td class="num[^"]*">(\d+|–)</td>', runs)[3:] == ["1", "0"]
