@@ -87,7 +87,10 @@ def assets_page(night: Night, key: None, site: Path) -> Drawn:
 
 
 KINDS: dict[str, PageKind] = {"assets": assets_page, **PAGE_KINDS, "compare": compare_page}
-"""Every kind of page, in the order they are drawn; ``runs`` comes last as it shows facts of the run pages."""
+"""Every kind of page by name."""
+LAST = ("index", "runs")
+"""Pages drawn in the building process after all others: the index's boards read the frames the latest run's
+cell pages read, and the runs page shows what each run page found."""
 
 
 @dataclass(frozen=True)
@@ -206,23 +209,24 @@ def _write(night: Night, out: Path, shown: Path | None, report: Callable[[int, i
 
     def record(page: Page, drawn: Drawn) -> None:
         nonlocal done
+        if drawn.frames is not None:
+            night.frames[int(page.key)] = drawn.frames
         manifest[page.name] = {"inputs": page.inputs, "files": drawn.files, "facts": drawn.facts}
         if page.kind == "run":
             night.run_facts[int(page.key)] = drawn.facts
         done += 1
         report(done, len(pages))
 
-    last = [page for page in pages if page.kind == "runs"]
-    to_draw = []
-    for page in pages[: len(pages) - len(last)]:
+    to_draw, last = [], []
+    for page in pages:
         reused = _reuse(page, shown, before, out) if shown is not None else None
-        if reused is None:
-            to_draw.append(page)
-        else:
+        if reused is not None:
             record(page, reused)
-    if night.frames == {} and any(page.kind == "index" for page in to_draw):
-        for cell_id in night.latest["id"]:
-            night.frames_of(int(cell_id))
+        elif page.kind in LAST:
+            last.append(page)
+        else:
+            to_draw.append(page)
+    last.sort(key=lambda page: LAST.index(page.kind))
     workers = min(workers, os.cpu_count() or 1)
     night.changes  # found once here, not in each worker
     _night = night

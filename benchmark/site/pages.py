@@ -15,7 +15,8 @@ import functools
 import hashlib
 import math
 import re
-from collections.abc import Callable, Mapping
+from collections import defaultdict
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from datetime import datetime
 from pathlib import Path
@@ -27,7 +28,7 @@ from markupsafe import Markup, escape
 
 from benchmark.history.database import DETAILED_RUNS, SERIES, History
 from benchmark.history.regressions import Step, Thresholds, find_changes, group_changes, steps
-from benchmark.leaderboard import error_columns, is_pooled, leaderboards
+from benchmark.leaderboard import error_columns, is_pooled, key_labels, leaderboards
 from benchmark.metrics import Metric, Metrics, error_columns_of
 from benchmark.modality import Modality
 from benchmark.report.display import alignment, display_table, format_value
@@ -96,23 +97,17 @@ def changed_parameters(now: Mapping[str, Any], before: list[Mapping[str, Any]]) 
     return changed
 
 
-def _named_by(label: str, name: str, key: str) -> bool:
-    """Whether a board label (``name`` or ``name [key prefix]``) stands for ``name`` with ``key``."""
-    return label == name or label == f"{name} [{key[:8]}]"
-
-
-def _labelled(cells: pd.DataFrame, label: str, name: str, key: str) -> pd.DataFrame:
-    """The cells whose ``name`` and ``key`` columns a board label stands for."""
-    mask = [_named_by(label, str(n), str(k)) for n, k in zip(cells[name], cells[key])]
-    return cells[pd.Series(mask, index=cells.index, dtype=bool)]
-
-
 @dataclass(frozen=True)
 class Drawn:
-    """What drawing a page left: its files, relative to the site's root, and facts other pages use."""
+    """What drawing a page left: its files, relative to the site's root, and facts other pages use.
+
+    ``frames`` is the frame table a cell page of the latest run read, handed
+    to the index's boards so that it is read once.
+    """
 
     files: list[str]
     facts: dict[str, Any] = field(default_factory=dict)
+    frames: pd.DataFrame | None = None
 
 
 @dataclass
@@ -179,10 +174,12 @@ class Night:
 
     def cell_links(self, cells: pd.DataFrame, root: str) -> Markup:
         """Links to the pages of ``cells``, one per seed; none for cells of runs that keep no details."""
-        ordered = cells[cells["run_id"].isin(self.detailed)].sort_values(["seed", "id"])
-        return Markup(" ").join(
-            link(f"seed {cell.seed}", f"{root}cells/{cell.id}.html") for cell in ordered.itertuples()
-        )
+        return self.seed_links(zip(cells["seed"], cells["id"], cells["run_id"]), root)
+
+    def seed_links(self, cells: Iterable[tuple[Any, Any, Any]], root: str) -> Markup:
+        """Links to the pages of cells given as ``(seed, id, run_id)``, in seed order."""
+        shown = sorted((int(seed), int(cell)) for seed, cell, run in cells if int(run) in self.detailed)
+        return Markup(" ").join(link(f"seed {seed}", f"{root}cells/{cell}.html") for seed, cell in shown)
 
     def metrics_of(self, cells: pd.DataFrame) -> list[Metric]:
         """The metrics of the boards of ``cells``'s modalities that have a value in ``cells``, in board order."""
@@ -294,13 +291,20 @@ def _board(night: Night, board: pd.DataFrame, cells: pd.DataFrame, table_id: str
     numeric = [c for c in numeric if c in table]
     for column in numeric:
         table[column] = table[column].str.replace(r"^(\S+) (\[.*\])$", r'\1 <span class="ci">\2</span>', regex=True)
+    # Cells by the labels the board gives them (modality_board's), so that each row finds its own at once.
+    tracker_labels = key_labels(cells, "tracker", "tracker_key")
+    dataset_labels = key_labels(cells, "dataset", "dataset_key")
+    names = dict(zip(tracker_labels, cells["tracker"]))
+    of_row: dict[tuple[str, str, str], list[tuple[Any, Any, Any]]] = defaultdict(list)
+    for tracker, dataset, init, seed, cell, run in zip(
+        tracker_labels, dataset_labels, cells["init"], cells["seed"], cells["id"], cells["run_id"]
+    ):
+        of_row[(str(tracker), str(dataset), str(init))].append((seed, cell, run))
     trackers, links = [], []
     for row in board.itertuples():
-        of_tracker = _labelled(cells, row.tracker, "tracker", "tracker_key")
-        name = str(of_tracker["tracker"].iloc[0]) if len(of_tracker) else str(row.tracker)
-        trackers.append(link(row.tracker, night.tracker_href(name, root)))
-        of_row = _labelled(of_tracker[of_tracker["init"] == row.init], row.dataset, "dataset", "dataset_key")
-        links.append(night.cell_links(of_row, root) if not is_pooled(row.dataset) else Markup(""))
+        trackers.append(link(row.tracker, night.tracker_href(str(names.get(row.tracker, row.tracker)), root)))
+        cells_of_row = [] if is_pooled(row.dataset) else of_row[(str(row.tracker), str(row.dataset), str(row.init))]
+        links.append(night.seed_links(cells_of_row, root))
     table["tracker"] = [str(markup) for markup in trackers]
     table.insert(list(table.columns).index("dataset") + 1, "cells", [str(markup) for markup in links])
     return {"table": datatable(table, table_id, numeric), "shared": shared}
@@ -330,7 +334,7 @@ def _run_page(night: Night, run_id: int, root: str, full_boards: bool) -> tuple[
         frames = [night.frames_of(int(cell_id)).assign(cell_id=int(cell_id)) for cell_id in cells["id"]]
         boards = leaderboards(cells, pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(),
                               night.modalities, night.metrics)
-        tables = {modality: _board(night, board, cells, f"board-{i}", root)
+        tables = {modality: _board(night, board, cells[cells["modality"] == modality], f"board-{i}", root)
                   for i, (modality, board) in enumerate(boards.items())}
     else:
         tables = {str(modality): _summary_board(night, group, str(modality), f"board-{i}", root)
@@ -499,7 +503,7 @@ def cell_page(night: Night, cell_id: int, site: Path) -> Drawn:
         datatables=False, plotly=figure is not None,
     )
     (folder / f"{cell_id}.html").write_text(html, encoding="utf-8")
-    return Drawn(files)
+    return Drawn(files, frames=frames if run_id == int(night.run["id"]) else None)
 
 
 PageKind = Callable[[Night, Any, Path], Drawn]
