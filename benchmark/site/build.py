@@ -228,7 +228,8 @@ def _write(night: Night, out: Path, shown: Path | None, report: Callable[[int, i
             to_draw.append(page)
     last.sort(key=lambda page: LAST.index(page.kind))
     workers = min(workers, os.cpu_count() or 1)
-    night.changes  # found once here, not in each worker
+    if any(page.kind == "tracker" for page in to_draw):
+        night.changes  # found once here, not in each worker
     _night = night
     try:
         if workers > 1 and len(to_draw) >= POOL_FROM:
