@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import multiprocessing
 import os
 import shutil
@@ -144,7 +145,9 @@ def _plan(night: Night) -> list[Page]:
         if earlier is not None:
             row = by_id.loc[earlier]
             compared = (earlier, int(row["run_id"]) in detailed, row["tracker_version"], row["params"])
-        pages.append(Page("cell", int(cell["id"]), _digest(shared, cell, compared)))
+        # Empty values left out: a column added to the history later (a new metric) leaves old cells' pages as they are.
+        known = {name: value for name, value in cell.items() if not (isinstance(value, float) and math.isnan(value))}
+        pages.append(Page("cell", int(cell["id"]), _digest(shared, known, compared)))
     pages += [Page("compare", None, everything), Page("runs", None, everything)]
     return pages
 
