@@ -55,6 +55,7 @@ def run_benchmark(
     scheduler: str | None,
     cache: Path | None,
     no_cache: bool,
+    verbose: bool,
 ) -> RunSummary:
     """Run the cells the options of :func:`~benchmark.cli.options.run_options` select into ``out``, show the board and say how it went.
 
@@ -70,7 +71,7 @@ def run_benchmark(
     registry = session.registry
     cells = select_cells(registry, Selection(trackers, suites, datasets, params, seeds, init, train))
     options = {key: list(value) if isinstance(value, tuple) else value for key, value in ctx.params.items()}
-    progress = TerminalProgress()
+    progress = TerminalProgress(verbose=verbose)
     runner = open_executor(executor, ExecutorOptions(jobs, in_process, scheduler))
     try:
         summary = run_benchmark(
@@ -90,7 +91,7 @@ def run_benchmark(
         )
     finally:
         runner.close()
-    show_publication(summary.publication)
+    show_publication(summary.publication, full=False)
     click.echo(summary.describe(), err=True)
     if summary.interrupted:
         ctx.exit(128 + summary.interrupted)  # 130 for Ctrl-C, 143 for SIGTERM
