@@ -34,6 +34,9 @@ if TYPE_CHECKING:
 PLAIN_EVERY_S = 5.0
 """Least time between two plain progress lines."""
 
+Report = Callable[[int, int], None]
+"""A progress callback: ``report(done, total)`` (a :class:`Meter` is one)."""
+
 
 def duration(seconds: float) -> str:
     """``seconds`` for a reader: ``42s``, ``3m05s``, ``2h07m``; ``?`` when unknown."""
@@ -159,22 +162,22 @@ class Meter:
         self._last_line, self._written = now, self.done
         print(self.line(now), file=self._stream, flush=True)
 
-    def write(self, line: str) -> None:
-        """Print a log line, above the bar while there is one."""
+    def write(self, line: str, stream: IO[str] | None = None) -> None:
+        """Print a line to ``stream`` (by default the meter's own), above the bar while there is one."""
         if self._bar is not None:
-            self._bar.write(line, file=self._stream)
+            self._bar.write(line, file=stream or self._stream)
         else:
-            print(line, file=self._stream, flush=True)
+            print(line, file=stream or self._stream, flush=True)
 
-    def close(self) -> None:
-        """The work ended (finished or interrupted): remove the bar, or write the last plain line."""
+    def close(self, *, quiet: bool = False) -> None:
+        """The work ended (finished or interrupted): remove the bar, or write the last plain line unless ``quiet``."""
         if self._closed:
             return
         self._closed = True
         if self._bar is not None:
             self._bar.close()
             self._bar = None
-        elif not self._bar_wanted and self._started is not None and self.done != self._written:
+        elif not (quiet or self._bar_wanted) and self._started is not None and self.done != self._written:
             self._write_line(self._clock())
 
     def __call__(self, done: int, total: int) -> None:
@@ -184,8 +187,8 @@ class Meter:
     def __enter__(self) -> Meter:
         return self
 
-    def __exit__(self, *exc: object) -> None:
-        self.close()
+    def __exit__(self, kind: type[BaseException] | None, *exc: object) -> None:
+        self.close(quiet=kind is not None)  # the error says where the work stopped
 
 
 class Progress(Protocol):

@@ -270,6 +270,7 @@ def test_make_dataset_exports_every_sequence_of_a_suite(invoke: Invoke, tmp_path
     assert result.exit_code == 0, result.output
     written = [Path(line) for line in result.stdout.splitlines()]
     assert len(written) == 2 and all(path.is_file() for path in written)
+    assert "sequences 2/2, elapsed " in result.stderr
     assert len(list(out.rglob("*.png"))) == 10 + 6
     assert invoke("make-dataset", "nope", "--out", str(out)).exit_code == 2
 
