@@ -45,22 +45,25 @@ def nightly(
     else with 1 when a cell failed, as run does.
     """
     from benchmark.history.nightly import describe_changes, run_nightly
+    from benchmark.progress import Meter
 
     limits = thresholds(min_effects, window)
     run = functools.partial(run_benchmark, ctx, out, **options)
     session: Session = ctx.obj
     registry = session.registry
-    kept = run_nightly(
-        run,
-        history,
-        out,
-        site,
-        registry.modalities,
-        limits,
-        argv=sys.argv,
-        seeds=options["seeds"],
-        metrics=registry.metrics,
-    )
+    with Meter("site pages") as pages:
+        kept = run_nightly(
+            run,
+            history,
+            out,
+            site,
+            registry.modalities,
+            limits,
+            argv=sys.argv,
+            seeds=options["seeds"],
+            metrics=registry.metrics,
+            report=pages,
+        )
     click.echo(describe_changes(kept.changes, f"Changes of nightly run {kept.run_id}"))
     click.echo(f"history {history}: run {kept.run_id}; site {kept.index}", err=True)
     if kept.regressed:
@@ -106,16 +109,19 @@ def report_command(session: Session, history: str, site: Path, min_effects: tupl
     """Rebuild the static HTML report from the history database, without running anything."""
     from benchmark.errors import DataError
     from benchmark.history.database import History
+    from benchmark.progress import Meter
     from benchmark.site import build_site
 
     with History(history, must_exist=True) as database:
         if database.runs().empty:
             raise DataError(f"history database {history}: no runs yet (run 'trackbench nightly' first)")
-        index = build_site(
-            database,
-            site,
-            session.registry.modalities,
-            thresholds=thresholds(min_effects, window),
-            metrics=session.registry.metrics,
-        )
+        with Meter("site pages") as pages:
+            index = build_site(
+                database,
+                site,
+                session.registry.modalities,
+                thresholds=thresholds(min_effects, window),
+                metrics=session.registry.metrics,
+                report=pages,
+            )
     click.echo(f"wrote {index}")

@@ -29,6 +29,7 @@ from benchmark.store import DATABASE_NAME, ResultStore
 
 if TYPE_CHECKING:
     from benchmark.harness import RunSummary
+    from benchmark.progress import Report
 
 
 @dataclass(frozen=True)
@@ -57,6 +58,7 @@ def run_nightly(
     argv: Sequence[str],
     seeds: int,
     metrics: Metrics = CORE,
+    report: Report | None = None,
 ) -> Nightly:
     """Run the benchmark into ``out``, append the run to ``history``, find its changes and rewrite ``site``.
 
@@ -76,6 +78,9 @@ def run_nightly(
         The command line and the number of seeds, kept with the run.
     metrics : Metrics
         The catalogue of metrics kept, judged and shown (the registry's).
+    report : callable, optional
+        Told ``report(done, total)`` pages as the site is built
+        (:class:`benchmark.progress.Meter`).
     """
     started = datetime.now(UTC).isoformat(timespec="seconds")
     summary = run()
@@ -91,7 +96,7 @@ def run_nightly(
             metrics=metrics,
         )
         changes = find_changes(database.cells(), run_id, thresholds, metrics=metrics)
-        index = build_site(database, site, modalities, thresholds=thresholds, metrics=metrics)
+        index = build_site(database, site, modalities, thresholds=thresholds, metrics=metrics, report=report)
     return Nightly(summary, run_id, changes, index)
 
 
