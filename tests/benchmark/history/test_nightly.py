@@ -22,7 +22,7 @@ def test_a_worsened_parameter_is_a_regression_in_the_exit_status_the_output_and_
 ) -> None:
     first = nightly(invoke, tmp_path)
     assert first.exit_code == 0, first.output
-    assert "cells 2/2, 0 failed, elapsed " in first.stderr and "site pages " in first.stderr  # a log's progress
+    assert "cells 4/4, 0 failed, elapsed " in first.stderr and "site pages " in first.stderr  # a log's progress
     assert "no change beyond the thresholds" in first.stdout
     second = nightly(invoke, tmp_path, "--param", "noisy.sigma_px=40")
     assert second.exit_code == EXIT_REGRESSION, second.output
