@@ -229,33 +229,15 @@ class TerminalProgress:
 
     Parameters
     ----------
-    stream : file, optional
-        Where to write (standard error by default).
-    enabled : bool, optional
-        Draw the bar; by default only when ``stream`` is a terminal.
+    meter : Meter, optional
+        Where the cells are counted; by default a meter of ``cells`` on
+        standard error.
     verbose : bool
         Also write a line for every cell that ended ``ok``.
-    every_s : float
-        Least time between two plain lines.
-    refresh_s : float
-        Least time between two redraws of the bar.
-    clock : callable
-        Seconds of a monotonic clock (for tests).
     """
 
-    def __init__(
-        self,
-        stream: IO[str] | None = None,
-        enabled: bool | None = None,
-        *,
-        verbose: bool = False,
-        every_s: float = PLAIN_EVERY_S,
-        refresh_s: float = 0.1,
-        clock: Callable[[], float] = time.monotonic,
-    ) -> None:
-        self._meter = Meter(
-            "cells", stream=stream, enabled=enabled, every_s=every_s, refresh_s=refresh_s, clock=clock
-        )
+    def __init__(self, meter: Meter | None = None, *, verbose: bool = False) -> None:
+        self._meter = meter or Meter("cells")
         self._verbose = verbose
         self._failed = 0
 

@@ -14,7 +14,7 @@ import pytest
 from benchmark import harness
 from benchmark.errors import DataError
 from benchmark.harness import describe_result, publish, run_benchmark
-from benchmark.progress import TerminalProgress
+from benchmark.progress import Meter, TerminalProgress
 from benchmark.registry import Registry
 from benchmark.runner import run_cell
 from benchmark.selection import Selection, select_cells
@@ -34,7 +34,7 @@ def stored(out: Path) -> list[tuple]:
 def test_a_run_stores_every_cell_and_publishes_one_board_per_modality(registry: Registry, tmp_path: Path) -> None:
     cells = select_cells(registry, Selection(trackers=("perfect", "blind", "raising"), suites=("fake",)))
     shown = io.StringIO()
-    progress = TerminalProgress(shown, enabled=False)
+    progress = TerminalProgress(Meter("cells", stream=shown, enabled=False))
     summary = run_benchmark(cells, registry.modalities, tmp_path, jobs=0, argv=["test"], progress=progress)
     publication = summary.publication
     assert len(stored(tmp_path)) == 6

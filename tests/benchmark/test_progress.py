@@ -32,7 +32,7 @@ def result(status: str, tracker: str = "hough") -> CellResult:
 
 def test_on_a_terminal_the_bar_counts_cells_failures_and_names_the_running_ones() -> None:
     stream = io.StringIO()
-    progress = TerminalProgress(stream, enabled=True, refresh_s=0.0)
+    progress = TerminalProgress(Meter("cells", stream=stream, enabled=True, refresh_s=0.0))
     progress.start(3)
     progress.advance(result("ok"), lambda: ["condensation on camera/S1, seed 0"])
     progress.write("a log line")
@@ -46,7 +46,7 @@ def test_on_a_terminal_the_bar_counts_cells_failures_and_names_the_running_ones(
 
 def test_a_plain_log_counts_cells_every_few_seconds_and_names_only_failed_cells() -> None:
     stream, clock = io.StringIO(), Clock()
-    progress = TerminalProgress(stream, every_s=5.0, clock=clock)
+    progress = TerminalProgress(Meter("cells", stream=stream, every_s=5.0, clock=clock))
     progress.start(6)
     for status in ("ok", "ok", "timeout", "ok", "ok", "ok"):
         clock.now += 2.0
@@ -62,7 +62,7 @@ def test_a_plain_log_counts_cells_every_few_seconds_and_names_only_failed_cells(
 
 def test_verbose_names_every_cell() -> None:
     stream = io.StringIO()
-    progress = TerminalProgress(stream, verbose=True, clock=Clock())
+    progress = TerminalProgress(Meter("cells", stream=stream, clock=Clock()), verbose=True)
     progress.start(2)
     progress.advance(result("ok", "a"), list)
     progress.advance(result("ok", "b"), list)
