@@ -78,7 +78,7 @@ def board_summary(board: pd.DataFrame, modality: str, width: int, metrics: Metri
     pooled = board[board["dataset"] == ALL_DATASETS]
     single = board[~board["dataset"].map(is_pooled)]
     datasets = single["dataset"].nunique()
-    cells = single.groupby(["tracker", "init"])["seeds"].sum()
+    cells_of = single.groupby(["tracker", "init"])["seeds"].sum()
     names = [printable(name) for name in pooled["tracker"]]
     if pooled["init"].nunique() > 1:
         names = [f"{name} (init {init})" for name, init in zip(names, pooled["init"])]
@@ -89,7 +89,7 @@ def board_summary(board: pd.DataFrame, modality: str, width: int, metrics: Metri
     chosen = summary_metrics(board, modality, metrics)
     first = [metric for metric in chosen if metric.ranks or metric.kind == "speed"]
     failed = [
-        f"{failed_cells(status)}/{cells.get((tracker, init), 0)}"
+        f"{failed_cells(status)}/{cells_of.get((tracker, init), 0)}"
         for tracker, init, status in zip(pooled["tracker"], pooled["init"], pooled["status"])
     ]
     columns = [
@@ -109,8 +109,8 @@ def board_summary(board: pd.DataFrame, modality: str, width: int, metrics: Metri
         + "".join(GAP + title.rjust(w) for (title, _), w in zip(columns[:kept], widths[:kept])),
     ]
     for i, name in enumerate(names):
-        cells = "".join(GAP + values[i].rjust(w) for (_, values), w in zip(columns[:kept], widths[:kept]))
-        lines.append((_shorten(name, name_width).ljust(name_width) + cells).rstrip())
+        row = "".join(GAP + values[i].rjust(w) for (_, values), w in zip(columns[:kept], widths[:kept]))
+        lines.append((_shorten(name, name_width).ljust(name_width) + row).rstrip())
     if kept < len(columns):
         lines.append(_shorten(f"(too narrow for {', '.join(title for title, _ in columns[kept:])})", width))
     return lines
