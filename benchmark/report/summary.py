@@ -63,6 +63,10 @@ def _shorten(text: str, width: int) -> str:
     return text if len(text) <= width else text[: max(width - 1, 0)] + "…"
 
 
+def _counted(count: int, noun: str) -> str:
+    return f"{count} {noun}{'' if count == 1 else 's'}"
+
+
 def _fitting(widths: Sequence[int], first: int, width: int) -> int:
     """How many of the columns of ``widths``, taken in order, fit beside a first column ``first`` wide."""
     used = first
@@ -104,7 +108,7 @@ def board_summary(board: pd.DataFrame, modality: str, width: int, metrics: Metri
         kept = _fitting(widths, min(longest, MIN_NAME_WIDTH), width)
     name_width = max(1, min(longest, width - sum(len(GAP) + w for w in widths[:kept])))
     lines = [
-        _shorten(f"{modality}: {len(names)} trackers over {datasets} datasets", width),
+        _shorten(f"{modality}: {_counted(len(names), 'tracker')} over {_counted(datasets, 'dataset')}", width),
         "tracker".ljust(name_width)
         + "".join(GAP + title.rjust(w) for (title, _), w in zip(columns[:kept], widths[:kept])),
     ]
