@@ -46,8 +46,9 @@ Exit status, as pytest's:
   ``timeout``, or a plugin could not be loaded (its trackers or commands
   are unavailable; ``--strict-plugins`` makes that an error instead);
 * 2: nothing ran: a usage or data error (an unknown name, a bad parameter,
-  an unreadable file, a broken plugin, a results folder in use), reported
-  as one line ``Error: ...`` without a traceback;
+  an unreadable file, a broken plugin, a results folder in use, a
+  ``--history`` that cannot be opened, lacks its driver or is not a
+  history), reported as one line ``Error: ...`` without a traceback;
 * 3: ``nightly`` found a regression (the run is kept in the history and
   the site written);
 * 130: the user's Ctrl-C; finished cells are kept and published.

@@ -9,7 +9,14 @@ from typing import Any
 
 import click
 
-from benchmark.cli.options import history_option, run_options, site_option, threshold_options, thresholds
+from benchmark.cli.options import (
+    existing_history_option,
+    history_option,
+    run_options,
+    site_option,
+    threshold_options,
+    thresholds,
+)
 from benchmark.cli.run import run_benchmark
 from benchmark.cli.session import EXIT_FAILED, Session
 
@@ -44,6 +51,7 @@ def nightly(
     Takes every option of run.  Exits with 3 when a regression was found,
     else with 1 when a cell failed, as run does.
     """
+    from benchmark.history.database import shown_location
     from benchmark.history.nightly import CHANGES_NAME, describe_changes, run_nightly
 
     limits = thresholds(min_effects, window)
@@ -63,7 +71,7 @@ def nightly(
     )
     title = f"Changes of nightly run {kept.run_id}"
     click.echo(describe_changes(kept.changes, title, registry.metrics, out / CHANGES_NAME))
-    click.echo(f"history {history}: run {kept.run_id}; site {kept.index}", err=True)
+    click.echo(f"history {shown_location(history)}: run {kept.run_id}; site {kept.index}", err=True)
     if kept.regressed:
         ctx.exit(EXIT_REGRESSION)
     if not kept.summary.clean:
@@ -73,7 +81,7 @@ def nightly(
 @click.command("compare")
 @click.argument("run_a", type=int)
 @click.argument("run_b", type=int)
-@history_option
+@existing_history_option
 @threshold_options
 @click.pass_obj
 def compare(
@@ -93,13 +101,13 @@ def compare(
         cells = database.cells([run_a, run_b])
     missing = sorted({run_a, run_b} - set(cells["run_id"]))
     if missing:
-        raise DataError(f"history database {history}: no run {', '.join(map(str, missing))}")
+        raise DataError(f"history database {database.location}: no run {', '.join(map(str, missing))}")
     changes = find_changes(cells, run_b, limits, against=[run_a], metrics=session.registry.metrics)
     click.echo(describe_changes(changes, f"Run {run_a} -> {run_b}", session.registry.metrics))
 
 
 @click.command("report")
-@history_option
+@existing_history_option
 @site_option
 @threshold_options
 @click.pass_obj
@@ -111,7 +119,7 @@ def report_command(session: Session, history: str, site: Path, min_effects: tupl
 
     with History(history, must_exist=True) as database:
         if database.runs().empty:
-            raise DataError(f"history database {history}: no runs yet (run 'trackbench nightly' first)")
+            raise DataError(f"history database {database.location}: no runs yet (run 'trackbench nightly' first)")
         index = build_site(
             database,
             site,

@@ -34,14 +34,19 @@ a change of either is exactly what the regression view must catch, and the
 report names it beside the change.
 
 The database is SQLite by default; any SQLAlchemy URL (``postgresql://...``)
-works too, so a team can share one history.  Any database error is a
-:class:`~benchmark.errors.DataError` naming the database.
+works too, so a team can share one history.  A URL that names no driver
+gets the one of :data:`DEFAULT_DRIVERS` (``postgresql://`` is psycopg's,
+which the ``postgres`` extra installs).  Any database error, a missing
+driver included, is a :class:`~benchmark.errors.DataError` naming the
+database, on one line, with the URL's password masked
+(:func:`shown_location`): the messages of a driver may quote the URL.
 """
 
 from __future__ import annotations
 
 import functools
 import json
+import re
 import zlib
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from datetime import UTC, datetime
@@ -51,7 +56,7 @@ from typing import Any, Concatenate, ParamSpec, TypeVar
 import numpy as np
 import pandas as pd
 import sqlalchemy as sa
-from sqlalchemy.exc import SQLAlchemyError
+from sqlalchemy.exc import ArgumentError, SQLAlchemyError
 
 from benchmark import schema
 from benchmark.errors import DataError
@@ -83,13 +88,35 @@ _P = ParamSpec("_P")
 _T = TypeVar("_T")
 
 
+DEFAULT_DRIVERS = {"postgresql": "psycopg"}
+"""The driver of a URL that names a database but no driver (``postgresql://...``), by database.
+
+SQLAlchemy 2.0 would take psycopg2 for ``postgresql://``, 2.1 psycopg;
+naming it keeps the one the ``postgres`` extra installs, whatever the
+version.  A URL that names its driver (``postgresql+psycopg2://``) keeps it.
+"""
+
+DRIVER_INSTALLS = {
+    "psycopg": 'pip install "subsea-trackbench[postgres]"',
+    "psycopg2": "pip install psycopg2-binary",
+}
+"""The command that installs a database driver, by the name of the module that could not be imported."""
+
+_MASK = "***"
+_URL_PASSWORD = re.compile(r"(?<=://)(?P<user>[^:/@]*):(?P<password>.*)@")
+"""The password of a URL that SQLAlchemy cannot parse, up to its last ``@`` (masking too much rather than too little)."""
+_SHORTEST_MASKED_ELSEWHERE = 4
+"""A password shorter than this is masked in the URL only, not wherever its letters occur in a driver's message,
+which masking a one-letter password would make unreadable (and such a password guards nothing)."""
+
+
 def _reports_database_errors(method: Callable[Concatenate[History, _P], _T]) -> Callable[Concatenate[History, _P], _T]:
     @functools.wraps(method)
     def wrapper(self: History, /, *args: _P.args, **kwargs: _P.kwargs) -> _T:
         try:
             return method(self, *args, **kwargs)
         except SQLAlchemyError as exc:
-            raise DataError(f"history database {self.location}: {type(exc).__name__}: {exc}") from exc
+            raise self._error(f"{type(exc).__name__}: {exc}") from exc
 
     return wrapper
 
@@ -98,6 +125,38 @@ def database_url(location: str | Path) -> str:
     """An SQLAlchemy URL as given, or the URL of an SQLite file at a path."""
     text = str(location)
     return text if "://" in text else f"sqlite:///{resolved(Path(text).expanduser())}"
+
+
+def shown_location(location: str | Path) -> str:
+    """A history's location as it may be printed: a URL with its password masked as ``***``, a path as given.
+
+    Examples
+    --------
+    >>> shown_location("postgresql://ci:s3cret@db.example/history")
+    'postgresql://ci:***@db.example/history'
+    >>> shown_location("reports/history.sqlite")
+    'reports/history.sqlite'
+    """
+    text = str(location)
+    if "://" not in text:
+        return text
+    try:
+        return sa.make_url(text).render_as_string(hide_password=True)
+    except (ArgumentError, ValueError):
+        return _URL_PASSWORD.sub(rf"\g<user>:{_MASK}@", text)
+
+
+def _passwords(location: str | Path) -> list[str]:
+    """The forms in which a URL's password may appear in a message, longest first: as written and as decoded."""
+    text = str(location)
+    written = _URL_PASSWORD.search(text)
+    forms = {written["password"]} if written else set()
+    try:
+        decoded = sa.make_url(text).password if "://" in text else None
+    except (ArgumentError, ValueError):
+        decoded = None
+    forms |= {str(decoded)} if decoded else set()
+    return sorted((form for form in forms if form), key=len, reverse=True)
 
 
 def _pack(frames: pd.DataFrame) -> bytes:
@@ -123,20 +182,56 @@ class History:
     Raises
     ------
     DataError
-        If the database cannot be opened or is not a trackbench history;
-        every method raises it, naming the database, for any database error.
+        If the database's driver is not installed (naming how to install
+        it), or the database cannot be opened or is not a trackbench
+        history; every method raises it, naming the database, for any
+        database error.  The password of a URL never appears in it.
     """
 
     def __init__(self, location: str | Path, *, must_exist: bool = False) -> None:
-        self.location = str(location)
-        url = database_url(location)
-        if url.startswith("sqlite:///"):
-            path = Path(url.removeprefix("sqlite:///"))
-            if must_exist and not path.is_file():
-                raise DataError(f"history database {self.location}: no such file (run 'trackbench nightly' first)")
-            path.parent.mkdir(parents=True, exist_ok=True)
-        self._engine = sa.create_engine(url)
+        self.location = shown_location(location)
+        """Where the database is, as it may be printed (its password masked)."""
+        self._given = str(location)
+        self._engine = self._open(database_url(location), must_exist)
         self._create()
+
+    def _error(self, problem: str) -> DataError:
+        """A :class:`DataError` naming the database, on one line, with its password masked wherever it appears."""
+        message = " ".join(f"history database {self.location}: {problem}".split())
+        message = message.replace(self._given, self.location)
+        for password in _passwords(self._given):
+            if len(password) >= _SHORTEST_MASKED_ELSEWHERE:
+                message = message.replace(password, _MASK)
+        return DataError(message)
+
+    def _open(self, url_text: str, must_exist: bool) -> sa.Engine:
+        """The engine of the database at ``url_text``, its driver imported; an SQLite file's folder is created.
+
+        Nothing is connected to yet: :meth:`_create` does that.
+        """
+        try:
+            url = sa.make_url(url_text)
+        except (ArgumentError, ValueError) as exc:
+            raise self._error(f"neither a file nor an SQLAlchemy URL ({exc})") from exc
+        if url.get_backend_name() == "sqlite" and url.database and url.database != ":memory:":
+            path = Path(url.database)
+            if must_exist and not path.is_file():
+                raise self._error("no such file (run 'trackbench nightly' first)")
+            try:
+                path.parent.mkdir(parents=True, exist_ok=True)
+            except OSError as exc:
+                raise self._error(f"cannot create its folder ({exc.strerror or exc})") from exc
+        if url.drivername in DEFAULT_DRIVERS:
+            url = url.set(drivername=f"{url.drivername}+{DEFAULT_DRIVERS[url.drivername]}")
+        try:
+            return sa.create_engine(url)
+        except ImportError as exc:
+            module = exc.name or url.get_driver_name()
+            install = DRIVER_INSTALLS.get(module)
+            how = f"install it with: {install}" if install else "install the Python package that provides it"
+            raise self._error(f"its driver {module} ({url.drivername}) cannot be imported ({exc}); {how}") from exc
+        except (SQLAlchemyError, ValueError) as exc:
+            raise self._error(f"{type(exc).__name__}: {exc}") from exc
 
     @_reports_database_errors
     def _create(self) -> None:
@@ -152,8 +247,8 @@ class History:
         existing = set(inspector.get_table_names())
         ours = {table.name for table in _metadata.sorted_tables}
         if existing and not existing & ours:
-            raise DataError(
-                f"history database {self.location}: holds other tables ({', '.join(sorted(existing)[:5])}) and "
+            raise self._error(
+                f"holds other tables ({', '.join(sorted(existing)[:5])}) and "
                 "none of a trackbench history's; the database was left unchanged"
             )
         for table in _metadata.sorted_tables:
@@ -161,8 +256,8 @@ class History:
                 continue
             found = {column["name"] for column in inspector.get_columns(table.name)}
             if any(column.server_default is None for column in table.columns if column.name not in found):
-                raise DataError(
-                    f"history database {self.location}: its table {table.name!r} is not a trackbench history's "
+                raise self._error(
+                    f"its table {table.name!r} is not a trackbench history's "
                     "(columns missing); the database was left unchanged"
                 )
         with self._engine.begin() as connection:
@@ -324,9 +419,8 @@ class History:
                 sa.select(_cell_frames.c.frames).where(_cell_frames.c.cell_id == int(cell_id))
             ).scalar_one_or_none()
         if blob is None:
-            raise DataError(
-                f"history database {self.location}: no frame table of cell {cell_id} "
-                f"(only the last {DETAILED_RUNS} runs keep theirs)"
+            raise self._error(
+                f"no frame table of cell {cell_id} (only the last {DETAILED_RUNS} runs keep theirs)"
             )
         return _unpack(blob)
 

@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 
 from benchmark.errors import DataError
-from benchmark.history.database import History, database_url
+from benchmark.history.database import History, database_url, shown_location
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.results import Picture
 from benchmark.store import ResultStore
@@ -84,6 +84,41 @@ def test_a_runs_changes_are_kept_as_they_were_said_and_replaced_when_said_again(
 def test_urls_and_paths() -> None:
     assert database_url("postgresql://u@h/db") == "postgresql://u@h/db"
     assert database_url("x.sqlite").startswith("sqlite:///") and database_url("x.sqlite").endswith("/x.sqlite")
+
+
+@pytest.mark.parametrize(
+    ("location", "shown"),
+    [
+        ("postgresql://ci:s3cret@db.example:5432/history", "postgresql://ci:***@db.example:5432/history"),
+        ("postgresql+psycopg://ci:p%40ss@/history?host=/run/pg", "postgresql+psycopg://ci:***@/history?host=%2Frun%2Fpg"),
+        ("postgresql://ci:s3cret@db.example:port/history", "postgresql://ci:***@db.example:port/history"),
+        ("postgresql://ci@db.example/history", "postgresql://ci@db.example/history"),
+        ("reports/history.sqlite", "reports/history.sqlite"),
+    ],
+    ids=["password", "encoded password and socket", "unparsable port", "no password", "a file"],
+)
+def test_a_location_is_shown_with_its_password_masked(location: str, shown: str) -> None:
+    assert shown_location(location) == shown
+
+
+def test_a_drivers_message_quoting_the_url_is_masked_and_on_one_line(monkeypatch: pytest.MonkeyPatch) -> None:
+    import sqlalchemy as sa
+
+    def quoting(url: sa.URL) -> sa.Engine:
+        raise sa.exc.ArgumentError(f"cannot use\n{url.render_as_string(hide_password=False)} (password p@ss-word)")
+
+    monkeypatch.setattr("benchmark.history.database.sa.create_engine", quoting)
+    with pytest.raises(DataError) as caught:
+        History("postgresql://ci:p%40ss-word@db.example/history")
+    message = str(caught.value)
+    assert "p@ss-word" not in message and "p%40ss-word" not in message and "\n" not in message
+    assert message.startswith("history database postgresql://ci:***@db.example/history: ArgumentError: cannot use")
+
+
+def test_a_history_whose_folder_cannot_be_made_is_a_data_error_naming_it(tmp_path: Path) -> None:
+    (tmp_path / "file").write_text("")
+    with pytest.raises(DataError, match="file/history.sqlite: cannot create its folder"):
+        History(tmp_path / "file" / "history.sqlite")
 
 
 def test_a_file_that_is_no_database_is_a_data_error_naming_it(tmp_path: Path) -> None:
