@@ -104,7 +104,7 @@ DRIVER_INSTALLS = {
 
 _MASK = "***"
 _URL_PASSWORD = re.compile(r"(?<=://)(?P<user>[^:/@]*):(?P<password>.*)@")
-"""The password of a URL that SQLAlchemy cannot parse, up to its last ``@`` (masking too much rather than too little)."""
+"""The password of a URL found by its form alone, up to the last ``@`` (masking too much rather than too little)."""
 _SHORTEST_MASKED_ELSEWHERE = 4
 """A password shorter than this is masked in the URL only, not wherever its letters occur in a driver's message,
 which masking a one-letter password would make unreadable (and such a password guards nothing)."""
@@ -143,7 +143,12 @@ def shown_location(location: str | Path) -> str:
     try:
         return sa.make_url(text).render_as_string(hide_password=True)
     except (ArgumentError, ValueError):
-        return _URL_PASSWORD.sub(rf"\g<user>:{_MASK}@", text)
+        return _without_url_passwords(text)
+
+
+def _without_url_passwords(text: str) -> str:
+    """``text`` with the password of every URL in it masked, found by their form alone (no URL is parsed)."""
+    return _URL_PASSWORD.sub(rf"\g<user>:{_MASK}@", text)
 
 
 def _passwords(location: str | Path) -> list[str]:
@@ -303,7 +308,8 @@ class History:
         started, version, commit, machine, machine_key, argv, seeds
             When the nightly started (ISO 8601), trackbench's version and git
             commit, the machine (:mod:`benchmark.history.machine`), the
-            command line and the number of seeds.
+            command line (kept with the password of any URL in it masked)
+            and the number of seeds.
         metrics : Metrics
             The catalogue of metrics each cell's summary holds (the registry's).
         """
@@ -320,7 +326,7 @@ class History:
                     commit=commit,
                     machine_key=machine_key,
                     machine=json.dumps(dict(machine)),
-                    argv=json.dumps(list(argv)),
+                    argv=json.dumps([_without_url_passwords(argument) for argument in argv]),
                     seeds=seeds,
                 )
             ).inserted_primary_key[0]

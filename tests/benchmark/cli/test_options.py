@@ -36,7 +36,11 @@ def test_a_missing_driver_is_named_with_how_to_install_it_before_any_cell_runs(
     monkeypatch.setitem(sys.modules, "psycopg", None)  # as if not installed
     result = nightly(invoke, tmp_path, f"postgresql://ci:{PASSWORD}@db.invalid/history")
     assert_refused_before_any_cell(
-        result, tmp_path, "postgresql://ci:***@db.invalid/history", "psycopg", 'pip install "subsea-trackbench[postgres]"'
+        result,
+        tmp_path,
+        "postgresql://ci:***@db.invalid/history",
+        "psycopg",
+        'pip install "subsea-trackbench[postgres]"',
     )
 
 
@@ -66,7 +70,8 @@ def test_another_programs_sqlite_database_is_refused_before_any_cell_runs(invoke
     with sqlite3.connect(other) as connection:
         connection.execute("CREATE TABLE notes (x TEXT)")
     connection.close()
-    assert_refused_before_any_cell(nightly(invoke, tmp_path, str(other)), tmp_path, "other.sqlite", "holds other tables")
+    result = nightly(invoke, tmp_path, str(other))
+    assert_refused_before_any_cell(result, tmp_path, "other.sqlite", "holds other tables")
 
 
 def test_compare_and_report_refuse_a_history_that_does_not_exist_without_creating_it(

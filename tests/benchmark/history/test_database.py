@@ -90,7 +90,7 @@ def test_urls_and_paths() -> None:
     ("location", "shown"),
     [
         ("postgresql://ci:s3cret@db.example:5432/history", "postgresql://ci:***@db.example:5432/history"),
-        ("postgresql+psycopg://ci:p%40ss@/history?host=/run/pg", "postgresql+psycopg://ci:***@/history?host=%2Frun%2Fpg"),
+        ("postgresql+psycopg://ci:p%40ss@/h?host=/run/pg", "postgresql+psycopg://ci:***@/h?host=%2Frun%2Fpg"),
         ("postgresql://ci:s3cret@db.example:port/history", "postgresql://ci:***@db.example:port/history"),
         ("postgresql://ci@db.example/history", "postgresql://ci@db.example/history"),
         ("reports/history.sqlite", "reports/history.sqlite"),
@@ -113,6 +113,16 @@ def test_a_drivers_message_quoting_the_url_is_masked_and_on_one_line(monkeypatch
     message = str(caught.value)
     assert "p@ss-word" not in message and "p%40ss-word" not in message and "\n" not in message
     assert message.startswith("history database postgresql://ci:***@db.example/history: ArgumentError: cannot use")
+
+
+def test_the_command_line_is_kept_with_the_passwords_of_its_urls_masked(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "perfect", "--in-process", "--out", str(out)).exit_code == 0
+    argv = ["trackbench", "nightly", "--history=postgresql://ci:s3cret@db/h", "--scheduler", "tcp://u:pw@host:8786"]
+    with History(tmp_path / "history.sqlite") as history:
+        record(history, out, argv=argv)
+        kept = history.runs()["argv"].iloc[0]
+    assert kept == [*argv[:2], "--history=postgresql://ci:***@db/h", "--scheduler", "tcp://u:***@host:8786"]
 
 
 def test_a_history_whose_folder_cannot_be_made_is_a_data_error_naming_it(tmp_path: Path) -> None:

@@ -65,11 +65,11 @@ def url(folder: Path, password: str = PASSWORD, database: str = "postgres") -> s
 
 @pytest.fixture(scope="session")
 def postgresql_server() -> Iterator[Path]:
-    """A PostgreSQL server of this session, by the folder of its socket; user :data:`USER`, password :data:`PASSWORD`."""
+    """A PostgreSQL server of this session, by its socket's folder; user :data:`USER`, password :data:`PASSWORD`."""
     pytest.importorskip("psycopg", reason="the driver psycopg is not installed (pip install -e '.[test]')")
     programs = server_programs()
     if programs is None:
-        pytest.skip("no PostgreSQL server installed (initdb, pg_ctl and postgres on the PATH or in /usr/lib/postgresql)")
+        pytest.skip("no PostgreSQL server installed (initdb, pg_ctl, postgres on the PATH or in /usr/lib/postgresql)")
     prefix, user = server_user()
     folder = Path(tempfile.mkdtemp(prefix="trackbench-pg-"))
     password_file = folder / "password"
