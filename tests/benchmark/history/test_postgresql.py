@@ -71,7 +71,8 @@ def postgresql_server() -> Iterator[Path]:
     if programs is None:
         pytest.skip("no PostgreSQL server installed (initdb, pg_ctl, postgres on the PATH or in /usr/lib/postgresql)")
     prefix, user = server_user()
-    folder = Path(tempfile.mkdtemp(prefix="trackbench-pg-"))
+    # /tmp, whatever $TMPDIR says: the server's user must reach the folder, and a socket's path is short (107 bytes).
+    folder = Path(tempfile.mkdtemp(prefix="trackbench-pg-", dir="/tmp" if Path("/tmp").is_dir() else None))
     password_file = folder / "password"
     password_file.write_text(PASSWORD)
     if user is not None:
@@ -86,8 +87,8 @@ def postgresql_server() -> Iterator[Path]:
             detail = log.read_text() if log.exists() else ""
             pytest.fail(f"{' '.join(command)} failed ({done.returncode}): {done.stdout}{done.stderr}{detail}")
 
-    run(programs["initdb"], "--no-sync", "-D", str(data), "-U", USER, "-A", "scram-sha-256",
-        f"--pwfile={password_file}")
+    run(programs["initdb"], "--no-sync", "-E", "UTF8", "--locale=C", "-D", str(data), "-U", USER,
+        "-A", "scram-sha-256", f"--pwfile={password_file}")
     options = f"-k {folder} -c listen_addresses='' -c fsync=off -c full_page_writes=off"
     run(programs["pg_ctl"], "-D", str(data), "-o", options, "-l", str(folder / "log"), "-w", "start")
     try:
