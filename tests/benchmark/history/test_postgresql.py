@@ -20,6 +20,7 @@ from pathlib import Path
 import pytest
 import sqlalchemy as sa
 
+from benchmark import schema
 from benchmark.history.database import History
 
 from ..conftest import Invoke
@@ -159,8 +160,8 @@ def test_another_programs_database_on_the_server_is_refused_before_any_cell_runs
     with History(empty_database):
         pass  # an empty database is taken and given the tables of a history
     engine = sa.create_engine(empty_database.replace("postgresql://", "postgresql+psycopg://"))
+    schema.HISTORY.drop_all(engine)
     with engine.begin() as connection:
-        connection.execute(sa.text("DROP TABLE cell_pictures, cell_frames, cells, runs"))
         connection.execute(sa.text("CREATE TABLE invoices (x TEXT)"))
     engine.dispose()
     result = nightly(invoke, tmp_path, empty_database)
