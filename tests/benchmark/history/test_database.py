@@ -36,7 +36,7 @@ def test_a_recorded_run_keeps_cells_metrics_frames_and_pictures(invoke: Invoke, 
         cells = history.cells([run_id])
         board = pd.read_csv(out / "leaderboard.csv")
         assert set(cells["seed"]) == {0, 1}
-        assert {"correct_pct", "false_pct", "missed_pct", "rmse_d_px", "fps"} <= set(cells.columns)
+        assert {"correct_pct", "false_pct", "missed_pct", "rmse_d_px", "cpu_fps", "wall_fps"} <= set(cells.columns)
         with ResultStore(out / "results.sqlite") as results:
             stored = results.cells()
             first = int(stored["id"].iloc[0])
