@@ -29,7 +29,7 @@ def cells(run_id: int, correct: list[float], rmse: float = 1.0, fps: float = 100
             "false_pct": [100.0 - c for c in correct],
             "missed_pct": 0.0,
             "rmse_d_px": rmse,
-            "fps": fps,
+            "cpu_fps": fps,
             "frames": 1000,
         }
     )
