@@ -6,11 +6,19 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from benchmark.history.regressions import Thresholds, find_changes, steps
+from benchmark.history.regressions import (
+    CHANGE_COLUMNS,
+    NOISE_RUNS,
+    Thresholds,
+    confirm_speed,
+    find_changes,
+    speed_noise,
+    steps,
+)
 
 
-def cells(run_id: int, correct: list[float], rmse: float = 1.0, fps: float = 100.0, *, machine: str = "m",
-          tracker: str = "t", key: str = "k1") -> pd.DataFrame:
+def cells(run_id: int, correct: list[float], rmse: float = 1.0, fps: float | list[float] = 100.0, *,
+          machine: str = "m", tracker: str = "t", key: str = "k1", wall_fps: float = 100.0) -> pd.DataFrame:
     """One run's cells of one tracker on one dataset, a seed per value of ``correct``."""
     return pd.DataFrame(
         {
@@ -30,6 +38,7 @@ def cells(run_id: int, correct: list[float], rmse: float = 1.0, fps: float = 100
             "missed_pct": 0.0,
             "rmse_d_px": rmse,
             "cpu_fps": fps,
+            "wall_fps": wall_fps,
             "frames": 1000,
         }
     )
@@ -82,6 +91,62 @@ def test_speed_is_compared_on_the_same_machine_only_against_the_median_of_the_wi
     elsewhere = cells(5, [90.0], fps=80.0, machine="other")
     assert find_changes(history(*runs, elsewhere), 5).empty
     assert find_changes(history(*runs, slow), 5, Thresholds(min_step_s=20.0)).empty
+
+
+def speed_history(values: list[float], **columns: object) -> pd.DataFrame:
+    """Runs 1, 2, ... of one series on one machine, their CPU speeds ``values`` (the last is tonight's)."""
+    return history(*(cells(i, [90.0], fps=fps, **columns) for i, fps in enumerate(values, start=1)))  # type: ignore[arg-type]
+
+
+def test_a_speed_change_must_exceed_the_series_own_noise_as_well_as_the_minimum_effect() -> None:
+    noisy = [100.0, 130.0, 80.0, 115.0, 95.0]  # per-run medians 100 +- 15: a MAD of 15
+    assert speed_noise(noisy) == pytest.approx(3 * 1.4826 * 15.0)
+    assert find_changes(speed_history([*noisy, 80.0]), 6).empty  # 20 % slower, within 3 MADs of this series
+    steady = [100.0, 101.0, 99.0, 100.0, 100.5]
+    row = find_changes(speed_history([*steady, 80.0]), 6).iloc[0]
+    assert (row["metric"], row["verdict"], row["confirmed"]) == ("cpu_fps", "regression", False)
+    assert row["noise"] == pytest.approx(10.0)  # 3 MADs (3 x 1.48 x 0.5) are below the minimum effect, the floor
+    assert "not yet repeated" in row["note"]
+    wider = find_changes(speed_history([*noisy, 40.0]), 6).iloc[0]
+    assert wider["verdict"] == "regression" and wider["noise"] == pytest.approx(speed_noise(noisy))
+
+
+def test_without_enough_earlier_runs_on_the_machine_speed_has_no_verdict_and_says_why() -> None:
+    row = find_changes(speed_history([100.0, 100.0, 50.0]), 3).iloc[0]
+    assert row["verdict"] == "unjudged" and not row["confirmed"] and np.isnan(row["noise"])
+    assert f"2 earlier runs on this machine, {NOISE_RUNS} needed" in row["note"]
+    assert find_changes(speed_history([100.0, 100.0, 100.0, 50.0]), 4).iloc[0]["verdict"] == "regression"
+    assert list(find_changes(speed_history([100.0, 100.0, 95.0]), 3).columns) == CHANGE_COLUMNS
+
+
+def test_the_wall_clock_speed_is_shown_but_never_judged() -> None:
+    runs = [cells(i, [90.0], wall_fps=wall) for i, wall in enumerate([100.0, 100.0, 100.0, 100.0, 30.0], start=1)]
+    assert find_changes(history(*runs), 5).empty
+
+
+def test_the_old_fixed_ten_per_cent_rule_flags_wall_speeds_of_nights_with_nothing_changed() -> None:
+    """Five nightlies of the fake suite on this project's 2-core machine, nothing changed, the neighbours' load varying
+    (the README's nightly section): CPU and wall speeds per run, medians over seeds, one tracker and dataset."""
+    cpu = [RECORDED_CPU_FPS]
+    wall = [RECORDED_WALL_FPS]
+    old_rule = Thresholds(noise_multiple=0.0)  # the minimum effect alone, as before the noise was estimated
+    as_wall = speed_history(wall)
+    assert not find_changes(as_wall, len(wall), old_rule).empty
+    assert find_changes(speed_history(cpu), len(cpu)).empty
+
+
+def test_a_repeat_holds_a_speed_change_beyond_its_noise_in_the_same_direction_or_drops_it() -> None:
+    changes = find_changes(speed_history([100.0, 101.0, 99.0, 100.0, 80.0]), 5)
+    def repeat(fps: float) -> pd.DataFrame:
+        return pd.DataFrame({"tracker": "t", "dataset": "s/1", "seed": [0, 1], "cpu_fps": [fps, fps]})
+
+    held = confirm_speed(changes, repeat(82.0)).iloc[0]
+    assert (held["verdict"], held["confirmed"]) == ("regression", True) and "repeat 82" in held["note"]
+    for again in (95.0, 130.0, np.nan):  # back within the noise, the other way, or no value at all
+        dropped = confirm_speed(changes, repeat(again)).iloc[0]
+        assert (dropped["verdict"], dropped["confirmed"]) == ("unconfirmed", False), again
+    accuracy = find_changes(history(cells(1, [90.0]), cells(2, [80.0], key="k2")), 2)
+    assert confirm_speed(accuracy, repeat(10.0)).equals(accuracy) and accuracy["confirmed"].all()
 
 
 def test_compare_takes_the_runs_it_is_given() -> None:
