@@ -107,7 +107,7 @@ def test_a_speed_change_must_exceed_the_series_own_noise_as_well_as_the_minimum_
     assert (row["metric"], row["verdict"], row["confirmed"]) == ("cpu_fps", "regression", False)
     assert row["noise"] == pytest.approx(10.0)  # 3 MADs (3 x 1.48 x 0.5) are below the minimum effect, the floor
     assert "not yet repeated" in row["note"]
-    wider = find_changes(speed_history([*noisy, 40.0]), 6).iloc[0]
+    wider = find_changes(speed_history([*noisy, 30.0]), 6).iloc[0]  # 70 below, beyond 3 MADs (67)
     assert wider["verdict"] == "regression" and wider["noise"] == pytest.approx(speed_noise(noisy))
 
 
