@@ -68,7 +68,11 @@ CHANGE_COLUMNS = [
 """Columns of :func:`find_changes`'s table."""
 
 NOISE_RUNS = 3
-"""Earlier runs on the same machine without which a speed series has no noise estimate, and no speed verdict."""
+"""Earlier runs on the same machine without which a speed series has no noise estimate, and no speed verdict.
+
+Three is the fewest whose median absolute deviation is not set by one
+value alone (of two values it is half their distance).
+"""
 
 MAD_TO_SD = 1.4826
 """The median absolute deviation of normal values times this is their standard deviation."""
@@ -95,12 +99,16 @@ class Thresholds:
 
     noise_multiple : float
         ``k`` of the speed noise (:func:`speed_noise`).
+    noise_runs : int
+        Earlier runs on the same machine without which a speed series has
+        no noise estimate and no speed verdict.
     """
 
     window: int = 5
     min_step_s: float = 2.0
     overrides: Mapping[str, float] = field(default_factory=dict)
     noise_multiple: float = NOISE_MULTIPLE
+    noise_runs: int = NOISE_RUNS
 
     def minimum_effect(self, metric: Metric, before: float) -> float:
         """The smallest change of ``metric`` from ``before`` that counts, in the metric's units."""
@@ -139,11 +147,23 @@ def speed_noise(medians: Sequence[float] | np.ndarray, multiple: float = NOISE_M
     a window (the MAD of three values is the middle one's distance to the
     nearer other), so it may come out small; the metric's minimum effect
     (10 %) is then the floor, as :func:`find_changes` takes the larger of
-    the two.  On this project's shared two-core machine, CPU-timed speeds
-    of nightlies with nothing changed, with and without two cores of load,
-    spread within a few per cent (README, nightly section), so 3 MADs rarely
-    exceed the 10 % floor; wall-clock speeds spread several times as far,
-    which is why they are not judged.
+    the two.
+
+    Measured on this project's shared two-core machine (load average 9 to
+    16 from other work throughout): ten tiny nightlies with nothing changed
+    (hough, foresti_lines and condensation-fast on camera/S5 and S6, one
+    seed), five of them while another process spun on both cores.  The
+    scaled MAD of ``cpu_fps`` over five runs was 1.1 % to 7.2 % of the
+    median for eleven of the twelve series, and 19.7 % for
+    condensation-fast on S6 under the extra load (its runs 1103 to 1590
+    fps); that of ``wall_fps`` was 1.3 % to 46 %, its range up to 198 %.
+    With ``k = 3`` the typical CPU series' noise (3 x 2-6 %) lies around
+    the 10 % floor, so the floor decides for a steady series and the noise
+    for one the machine disturbs.  Of the twenty nights judged on
+    ``cpu_fps`` none gave a verdict, while the fixed 10 % rule on the same
+    runs flagged up to 2 of 4 nights per series on ``cpu_fps`` and 1 to 4
+    on ``wall_fps`` (``tests/benchmark/history/test_regressions.py`` keeps
+    one such series).
     """
     values = np.asarray(medians, dtype=float)
     values = values[np.isfinite(values)]
@@ -238,10 +258,10 @@ def _speed_change(
         metric=metric.name, kind="speed", before=before, after=now_median, change=change, low=math.nan,
         high=math.nan, confirmed=False,
     )
-    if len(medians) < NOISE_RUNS:
+    if len(medians) < thresholds.noise_runs:
         note = (
             f"not judged: {len(medians)} earlier run{'s' if len(medians) != 1 else ''} on this machine, "
-            f"{NOISE_RUNS} needed to estimate the noise"
+            f"{thresholds.noise_runs} needed to estimate the noise"
         )
         return dict(row, verdict="unjudged", noise=math.nan, note=note)
     spread = speed_noise(medians.to_numpy(), thresholds.noise_multiple)
