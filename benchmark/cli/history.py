@@ -65,7 +65,7 @@ def nightly(
     failed, as run does; else 0.
     """
     from benchmark.history.machine import describe_load
-    from benchmark.history.nightly import describe_changes, run_nightly
+    from benchmark.history.nightly import REPEAT_FOLDER, describe_changes, run_nightly
 
     limits = thresholds(min_effects, window, min_step_s)
 
@@ -87,6 +87,9 @@ def nightly(
         seeds=options["seeds"],
         metrics=registry.metrics,
     )
+    if kept.repeat is not None:
+        repeated = kept.repeat.statuses.total()
+        click.echo(f"speed changes held against a repeat of their {repeated} cells in {out / REPEAT_FOLDER}", err=True)
     click.echo(describe_changes(kept.changes, f"Changes of nightly run {kept.run_id}"))
     click.echo(f"machine load during the run: {describe_load(kept.load)}", err=True)
     click.echo(f"history {history}: run {kept.run_id}; site {kept.index}", err=True)
