@@ -117,7 +117,7 @@ _FROM_VERSION_1 = (
 )
 
 _BEFORE_VERSION_7 = (
-    # Version 7 times a step by its thread's CPU time in step_ms and keeps the wall time, which step_ms held, in wall_ms.
+    # Version 7 times a step by its thread's CPU time in step_ms; the wall time step_ms held moves to wall_ms.
     "ALTER TABLE frames RENAME COLUMN step_ms TO wall_ms",
 )
 

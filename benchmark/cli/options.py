@@ -148,7 +148,7 @@ site_option = click.option(
 
 
 def threshold_options(command: Callable[..., Any]) -> Callable[..., Any]:
-    """Add ``--min-effect METRIC=VALUE``, ``--window N`` and ``--min-step-time SECONDS``, the thresholds of a regression."""
+    """Add ``--min-effect METRIC=VALUE``, ``--window N`` and ``--min-step-time SECONDS``: a regression's thresholds."""
     command = click.option(
         "--min-step-time",
         "min_step_s",

@@ -290,9 +290,7 @@ class History:
             table = pd.DataFrame(connection.execute(sa.select(_runs).order_by(_runs.c.id)).mappings().all())
         if table.empty:
             return pd.DataFrame(columns=[column.name for column in _runs.columns])
-        return table.assign(
-            machine=table["machine"].map(json.loads), argv=table["argv"].map(json.loads), load=table["load"].map(json.loads)
-        )
+        return table.assign(**{column: table[column].map(json.loads) for column in ("machine", "argv", "load")})
 
     @_reports_database_errors
     def cells(self, run_ids: Iterable[int] | None = None) -> pd.DataFrame:
@@ -320,7 +318,7 @@ class History:
 
     @_reports_database_errors
     def frames(self, cell_id: int) -> pd.DataFrame:
-        """The frame table of a cell: ``frame``, ``outcome``, the error columns, ``step_ms`` (thread CPU) and ``wall_ms``.
+        """The frame table of a cell: ``frame``, ``outcome``, the error columns, ``step_ms`` (CPU) and ``wall_ms``.
 
         A cell recorded before the CPU timing has its time as ``wall_ms`` and an empty ``step_ms``.
         """

@@ -116,8 +116,10 @@ class Thresholds:
 
 
 def judged_metrics(cells: pd.DataFrame, metrics: Metrics) -> list[Metric]:
-    """The judged metrics of ``metrics`` (:attr:`~benchmark.metrics.Metric.judged`) that are columns of a table of
-    cells, in column order."""
+    """The metrics of ``metrics`` that are columns of a table of cells and are judged, in column order.
+
+    A metric that is shown but not judged (:attr:`benchmark.metrics.Metric.judged`, such as ``wall_fps``) is left out.
+    """
     return [metric for column in cells.columns if (metric := metrics.named(str(column))) is not None and metric.judged]
 
 
@@ -159,11 +161,11 @@ def speed_noise(medians: Sequence[float] | np.ndarray, multiple: float = NOISE_M
     fps); that of ``wall_fps`` was 1.3 % to 46 %, its range up to 198 %.
     With ``k = 3`` the typical CPU series' noise (3 x 2-6 %) lies around
     the 10 % floor, so the floor decides for a steady series and the noise
-    for one the machine disturbs.  Of the twenty nights judged on
-    ``cpu_fps`` none gave a verdict, while the fixed 10 % rule on the same
-    runs flagged up to 2 of 4 nights per series on ``cpu_fps`` and 1 to 4
-    on ``wall_fps`` (``tests/benchmark/history/test_regressions.py`` keeps
-    one such series).
+    for one the machine disturbs.  Of the 24 series and nights with a noise
+    estimate (nights 4 and 5 of both sets) none gave a verdict, while the
+    fixed 10 % rule on the same runs flagged up to 2 of 4 nights per series
+    on ``cpu_fps`` and 1 to 4 on ``wall_fps``
+    (``tests/benchmark/history/test_regressions.py`` keeps one such series).
     """
     values = np.asarray(medians, dtype=float)
     values = values[np.isfinite(values)]

@@ -158,7 +158,8 @@ def test_a_run_recorded_before_the_cpu_timing_reads_its_fps_and_step_times_as_wa
     # What an older trackbench wrote: its fps and step_ms timed the wall clock.
     old_frames = frames.drop(columns="step_ms").rename(columns={"wall_ms": "step_ms"})
     connection = sqlite3.connect(path)
-    connection.execute("UPDATE cells SET metrics = ? WHERE id = ?", (json.dumps({"correct_pct": 100.0, "fps": fps}), cell_id))
+    old_metrics = json.dumps({"correct_pct": 100.0, "fps": fps})
+    connection.execute("UPDATE cells SET metrics = ? WHERE id = ?", (old_metrics, cell_id))
     connection.execute("UPDATE cell_frames SET frames = ? WHERE cell_id = ?", (database_pack(old_frames), cell_id))
     connection.commit()
     connection.close()

@@ -95,7 +95,8 @@ def test_speed_is_compared_on_the_same_machine_only_against_the_median_of_the_wi
 
 def speed_history(values: list[float], **columns: object) -> pd.DataFrame:
     """Runs 1, 2, ... of one series on one machine, their CPU speeds ``values`` (the last is tonight's)."""
-    return history(*(cells(i, [90.0], fps=fps, **columns) for i, fps in enumerate(values, start=1)))  # type: ignore[arg-type]
+    runs = [cells(i, [90.0], fps=fps, **columns) for i, fps in enumerate(values, start=1)]  # type: ignore[arg-type]
+    return history(*runs)
 
 
 def test_a_speed_change_must_exceed_the_series_own_noise_as_well_as_the_minimum_effect() -> None:
