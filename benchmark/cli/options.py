@@ -189,7 +189,16 @@ site_option = click.option(
 
 
 def threshold_options(command: Callable[..., Any]) -> Callable[..., Any]:
-    """Add ``--min-effect METRIC=VALUE`` and ``--window N``, the thresholds of a regression."""
+    """Add ``--min-effect METRIC=VALUE``, ``--window N`` and ``--min-step-time SECONDS``: a regression's thresholds."""
+    command = click.option(
+        "--min-step-time",
+        "min_step_s",
+        type=click.FloatRange(min=0.0),
+        default=2.0,
+        show_default=True,
+        metavar="SECONDS",
+        help="Judge speed only where the cells of a tracker and dataset spent this much CPU time in their steps.",
+    )(command)
     command = click.option(
         "--window",
         type=click.IntRange(min=1),
@@ -203,11 +212,11 @@ def threshold_options(command: Callable[..., Any]) -> Callable[..., Any]:
         multiple=True,
         metavar="METRIC=VALUE",
         help="Smallest change that counts for a metric: points for a rate (default 2), a share for an RMSE "
-        "or fps (default 0.1) (repeatable).",
+        "or cpu_fps (default 0.1) (repeatable).",
     )(command)
 
 
-def thresholds(min_effects: tuple[str, ...], window: int) -> Thresholds:
+def thresholds(min_effects: tuple[str, ...], window: int, min_step_s: float = 2.0) -> Thresholds:
     """The thresholds of a regression that the options of :func:`threshold_options` give."""
     from benchmark.history.regressions import Thresholds
 
@@ -220,4 +229,4 @@ def thresholds(min_effects: tuple[str, ...], window: int) -> Thresholds:
             sep = ""
         if not sep or not metric.strip():
             raise click.BadParameter(f"expected METRIC=NUMBER, got {text!r}", param_hint="--min-effect")
-    return Thresholds(window=window, overrides=overrides)
+    return Thresholds(window=window, min_step_s=min_step_s, overrides=overrides)

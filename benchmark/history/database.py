@@ -4,7 +4,7 @@ A nightly run (``trackbench nightly``) appends one row to ``runs`` and one
 row per cell to ``cells``, copied from the run's results database
 (:mod:`benchmark.store`) in one transaction.  Tables::
 
-    runs(id, started, finished, version, commit, machine_key, machine JSON, argv JSON, seeds)
+    runs(id, started, finished, version, commit, machine_key, machine JSON, argv JSON, seeds, load JSON)
     cells(id, run_id -> runs, tracker, tracker_version, tracker_key, params JSON, dataset,
           dataset_key, modality, seed, init, training, status, message, frames, elapsed_s,
           metrics JSON, deterministic)
@@ -14,6 +14,10 @@ row per cell to ``cells``, copied from the run's results database
 
 These are the tables of :data:`benchmark.schema.HISTORY`, whose cells and
 pictures share their columns with the results database's.
+
+``load`` is how busy the machine was while the run ran
+(:func:`benchmark.history.machine.LoadMeter`; ``{}`` in runs recorded
+before it was kept).
 
 ``metrics`` holds the cell's value of every metric of its board
 (:func:`benchmark.results.summarise`; a metric added later is empty in
@@ -26,6 +30,11 @@ the history alone.  ``run_changes`` keeps what the nightly said of its run
 that the site tells the same story.  Frames and pictures (about 0.5 MB for a camera cell
 that failed often) are kept for the last :data:`DETAILED_RUNS` runs only;
 the summaries of every run stay, for the trends.
+
+Runs recorded before the step's CPU time was measured timed the wall
+clock only: their ``fps`` is read as ``wall_fps`` and their frames'
+``step_ms`` as ``wall_ms`` (with ``step_ms`` empty), so that a trend of
+``cpu_fps`` never starts with wall-clock numbers.
 
 A *series* is what nightly runs are compared along: a tracker's name, the
 dataset's identity key, the seed and the initialisation.  The tracker's
@@ -168,10 +177,27 @@ def _pack(frames: pd.DataFrame) -> bytes:
     return zlib.compress(frames.to_json(orient="split", index=False, double_precision=15).encode())
 
 
+WALL_TIMED = {"fps": "wall_fps"}
+"""Metrics of runs recorded before the CPU timing, by the name they are read under: they timed the wall clock."""
+
+
 def _unpack(blob: bytes) -> pd.DataFrame:
     from io import StringIO
 
-    return pd.read_json(StringIO(zlib.decompress(blob).decode()), orient="split")
+    frames = pd.read_json(StringIO(zlib.decompress(blob).decode()), orient="split")
+    if "step_ms" in frames and "wall_ms" not in frames:  # recorded before the CPU timing: step_ms was wall time
+        frames = frames.rename(columns={"step_ms": "wall_ms"})
+        frames.insert(list(frames.columns).index("wall_ms"), "step_ms", float("nan"))
+    return frames
+
+
+def _metrics_of(text: str) -> dict[str, Any]:
+    """A cell's metrics as stored, those of a run recorded before the CPU timing under their wall-time names."""
+    values = json.loads(text)
+    for old, new in WALL_TIMED.items():
+        if old in values:
+            values.setdefault(new, values.pop(old))
+    return values
 
 
 class History:
@@ -294,6 +320,7 @@ class History:
         argv: Sequence[str],
         seeds: int,
         metrics: Metrics = CORE,
+        load: Mapping[str, Any] | None = None,
     ) -> int:
         """Copy a finished run of a results database into the history and return its history id.
 
@@ -312,6 +339,9 @@ class History:
             and the number of seeds.
         metrics : Metrics
             The catalogue of metrics each cell's summary holds (the registry's).
+        load : Mapping, optional
+            How busy the machine was during the run
+            (:meth:`benchmark.history.machine.LoadMeter.stop`), JSON values.
         """
         cells = results.cells(run_id)
         frames = results.frame_tables(cells["id"])
@@ -328,6 +358,7 @@ class History:
                     machine=json.dumps(dict(machine)),
                     argv=json.dumps([_without_url_passwords(argument) for argument in argv]),
                     seeds=seeds,
+                    load=json.dumps(dict(load or {})),
                 )
             ).inserted_primary_key[0]
             for cell in cells.itertuples(index=False):
@@ -385,12 +416,12 @@ class History:
     @_reports_database_errors
     def runs(self) -> pd.DataFrame:
         """Every run, oldest first: ``id``, ``started``, ``finished``, ``version``, ``commit``, ``machine_key``,
-        ``machine`` (a dict), ``argv`` (a list) and ``seeds``."""
+        ``machine`` (a dict), ``argv`` (a list), ``seeds`` and ``load`` (a dict, empty for older runs)."""
         with self._engine.connect() as connection:
             table = pd.DataFrame(connection.execute(sa.select(_runs).order_by(_runs.c.id)).mappings().all())
         if table.empty:
             return pd.DataFrame(columns=[column.name for column in _runs.columns])
-        return table.assign(machine=table["machine"].map(json.loads), argv=table["argv"].map(json.loads))
+        return table.assign(**{column: table[column].map(json.loads) for column in ("machine", "argv", "load")})
 
     @_reports_database_errors
     def cells(self, run_ids: Iterable[int] | None = None) -> pd.DataFrame:
@@ -401,10 +432,10 @@ class History:
         pandas.DataFrame
             The columns of ``cells`` (``params`` as a dict) with ``metrics``
             spread into a column per metric (``correct_pct``, ``rmse_*``,
-            ``fps``, ...; empty where a cell's run did not have it) and
-            :data:`ESTIMATED` (frames with an
-            estimate and a truth), plus the run's ``started`` and
-            ``machine_key``; ordered by run, then cell.
+            ``cpu_fps``, ``wall_fps``, ...; empty where a cell's run did not
+            have it; the ``fps`` of older runs is ``wall_fps``) and
+            :data:`ESTIMATED` (frames with an estimate and a truth), plus the
+            run's ``started`` and ``machine_key``; ordered by run, then cell.
         """
         query = sa.select(_cells, _runs.c.started, _runs.c.machine_key).join(_runs).order_by(_cells.c.id)
         if run_ids is not None:
@@ -413,13 +444,16 @@ class History:
             table = pd.DataFrame(connection.execute(query).mappings().all())
         if table.empty:
             return pd.DataFrame(columns=[*(column.name for column in _cells.columns), "started", "machine_key"])
-        metrics = pd.DataFrame([json.loads(text) for text in table["metrics"]], index=table.index)
+        metrics = pd.DataFrame([_metrics_of(text) for text in table["metrics"]], index=table.index)
         table = table.drop(columns="metrics").assign(params=table["params"].map(json.loads))
         return pd.concat([table, metrics.drop(columns=["frames"], errors="ignore")], axis=1)
 
     @_reports_database_errors
     def frames(self, cell_id: int) -> pd.DataFrame:
-        """The frame table of a cell: ``frame``, ``outcome``, the error columns and ``step_ms``."""
+        """The frame table of a cell: ``frame``, ``outcome``, the error columns, ``step_ms`` (CPU) and ``wall_ms``.
+
+        A cell recorded before the CPU timing has its time as ``wall_ms`` and an empty ``step_ms``.
+        """
         with self._engine.connect() as connection:
             blob = connection.execute(
                 sa.select(_cell_frames.c.frames).where(_cell_frames.c.cell_id == int(cell_id))
