@@ -3,7 +3,7 @@
 Boards keep full precision (and CSV exports them so); the Markdown, HTML and
 terminal forms round each metric to its declared digits
 (:attr:`benchmark.metrics.Metric.digits`: percentages to 0.1, RMSEs to
-0.01, fps to 1), and other columns by their unit (the tables of
+0.01, frames per second to 1), and other columns by their unit (the tables of
 ``trackbench pose-table``: metres to 0.01, degrees to 0.1, pixels to 1,
 variances to three digits).
 """
@@ -15,6 +15,7 @@ import math
 import pandas as pd
 
 from benchmark.metrics import CORE, Metrics
+from benchmark.text import one_line, printable  # noqa: F401 - re-exported: code written against this module
 
 
 

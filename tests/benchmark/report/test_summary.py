@@ -18,7 +18,7 @@ def camera_board() -> pd.DataFrame:
         for dataset in ("(all)", "fake/S1", "fake/S2"):
             rows.append(
                 {"rank": 1, "tracker": tracker, "dataset": dataset, "init": "truth", "seeds": 2,
-                 "correct_pct": correct, "false_pct": 1.0, "rmse_d_px": 3.14159, "rmse_w_px": 2.0, "fps": 1234.4,
+                 "correct_pct": correct, "false_pct": 1.0, "rmse_d_px": 3.14159, "rmse_w_px": 2.0, "cpu_fps": 1234.4, "wall_fps": 987.6,
                  "status": status if dataset != "fake/S1" else "ok"}
             )
     return pd.DataFrame(rows)
@@ -27,9 +27,9 @@ def camera_board() -> pd.DataFrame:
 def test_a_row_per_tracker_with_the_headline_metrics_the_speed_and_the_failed_cells() -> None:
     lines = board_summary(camera_board(), "camera", 120)
     assert lines[0] == "camera: 2 trackers over 2 datasets"
-    assert lines[1].split() == ["tracker", "correct_pct", "rmse_d_px", "fps", "failed_cells"]
-    assert lines[2].split() == ["a-rather-long-tracker-name", "91.2", "3.14", "1234", "0/4"]
-    assert lines[3].split() == ["b", "40.0", "3.14", "1234", "1/4"]
+    assert lines[1].split() == ["tracker", "correct_pct", "rmse_d_px", "cpu_fps", "wall_fps", "failed_cells"]
+    assert lines[2].split() == ["a-rather-long-tracker-name", "91.2", "3.14", "1234", "988", "0/4"]
+    assert lines[3].split() == ["b", "40.0", "3.14", "1234", "988", "1/4"]
     assert len(lines) == 4  # one row per tracker: the per-dataset rows are in the full board
 
 
@@ -38,21 +38,23 @@ def test_a_narrow_terminal_shortens_names_then_leaves_out_columns_from_the_right
         lines = board_summary(camera_board(), "camera", width)
         assert max(map(len, lines)) <= width
     narrow = board_summary(camera_board(), "camera", 40)
-    assert narrow[2].startswith("a-rather-long-t… ") and narrow[-1] == "(too narrow for fps, failed_cells)"
+    assert narrow[2].startswith("a-rather-long-t… ") and narrow[-1] == "(too narrow for cpu_fps, wall_fps, fail…"
     assert narrow[1].split()[:3] == ["tracker", "correct_pct", "rmse_d_px"]
 
 
-def test_the_columns_come_from_the_catalogue_so_a_renamed_or_added_speed_shows_by_itself() -> None:
-    wall = Metric(
-        name="wall_fps", better="higher", kind="speed", columns=("wall_ms",), sums=lambda frames, scale: None,
-        value=lambda sums, scale: None, digits=0, minimum_effect=Effect(0.1, relative=True),
+def test_the_columns_come_from_the_catalogue_so_an_added_headline_metric_shows_by_itself() -> None:
+    steadiness = Metric(
+        name="steadiness_pct", better="higher", kind="robustness", columns=("outcome",),
+        sums=lambda frames, scale: None, value=lambda sums, scale: None, digits=0,
+        minimum_effect=Effect(1.0), headline=True,
     )
-    metrics = CORE.adding(wall)
-    board = camera_board().assign(wall_fps=99.6)
+    metrics = CORE.adding(steadiness)
+    board = camera_board().assign(steadiness_pct=99.6)
     assert [metric.name for metric in summary_metrics(board, "camera", metrics)] == [
-        "correct_pct", "rmse_d_px", "fps", "wall_fps"
+        "correct_pct", "rmse_d_px", "cpu_fps", "wall_fps", "steadiness_pct"
     ]
-    assert board_summary(board, "camera", 120, metrics)[3].split()[-2:] == ["100", "1/4"]
+    assert board_summary(board, "camera", 120, metrics)[3].split()[-2:] == ["1/4", "100"]
+    assert "steadiness_pct" not in board_summary(board, "camera", 120)[1]  # not in the core catalogue
 
 
 def test_the_text_names_the_files_of_the_full_boards_and_the_problems() -> None:
