@@ -62,7 +62,8 @@ from benchmark.metrics import CORE, SPEED, Metrics
 from benchmark.modality import Modality
 from benchmark.progress import Progress, SilentProgress
 from benchmark.report import write_condition_board, write_leaderboards
-from benchmark.report.display import NO_TRUTH, one_line, printable
+from benchmark.report.display import NO_TRUTH
+from benchmark.text import one_line, printable
 from benchmark.results import CellResult
 from benchmark.runner import DEFAULT_TIMEOUT_S, Cell
 from benchmark.selection import unmet_needs
@@ -329,10 +330,12 @@ def run_benchmark(
         pair is logged before any cell runs and joins these problems, so
         the run is not :attr:`~RunSummary.clean`.
     log : callable
-        Receives a line for the resumed cells, the frame cache, every
-        training and every finished cell.
+        Receives a line for the resumed cells, the frame cache and every
+        training.
     progress : Progress, optional
-        Told how many cells run and when each finishes.
+        Told how many cells run and each cell as it finishes (it decides
+        which cells get a line: :class:`~benchmark.progress.TerminalProgress`
+        writes one for every failed cell).
     metrics : Metrics
         The catalogue of metrics of the boards (the registry's).
 
@@ -385,7 +388,6 @@ def run_benchmark(
                     ran += 1
                     step_s += sum(score.step_s for score in result.scores)
                     read_s += result.read_s
-                    log(describe_result(result))
                     progress.advance(result, executor.running)
                 store.finish_run(run_id)
             except KeyboardInterrupt as stop:

@@ -42,6 +42,7 @@ Boards keep full precision; :mod:`benchmark.report` writes them out.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
@@ -115,6 +116,15 @@ def pooled_status(cells: pd.DataFrame) -> str:
     kind = "timeout" if (failed["status"] == "timeout").all() else "error"
     first = failed[failed["status"] == kind].iloc[0]
     return f"{kind} ({len(failed)}/{len(cells)} cells): {first['message']}"
+
+
+_FAILED_STATUS = re.compile(r"(?:error|timeout) \((\d+)/\d+ cells\)")
+
+
+def failed_cells(status: str) -> int:
+    """How many cells a board row's status (:func:`pooled_status`) counts as failed: 0 for ``ok``."""
+    found = _FAILED_STATUS.match(str(status))
+    return int(found.group(1)) if found else 0
 
 
 def key_labels(cells: pd.DataFrame, name: str, key: str) -> pd.Series:

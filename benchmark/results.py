@@ -20,13 +20,15 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Literal, NamedTuple
+from typing import TYPE_CHECKING, Any, Literal, NamedTuple
 
 import numpy as np
-import pandas as pd
 
 from benchmark.metrics import CORE, Metric, Metrics
 from benchmark.model import Outcome
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 Status = Literal["ok", "error", "timeout"]
 
@@ -95,6 +97,8 @@ def frame_table(scores: Iterable[FrameScore]) -> pd.DataFrame:
         }
         for s in scores
     ]
+    import pandas as pd  # here, so that listing the trackers does not import pandas
+
     return pd.DataFrame(rows)
 
 

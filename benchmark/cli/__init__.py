@@ -35,9 +35,12 @@ once into the frame cache (``--cache DIR``, ``$TRACKBENCH_CACHE``, or the
 platform's cache folder; ``--no-cache`` renders in every cell) and read
 back by every other cell and run.  Each finished cell is stored in
 ``DIR/results.sqlite``, and ``leaderboard.csv``, ``leaderboard.md`` and
-``leaderboard.html`` are written into ``DIR``.  One line per finished cell
-goes to stderr, under a progress bar on a terminal, and one line sums the
-run up at the end; the board goes to stdout.
+``leaderboard.html`` are written into ``DIR``.  A progress bar goes to stderr on a
+terminal; elsewhere (a CI log) a line every few seconds counts the cells
+done, failed and left with the time remaining, and each failed cell gets a
+line of its own.  One line sums the run up at the end.  To stdout goes a
+summary that fits the terminal, one row per tracker and board, naming the
+files with the full boards (``trackbench leaderboard`` prints those).
 
 Exit status, as pytest's:
 
@@ -74,7 +77,7 @@ from benchmark.cli.new_tracker import new_tracker_command
 from benchmark.cli.run import run
 from benchmark.cli.session import EXIT_FAILED, EXIT_INTERRUPTED, ReportedError, Session
 from benchmark.errors import TrackbenchError
-from benchmark.report.display import one_line, printable
+from benchmark.text import one_line, printable
 
 __all__ = ["EXIT_FAILED", "EXIT_INTERRUPTED", "EXIT_REGRESSION", "EXIT_SPEED_REGRESSION", "TrackbenchGroup", "main"]
 

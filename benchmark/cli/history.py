@@ -74,6 +74,7 @@ def nightly(
     from benchmark.history.database import shown_location
     from benchmark.history.machine import describe_load
     from benchmark.history.nightly import CHANGES_NAME, REPEAT_FOLDER, describe_changes, run_nightly
+    from benchmark.progress import Meter
 
     limits = thresholds(min_effects, window, min_step_s)
 
@@ -84,17 +85,19 @@ def nightly(
 
     session: Session = ctx.obj
     registry = session.registry
-    kept = run_nightly(
-        run,
-        history,
-        out,
-        site,
-        registry.modalities,
-        limits,
-        argv=sys.argv,
-        seeds=options["seeds"],
-        metrics=registry.metrics,
-    )
+    with Meter("site pages") as pages:
+        kept = run_nightly(
+            run,
+            history,
+            out,
+            site,
+            registry.modalities,
+            limits,
+            argv=sys.argv,
+            seeds=options["seeds"],
+            metrics=registry.metrics,
+            report=pages,
+        )
     if kept.repeat is not None:
         repeated = kept.repeat.statuses.total()
         click.echo(f"speed changes held against a repeat of their {repeated} cells in {out / REPEAT_FOLDER}", err=True)
@@ -157,16 +160,19 @@ def report_command(
     """Rebuild the static HTML report from the history database, without running anything."""
     from benchmark.errors import DataError
     from benchmark.history.database import History
+    from benchmark.progress import Meter
     from benchmark.site import build_site
 
     with History(history, must_exist=True) as database:
         if database.runs().empty:
             raise DataError(f"history database {database.location}: no runs yet (run 'trackbench nightly' first)")
-        index = build_site(
-            database,
-            site,
-            session.registry.modalities,
-            thresholds=thresholds(min_effects, window, min_step_s),
-            metrics=session.registry.metrics,
-        )
+        with Meter("site pages") as pages:
+            index = build_site(
+                database,
+                site,
+                session.registry.modalities,
+                thresholds=thresholds(min_effects, window, min_step_s),
+                metrics=session.registry.metrics,
+                report=pages,
+            )
     click.echo(f"wrote {index}")

@@ -111,6 +111,12 @@ _RUN_OPTIONS = [
     ),
     cache_option,
     click.option("--no-cache", is_flag=True, help="Render every simulated sequence in every cell that reads it."),
+    click.option(
+        "-v",
+        "--verbose",
+        is_flag=True,
+        help="A line on stderr for every finished cell, not only for the failed ones.",
+    ),
 ]
 """The options of ``run`` that choose and run the cells, shared by ``nightly``; ``--out`` is each command's own."""
 

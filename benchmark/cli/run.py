@@ -58,6 +58,7 @@ def run_benchmark(
     scheduler: str | None,
     cache: Path | None,
     no_cache: bool,
+    verbose: bool,
     only: Callable[[Cell], bool] | None = None,
     show_board: bool = True,
 ) -> RunSummary:
@@ -80,7 +81,7 @@ def run_benchmark(
     if only is not None:
         cells = [cell for cell in cells if only(cell)]
     options = {key: list(value) if isinstance(value, tuple) else value for key, value in ctx.params.items()}
-    progress = TerminalProgress()
+    progress = TerminalProgress(verbose=verbose)
     runner = open_executor(executor, ExecutorOptions(jobs, in_process, scheduler))
     try:
         summary = run_benchmark(
@@ -101,7 +102,7 @@ def run_benchmark(
     finally:
         runner.close()
     if show_board:
-        show_publication(summary.publication)
+        show_publication(summary.publication, full=False)
     click.echo(summary.describe(), err=True)
     if summary.interrupted:
         ctx.exit(128 + summary.interrupted)  # 130 for Ctrl-C, 143 for SIGTERM

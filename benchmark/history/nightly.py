@@ -27,13 +27,15 @@ from benchmark.history.machine import LoadMeter, describe_machine, git_commit, m
 from benchmark.history.regressions import Thresholds, confirm_speed, find_changes, group_changes
 from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
-from benchmark.report.display import alignment, display_table, one_line
+from benchmark.report.display import alignment, display_table
 from benchmark.results import summarise
 from benchmark.site import build_site
 from benchmark.store import DATABASE_NAME, ResultStore
+from benchmark.text import one_line
 
 if TYPE_CHECKING:
     from benchmark.harness import RunSummary
+    from benchmark.progress import Report
     from benchmark.runner import Cell
 
 REPEAT_FOLDER = "repeat"
@@ -135,6 +137,7 @@ def run_nightly(
     argv: Sequence[str],
     seeds: int,
     metrics: Metrics = CORE,
+    report: Report | None = None,
 ) -> Nightly:
     """Run the benchmark into ``out``, append the run to ``history``, find its changes and rewrite ``site``.
 
@@ -157,6 +160,9 @@ def run_nightly(
         The command line and the number of seeds, kept with the run.
     metrics : Metrics
         The catalogue of metrics kept, judged and shown (the registry's).
+    report : callable, optional
+        Told ``report(done, total)`` pages as the site is built
+        (:class:`benchmark.progress.Meter`).
 
     Notes
     -----
@@ -194,7 +200,7 @@ def run_nightly(
             changes = confirm_speed(changes, speeds)
         database.record_changes(run_id, changes)
         changes.to_csv(out / CHANGES_NAME, index=False)
-        index = build_site(database, site, modalities, thresholds=thresholds, metrics=metrics)
+        index = build_site(database, site, modalities, thresholds=thresholds, metrics=metrics, report=report)
     return Nightly(summary, run_id, changes, index, load, repeat)
 
 

@@ -38,6 +38,7 @@ def test_a_worsened_parameter_is_a_regression_in_the_exit_status_the_output_and_
 ) -> None:
     first = nightly(invoke, tmp_path)
     assert first.exit_code == 0, first.output
+    assert "cells 4/4, 0 failed, elapsed " in first.stderr and "site pages " in first.stderr  # a log's progress
     assert "no change beyond the thresholds" in first.stdout
     second = nightly(invoke, tmp_path, "--param", "noisy.sigma_px=40")
     assert second.exit_code == EXIT_REGRESSION, second.output
@@ -62,6 +63,7 @@ def test_a_worsened_parameter_is_a_regression_in_the_exit_status_the_output_and_
     (tmp_path / "site" / "index.html").unlink()
     rebuilt = invoke("report", "--history", str(tmp_path / "history.sqlite"), "--site", str(tmp_path / "site"))
     assert rebuilt.exit_code == 0, rebuilt.output
+    assert "site pages " in rebuilt.stderr
     assert "rmse_d_px" in (tmp_path / "site" / "index.html").read_text()
 
 

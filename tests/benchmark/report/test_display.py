@@ -7,7 +7,7 @@ import math
 import pandas as pd
 import pytest
 
-from benchmark.report.display import alignment, display_table, format_value, one_line, printable
+from benchmark.report.display import alignment, display_table, format_value
 
 
 def test_display_rounds_rates_rmses_and_speeds(boards: dict[str, pd.DataFrame]) -> None:
@@ -39,23 +39,6 @@ def test_numbers_align_right_and_text_left() -> None:
     board = pd.DataFrame({"tracker": ["a"], "rank": [1], "correct_pct": [50.0], "status": ["ok"]})
     assert alignment(board) == ["left", "right", "right", "left"]
     assert display_table(board).dtypes.tolist() == [object] * 4
-
-
-@pytest.mark.parametrize(
-    ("text", "shown"),
-    [
-        ("\x1b[31mred\x1b[0m", "\\x1b[31mred\\x1b[0m"),
-        ("bell\x07 and C1 \x9b2J", "bell\\x07 and C1 \\x9b2J"),
-        ("tab\tand\nnewline stay", "tab\tand\nnewline stay"),
-        ("accents é and 雪 stay", "accents é and 雪 stay"),
-    ],
-)
-def test_printable_writes_control_characters_as_escapes(text: str, shown: str) -> None:
-    assert printable(text) == shown
-
-
-def test_one_line_is_printable_and_on_one_line() -> None:
-    assert one_line("a\n\x1b[2Jb\t c") == "a \\x1b[2Jb c"
 
 
 def _cells_and_frames(outcomes: dict[tuple[str, str], list[object]]) -> tuple[pd.DataFrame, pd.DataFrame]:
