@@ -15,7 +15,6 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-import cv2
 import numpy as np
 
 Colour = tuple[int, int, int]
@@ -141,6 +140,8 @@ def encode_png(picture: np.ndarray) -> bytes:
     ):
         shown = f"{picture.dtype} array of shape {picture.shape}" if isinstance(picture, np.ndarray) else repr(picture)
         raise ValueError(f"a picture is an (H, W, 3) uint8 BGR array, not a {shown}")
+    import cv2  # here, so that importing the runner does not import OpenCV
+
     ok, buffer = cv2.imencode(".png", picture, [cv2.IMWRITE_PNG_COMPRESSION, PNG_COMPRESSION])
     if not ok:
         raise ValueError(f"OpenCV could not encode a picture of shape {picture.shape} as PNG")

@@ -58,11 +58,12 @@ from benchmark.executors import DEFAULT_EXECUTOR, Executor, ExecutorOptions, ope
 from benchmark.files import make_folder
 from benchmark.frame_cache import CachedSequence, FrameCache
 from benchmark.leaderboard import leaderboards
-from benchmark.metrics import CORE, Metrics
+from benchmark.metrics import CORE, SPEED, Metrics
 from benchmark.modality import Modality
 from benchmark.progress import Progress, SilentProgress
 from benchmark.report import write_condition_board, write_leaderboards
-from benchmark.report.display import NO_TRUTH, one_line, printable
+from benchmark.report.display import NO_TRUTH
+from benchmark.text import one_line, printable
 from benchmark.results import CellResult
 from benchmark.runner import DEFAULT_TIMEOUT_S, Cell
 from benchmark.selection import unmet_needs
@@ -123,8 +124,9 @@ class RunSummary:
     rendered : int
         Sequences rendered into the frame cache by this run.
     step_s, read_s : float
-        Time the cells run now spent in their trackers' ``step`` and in
-        getting their frames (rendering or reading them).
+        CPU time the cells run now spent in their trackers' ``step``
+        (:mod:`benchmark.runner`), and wall time getting their frames
+        (rendering or reading them).
     cpu_s : float or None
         CPU time of this process and its worker processes over the run;
         None when the cells ran elsewhere (a Dask cluster).
@@ -146,7 +148,7 @@ class RunSummary:
         minutes, seconds = divmod(round(self.elapsed_s), 60)
         line = (
             f"{total} cells ({counts}) in {minutes}:{seconds:02d}; {self.rendered} sequences rendered; "
-            f"tracker steps {self.step_s:.1f} s, frames {self.read_s:.1f} s"
+            f"tracker steps {self.step_s:.1f} s CPU, frames {self.read_s:.1f} s"
         )
         if self.cpu_s is not None:
             line += f", CPU {self.cpu_s:.1f} s"
@@ -166,15 +168,15 @@ def _cpu_s() -> float:
 
 
 def describe_result(result: CellResult) -> str:
-    """One line on a finished cell: tracker, dataset, seed, status, correct % (or no truth), fps, frames and time."""
+    """One line on a finished cell: tracker, dataset, seed, status, correct % (or no truth), CPU fps, frames, time."""
     summary = result.summary()
     correct = summary.get("correct_pct", math.nan)
-    fps = summary.get("fps", math.nan)
+    fps = summary.get(SPEED.name, math.nan)
     unscored = result.status == "ok" and result.scores and not summary.get("frames")
     rate = NO_TRUTH if unscored else f"correct {correct:.1f}%"
     line = (
         f"{result.tracker}  {result.dataset}  seed {result.seed}  {result.status}  "
-        f"{rate}  {fps:.0f} fps  ({len(result.scores)} frames, {result.elapsed_s:.1f} s)"
+        f"{rate}  {fps:.0f} cpu fps  ({len(result.scores)} frames, {result.elapsed_s:.1f} s)"
     )
     return printable(f"{line}  {one_line(result.message)}" if result.message else line)
 
@@ -328,10 +330,12 @@ def run_benchmark(
         pair is logged before any cell runs and joins these problems, so
         the run is not :attr:`~RunSummary.clean`.
     log : callable
-        Receives a line for the resumed cells, the frame cache, every
-        training and every finished cell.
+        Receives a line for the resumed cells, the frame cache and every
+        training.
     progress : Progress, optional
-        Told how many cells run and when each finishes.
+        Told how many cells run and each cell as it finishes (it decides
+        which cells get a line: :class:`~benchmark.progress.TerminalProgress`
+        writes one for every failed cell).
     metrics : Metrics
         The catalogue of metrics of the boards (the registry's).
 
@@ -384,7 +388,6 @@ def run_benchmark(
                     ran += 1
                     step_s += sum(score.step_s for score in result.scores)
                     read_s += result.read_s
-                    log(describe_result(result))
                     progress.advance(result, executor.running)
                 store.finish_run(run_id)
             except KeyboardInterrupt as stop:

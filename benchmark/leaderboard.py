@@ -5,7 +5,8 @@ dataset, and has a column per metric of its board (:mod:`benchmark.metrics`),
 computed from the pooled frames (:func:`benchmark.results.summarise`): rates
 are percentages of all those frames (so seeds weigh by their frame counts),
 each RMSE is the square root of the mean squared error over all frames with
-an estimate and a truth, ``fps`` is all frames over all ``step`` time, and
+an estimate and a truth, ``cpu_fps`` (``wall_fps``) is all frames over all
+``step`` CPU (wall) time, and
 the robustness metrics count failures over all frames.  A metric with a
 spread (``correct_pct``) has the sample standard deviation of its per-seed
 values (``correct_sd_pct``, empty for a single seed), so that a stochastic
@@ -41,6 +42,7 @@ Boards keep full precision; :mod:`benchmark.report` writes them out.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
@@ -116,6 +118,15 @@ def pooled_status(cells: pd.DataFrame) -> str:
     return f"{kind} ({len(failed)}/{len(cells)} cells): {first['message']}"
 
 
+_FAILED_STATUS = re.compile(r"(?:error|timeout) \((\d+)/\d+ cells\)")
+
+
+def failed_cells(status: str) -> int:
+    """How many cells a board row's status (:func:`pooled_status`) counts as failed: 0 for ``ok``."""
+    found = _FAILED_STATUS.match(str(status))
+    return int(found.group(1)) if found else 0
+
+
 def key_labels(cells: pd.DataFrame, name: str, key: str) -> pd.Series:
     """The ``name`` column, with the start of ``key`` added where one name has several keys.
 
@@ -156,7 +167,7 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, metrics: Sequence[
         returns).
     frames : pandas.DataFrame
         Their frame scores: ``cell_id``, ``outcome``, the error columns and
-        ``step_ms`` (as :meth:`benchmark.store.ResultStore.frame_tables`).
+        ``step_ms`` and ``wall_ms`` (as :meth:`benchmark.store.ResultStore.frame_tables`).
     metrics : sequence of Metric
         The board's metrics, in board order (:meth:`benchmark.metrics.Metrics.for_board`).
 
@@ -176,7 +187,7 @@ def modality_board(cells: pd.DataFrame, frames: pd.DataFrame, metrics: Sequence[
     if cells.empty:
         return pd.DataFrame(columns=columns)
     if "cell_id" not in frames.columns:
-        frames = pd.DataFrame(columns=["cell_id", "frame", "outcome", "step_ms"])
+        frames = pd.DataFrame(columns=["cell_id", "frame", "outcome", "step_ms", "wall_ms"])
     cells = cells.assign(
         label=key_labels(cells, "tracker", "tracker_key"), dataset=key_labels(cells, "dataset", "dataset_key")
     )

@@ -3,7 +3,8 @@
 Every frame a tracker processes gets a :class:`FrameScore`: its detection
 outcome (seeds/004, section VI-C, Table V), the estimate's errors (one per
 error column of the modality's scorer) and the time the tracker's ``step``
-took.  A :class:`CellResult` holds a cell's identity, how it ended, its
+took, as CPU time of the thread that ran it and as wall time
+(:mod:`benchmark.runner`).  A :class:`CellResult` holds a cell's identity, how it ended, its
 frame scores and a :class:`Picture` of the first frame of each run of
 failures (where its modality draws frames); it is what worker processes
 hand back and what the store writes.  :func:`summarise` turns frame
@@ -19,13 +20,15 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Literal, NamedTuple
+from typing import TYPE_CHECKING, Any, Literal, NamedTuple
 
 import numpy as np
-import pandas as pd
 
 from benchmark.metrics import CORE, Metric, Metrics
 from benchmark.model import Outcome
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 Status = Literal["ok", "error", "timeout"]
 
@@ -44,13 +47,19 @@ class FrameScore:
         Estimate minus truth, one entry per error column of the modality;
         ``nan`` where there is no estimate or no truth.
     step_s : float
-        Wall time of the tracker's ``step`` for this frame.
+        CPU time of the thread that ran the tracker's ``step`` for this
+        frame (:func:`time.thread_time`): the tracker's own work, since it
+        runs its native libraries on that one thread.
+    wall_s : float
+        Wall time of the same ``step``, which also counts the waits for a
+        core that other processes held.
     """
 
     index: int
     outcome: Outcome | None
     errors: Mapping[str, float] = field(default_factory=dict)
     step_s: float = 0.0
+    wall_s: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -77,16 +86,19 @@ class Picture:
 
 
 def frame_table(scores: Iterable[FrameScore]) -> pd.DataFrame:
-    """Frame scores as a table: ``frame``, ``outcome``, error columns, ``step_ms``."""
+    """Frame scores as a table: ``frame``, ``outcome``, error columns, ``step_ms`` (thread CPU) and ``wall_ms``."""
     rows = [
         {
             "frame": s.index,
             "outcome": None if s.outcome is None else str(s.outcome),
             **s.errors,
             "step_ms": 1000.0 * s.step_s,
+            "wall_ms": 1000.0 * s.wall_s,
         }
         for s in scores
     ]
+    import pandas as pd  # here, so that listing the trackers does not import pandas
+
     return pd.DataFrame(rows)
 
 
@@ -108,8 +120,9 @@ def summarise(frames: pd.DataFrame, metrics: Iterable[Metric]) -> dict[str, floa
         (:meth:`benchmark.metrics.Metric.of`): for the core metrics
         ``correct_pct``, ``false_pct``, ``missed_pct`` (percentages of scored
         frames, summing to 100), ``rmse_*`` over frames with both an
-        estimate and a truth, and ``fps`` (frames processed per second of
-        ``step`` time).
+        estimate and a truth, ``cpu_fps`` (frames processed per second of
+        the CPU time of ``step``) and ``wall_fps`` (the same per second of
+        its wall time).
     """
     scored = frames["outcome"].notna().sum() if "outcome" in frames else 0
     return {"frames": float(scored), **{metric.name: metric.of(frames) for metric in metrics}}

@@ -11,6 +11,12 @@ section VI-C, Table V).  A frame whose observation or truth is not of the
 modality's types is a data error, so trackers can rely on them.  Timing
 covers ``step`` only, so frames per second compare trackers rather than
 image decoders, as in the thesis' Table 5.3 (seeds/000, section 5.2.5).
+A step's time is the CPU time of the thread that runs it
+(:func:`time.thread_time`), with its wall time kept beside it: a worker
+runs OpenCV, BLAS and numba on one native thread
+(:func:`benchmark.workers.limit_native_threads`), so the thread's CPU time
+is the tracker's own work, which other processes on the machine do not
+stretch as they stretch the wall time.
 
 Where the modality draws frames (:attr:`benchmark.modality.Modality.draw`),
 the first frame of each run of failures (consecutive frames that are all
@@ -347,18 +353,25 @@ def _fresh_tracker(cell: Cell) -> Tracker:
 
 
 def _step(cell: Cell, tracker: Tracker, frame: Frame, info: SequenceInfo, progress: _Progress) -> None:
-    """Step ``tracker`` over ``frame``, score its estimate, and draw the frame if it starts a run of failures."""
+    """Step ``tracker`` over ``frame``, score its estimate, and draw the frame if it starts a run of failures.
+
+    The step is timed twice: by the CPU time of this thread
+    (:func:`time.thread_time`), which is the tracker's work because the
+    worker runs its native libraries on this one thread
+    (:mod:`benchmark.workers`), and by the wall clock, which also counts the
+    time the thread waited for a core other processes held.
+    """
     modality = cell.modality
-    tick = time.perf_counter()
+    tick, cpu_tick = time.perf_counter(), time.thread_time()
     estimate = tracker.step(frame)
-    step_s = time.perf_counter() - tick
+    step_s, wall_s = time.thread_time() - cpu_tick, time.perf_counter() - tick
     try:
         modality.check_estimate(estimate)
     except EstimateError as exc:
         raise EstimateError(f"tracker {cell.tracker.name!r} returned an invalid estimate: {exc}") from exc
     scorer = modality.scorer
     outcome, errors = scorer.score(estimate, frame.truth, info)
-    progress.scores.append(FrameScore(frame.index, outcome, dict(zip(scorer.error_columns, errors)), step_s))
+    progress.scores.append(FrameScore(frame.index, outcome, dict(zip(scorer.error_columns, errors)), step_s, wall_s))
     draw = modality.draw
     wanted = outcome in _FAILURES and outcome != progress.previous and len(progress.pictures) < MAX_PICTURES
     if wanted and draw is not None:

@@ -127,7 +127,9 @@ results_frames = sa.Table(
     sa.Column("position", sa.Integer, primary_key=True),
     sa.Column("frame", sa.Integer, nullable=False),
     sa.Column("outcome", sa.Text),
-    sa.Column("step_ms", sa.Float, nullable=False),
+    # The CPU time of the step's thread; NULL in frames of files older than version 7, which timed the wall only.
+    sa.Column("step_ms", sa.Float),
+    sa.Column("wall_ms", sa.Float, nullable=False),
 )
 results_frame_errors = sa.Table(
     "frame_errors",
@@ -162,6 +164,7 @@ history_runs = sa.Table(
     sa.Column("machine", sa.Text, nullable=False),
     sa.Column("argv", sa.Text, nullable=False),
     sa.Column("seeds", sa.Integer, nullable=False),
+    sa.Column("load", sa.Text, nullable=False, server_default="{}"),
 )
 history_cells = sa.Table(
     "cells",

@@ -16,7 +16,7 @@ pictures share their columns with the nightly history's
           dataset, dataset_key, modality, seed, init, status, message, detail,
           frames, elapsed_s, finished, training, deterministic)
     run_cells(run_id -> runs, cell_id -> cells)
-    frames(cell_id -> cells, position, frame, outcome, step_ms)
+    frames(cell_id -> cells, position, frame, outcome, step_ms, wall_ms)
     frame_errors(cell_id, position, name, value)
     pictures(cell_id -> cells, frame, outcome, png BLOB)
     conditions(dataset_key, name, value JSON)
@@ -49,12 +49,19 @@ altitude, cable contrast, ...), for the boards by condition
 ``run_cells`` lists the cells that make up a run's results: those it ran
 and those it took over from earlier runs with ``--resume``.
 
+``step_ms`` is the CPU time of the thread that ran the tracker's ``step``
+and ``wall_ms`` its wall time (:mod:`benchmark.runner`).
+
 A database of schema version 1 (no ``problems``, no ``dataset_key``), 2
-(no ``training``), 3 (no ``pictures``), 4 (no ``conditions``) or 5 (no
-``deterministic``) is upgraded in place when opened, its cells keeping no
-pictures and declaring nothing; version 1's cells get their ``dataset`` as
+(no ``training``), 3 (no ``pictures``), 4 (no ``conditions``), 5 (no
+``deterministic``) or 6 (``step_ms`` was the wall time, no ``wall_ms``)
+is upgraded in place when opened, its cells keeping no pictures and
+declaring nothing; version 1's cells get their ``dataset`` as
 ``dataset_key``, which no identity's key equals, so they are shown but
-never resumed.  Any database error, such as a file damaged on disk, is
+never resumed.  The frames of versions 1 to 6 keep their time as
+``wall_ms``, and their ``step_ms`` is NULL: the CPU time was not
+measured, so their ``cpu_fps`` is empty rather than a wall time under a
+CPU time's name.  Any database error, such as a file damaged on disk, is
 reported as a :class:`~benchmark.errors.DataError` naming the file.
 """
 
@@ -83,7 +90,7 @@ from benchmark.results import Picture
 if TYPE_CHECKING:
     from benchmark.results import CellKey, CellResult
 
-SCHEMA_VERSION = 6
+SCHEMA_VERSION = 7
 DATABASE_NAME = "results.sqlite"
 
 _runs = schema.results_runs
@@ -107,6 +114,11 @@ _FROM_VERSION_1 = (
     "ALTER TABLE cells ADD COLUMN dataset_key VARCHAR(200) NOT NULL DEFAULT ''",
     "UPDATE cells SET dataset_key = dataset",
     "DROP INDEX cells_by_key",
+)
+
+_BEFORE_VERSION_7 = (
+    # Version 7 times a step by its thread's CPU time in step_ms; the wall time step_ms held moves to wall_ms.
+    "ALTER TABLE frames RENAME COLUMN step_ms TO wall_ms",
 )
 
 CELL_COLUMNS = (
@@ -224,6 +236,9 @@ def _upgrade(connection: sa.Connection, version: int) -> None:
     """Bring a database of schema ``version`` (0: empty) to :data:`SCHEMA_VERSION`, within the caller's transaction."""
     if version == 1:
         for statement in _FROM_VERSION_1:
+            connection.exec_driver_sql(statement)
+    if 1 <= version < 7:
+        for statement in _BEFORE_VERSION_7:
             connection.exec_driver_sql(statement)
     schema.add_missing_columns(connection, schema.RESULTS)
     schema.RESULTS.create_all(connection)
@@ -374,7 +389,7 @@ class ResultStore:
             cell_id = int(connection.execute(_cells.insert(), cell).inserted_primary_key[0])
             frames = [
                 (cell_id, position, int(score.index), None if score.outcome is None else str(score.outcome),
-                 1000.0 * float(score.step_s))
+                 1000.0 * float(score.step_s), 1000.0 * float(score.wall_s))
                 for position, score in enumerate(result.scores)
             ]
             errors = [
@@ -579,14 +594,16 @@ class ResultStore:
         Returns
         -------
         pandas.DataFrame
-            ``cell_id``, ``frame``, ``outcome``, ``step_ms`` and one column per
-            error name found, in the order they were written (``nan`` where
-            not stored); rows in processing order.
+            ``cell_id``, ``frame``, ``outcome``, ``step_ms`` (thread CPU time;
+            ``nan`` in frames stored before version 7), ``wall_ms`` and one
+            column per error name found, in the order they were written
+            (``nan`` where not stored); rows in processing order.
         """
         ids = sorted({int(cell_id) for cell_id in cell_ids})
         frame_rows: list[tuple[Any, ...]] = []
         error_rows: list[tuple[Any, ...]] = []
-        frame_columns = (_frames.c.cell_id, _frames.c.position, _frames.c.frame, _frames.c.outcome, _frames.c.step_ms)
+        frame_names = ["cell_id", "position", "frame", "outcome", "step_ms", "wall_ms"]
+        frame_columns = [_frames.c[name] for name in frame_names]
         error_columns = (_frame_errors.c.cell_id, _frame_errors.c.position, _frame_errors.c.name, _frame_errors.c.value)
         with self._transaction() as connection:
             for chunk in _chunks(ids):
@@ -594,9 +611,9 @@ class ResultStore:
                 error_rows += _rows(
                     connection.execute(sa.select(*error_columns).where(_frame_errors.c.cell_id.in_(chunk)).order_by(_ROWID))
                 )
-        frames = pd.DataFrame.from_records(
-            frame_rows, columns=["cell_id", "position", "frame", "outcome", "step_ms"]
-        ).astype({"cell_id": "int64", "position": "int64", "frame": "int64", "step_ms": "float64"})
+        frames = pd.DataFrame.from_records(frame_rows, columns=frame_names).astype(
+            {"cell_id": "int64", "position": "int64", "frame": "int64", "step_ms": "float64", "wall_ms": "float64"}
+        )
         if error_rows:
             errors = pd.DataFrame.from_records(error_rows, columns=["cell_id", "position", "name", "value"])
             wide = errors.pivot(index=["cell_id", "position"], columns="name", values="value")

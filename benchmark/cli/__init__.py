@@ -35,9 +35,12 @@ once into the frame cache (``--cache DIR``, ``$TRACKBENCH_CACHE``, or the
 platform's cache folder; ``--no-cache`` renders in every cell) and read
 back by every other cell and run.  Each finished cell is stored in
 ``DIR/results.sqlite``, and ``leaderboard.csv``, ``leaderboard.md`` and
-``leaderboard.html`` are written into ``DIR``.  One line per finished cell
-goes to stderr, under a progress bar on a terminal, and one line sums the
-run up at the end; the board goes to stdout.
+``leaderboard.html`` are written into ``DIR``.  A progress bar goes to stderr on a
+terminal; elsewhere (a CI log) a line every few seconds counts the cells
+done, failed and left with the time remaining, and each failed cell gets a
+line of its own.  One line sums the run up at the end.  To stdout goes a
+summary that fits the terminal, one row per tracker and board, naming the
+files with the full boards (``trackbench leaderboard`` prints those).
 
 Exit status, as pytest's:
 
@@ -46,10 +49,14 @@ Exit status, as pytest's:
   ``timeout``, or a plugin could not be loaded (its trackers or commands
   are unavailable; ``--strict-plugins`` makes that an error instead);
 * 2: nothing ran: a usage or data error (an unknown name, a bad parameter,
-  an unreadable file, a broken plugin, a results folder in use), reported
-  as one line ``Error: ...`` without a traceback;
-* 3: ``nightly`` found a regression (the run is kept in the history and
-  the site written);
+  an unreadable file, a broken plugin, a results folder in use, a
+  ``--history`` that cannot be opened, lacks its driver or is not a
+  history), reported as one line ``Error: ...`` without a traceback;
+* 3: ``nightly`` found an accuracy regression (the run is kept in the
+  history and the site written);
+* 4: ``nightly --fail-on-speed`` found a speed regression that held on
+  its repeat, and no accuracy regression (without the flag a speed
+  regression is reported and the status is 0 or 1);
 * 130: the user's Ctrl-C; finished cells are kept and published.
 """
 
@@ -63,16 +70,16 @@ from benchmark.cli.boards import leaderboard_command, tables_command
 from benchmark.cli.cache import cache_group
 from benchmark.cli.check import check_command
 from benchmark.cli.discovery import CommandRegistry, load_commands
-from benchmark.cli.history import EXIT_REGRESSION, compare, nightly, report_command
+from benchmark.cli.history import EXIT_REGRESSION, EXIT_SPEED_REGRESSION, compare, nightly, report_command
 from benchmark.cli.listing import list_datasets, list_trackers
 from benchmark.cli.make_dataset import make_dataset
 from benchmark.cli.new_tracker import new_tracker_command
 from benchmark.cli.run import run
 from benchmark.cli.session import EXIT_FAILED, EXIT_INTERRUPTED, ReportedError, Session
 from benchmark.errors import TrackbenchError
-from benchmark.report.display import one_line, printable
+from benchmark.text import one_line, printable
 
-__all__ = ["EXIT_FAILED", "EXIT_INTERRUPTED", "EXIT_REGRESSION", "TrackbenchGroup", "main"]
+__all__ = ["EXIT_FAILED", "EXIT_INTERRUPTED", "EXIT_REGRESSION", "EXIT_SPEED_REGRESSION", "TrackbenchGroup", "main"]
 
 BUILT_IN_COMMANDS = (
     list_trackers,

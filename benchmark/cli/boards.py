@@ -15,8 +15,19 @@ if TYPE_CHECKING:
     from benchmark.store import ResultStore
 
 
-def show_publication(publication: Publication) -> None:
-    """Print a run's boards to stdout and the files written to stderr."""
+def show_publication(publication: Publication, *, full: bool = True) -> None:
+    """Print a run's boards to stdout, in full or summed up to fit the terminal, and name the files written.
+
+    ``full=False`` prints one row per tracker and board as wide as the
+    terminal, and the files holding the full boards
+    (:func:`benchmark.report.summary.summary_text`); ``full=True`` prints
+    every row and column, and the files written to stderr.
+    """
+    if not full:
+        from benchmark.report.summary import summary_text
+
+        click.echo(summary_text(publication.boards, publication.files, publication.problems, publication.metrics))
+        return
     from benchmark.report import to_text
 
     click.echo(to_text(publication.boards, problems=publication.problems, metrics=publication.metrics))

@@ -2,19 +2,32 @@
 
 from __future__ import annotations
 
-import functools
 import sys
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
-from benchmark.cli.options import history_option, run_options, site_option, threshold_options, thresholds
+from benchmark.cli.options import (
+    existing_history_option,
+    history_option,
+    run_options,
+    site_option,
+    threshold_options,
+    thresholds,
+)
 from benchmark.cli.run import run_benchmark
 from benchmark.cli.session import EXIT_FAILED, Session
 
+if TYPE_CHECKING:
+    from benchmark.harness import RunSummary
+    from benchmark.runner import Cell
+
 EXIT_REGRESSION = 3
-"""``nightly`` found a regression (after storing the run and writing the site)."""
+"""``nightly`` found an accuracy regression (after storing the run and writing the site)."""
+EXIT_SPEED_REGRESSION = 4
+"""``nightly --fail-on-speed`` found a speed regression, held on a repeat, and no accuracy regression."""
 
 
 @click.command("nightly")
@@ -29,6 +42,11 @@ EXIT_REGRESSION = 3
 @history_option
 @site_option
 @threshold_options
+@click.option(
+    "--fail-on-speed",
+    is_flag=True,
+    help="Exit with 4 when a speed regression held on its repeat (default: report it and exit 0).",
+)
 @click.pass_context
 def nightly(
     ctx: click.Context,
@@ -37,35 +55,60 @@ def nightly(
     site: Path,
     min_effects: tuple[str, ...],
     window: int,
+    min_step_s: float,
+    fail_on_speed: bool,
     **options: Any,
 ) -> None:
     """Run the benchmark, add the run to the history, report its changes and rewrite the site.
 
-    Takes every option of run.  Exits with 3 when a regression was found,
-    else with 1 when a cell failed, as run does.
-    """
-    from benchmark.history.nightly import CHANGES_NAME, describe_changes, run_nightly
+    Takes every option of run.  Speed is the CPU time of the trackers'
+    steps (cpu_fps; wall_fps is shown, not judged); a speed change counts
+    when it exceeds the series' noise over the earlier runs on this machine
+    and holds when its cells run once more into OUT/repeat.
 
-    limits = thresholds(min_effects, window)
-    run = functools.partial(run_benchmark, ctx, out, **options)
+    Exit status: 3 when an accuracy metric (a rate, an RMSE, robustness)
+    regressed; else 4 when a speed regressed and --fail-on-speed is given
+    (without it a speed regression is reported only); else 1 when a cell
+    failed, as run does; else 0.
+    """
+    from benchmark.history.database import shown_location
+    from benchmark.history.machine import describe_load
+    from benchmark.history.nightly import CHANGES_NAME, REPEAT_FOLDER, describe_changes, run_nightly
+    from benchmark.progress import Meter
+
+    limits = thresholds(min_effects, window, min_step_s)
+
+    def run(folder: Path, only: Callable[[Cell], bool] | None) -> RunSummary:
+        if only is None:
+            return run_benchmark(ctx, folder, **options)
+        return run_benchmark(ctx, folder, **{**options, "resume": False}, only=only, show_board=False)
+
     session: Session = ctx.obj
     registry = session.registry
-    kept = run_nightly(
-        run,
-        history,
-        out,
-        site,
-        registry.modalities,
-        limits,
-        argv=sys.argv,
-        seeds=options["seeds"],
-        metrics=registry.metrics,
-    )
+    with Meter("site pages") as pages:
+        kept = run_nightly(
+            run,
+            history,
+            out,
+            site,
+            registry.modalities,
+            limits,
+            argv=sys.argv,
+            seeds=options["seeds"],
+            metrics=registry.metrics,
+            report=pages,
+        )
+    if kept.repeat is not None:
+        repeated = kept.repeat.statuses.total()
+        click.echo(f"speed changes held against a repeat of their {repeated} cells in {out / REPEAT_FOLDER}", err=True)
     title = f"Changes of nightly run {kept.run_id}"
     click.echo(describe_changes(kept.changes, title, registry.metrics, out / CHANGES_NAME))
-    click.echo(f"history {history}: run {kept.run_id}; site {kept.index}", err=True)
-    if kept.regressed:
+    click.echo(f"machine load during the run: {describe_load(kept.load)}", err=True)
+    click.echo(f"history {shown_location(history)}: run {kept.run_id}; site {kept.index}", err=True)
+    if kept.accuracy_regressed:
         ctx.exit(EXIT_REGRESSION)
+    if kept.speed_regressed and fail_on_speed:
+        ctx.exit(EXIT_SPEED_REGRESSION)
     if not kept.summary.clean:
         ctx.exit(EXIT_FAILED)
 
@@ -73,7 +116,7 @@ def nightly(
 @click.command("compare")
 @click.argument("run_a", type=int)
 @click.argument("run_b", type=int)
-@history_option
+@existing_history_option
 @threshold_options
 @click.option(
     "--html",
@@ -89,25 +132,27 @@ def compare(
     history: str,
     min_effects: tuple[str, ...],
     window: int,
+    min_step_s: float,
     html: Path | None,
 ) -> None:
     """Print what changed from nightly run RUN_A to RUN_B of the history.
 
-    Speeds are compared only when both ran on the same machine.  With
-    --html, the page shows the changes grouped by cause and every metric
-    of both runs side by side.
+    Speeds are compared only when both ran on the same machine; with one
+    earlier run there is no noise estimate, so a speed change beyond the
+    minimum effect is listed as unjudged.  With --html, the page shows the
+    changes grouped by cause and every metric of both runs side by side.
     """
     from benchmark.errors import DataError
     from benchmark.history.database import History
     from benchmark.history.nightly import describe_changes
     from benchmark.history.regressions import find_changes
 
-    limits = thresholds(min_effects, window)
+    limits = thresholds(min_effects, window, min_step_s)
     with History(history, must_exist=True) as database:
         cells = database.cells([run_a, run_b])
         missing = sorted({run_a, run_b} - set(cells["run_id"]))
         if missing:
-            raise DataError(f"history database {history}: no run {', '.join(map(str, missing))}")
+            raise DataError(f"history database {database.location}: no run {', '.join(map(str, missing))}")
         changes = find_changes(cells, run_b, limits, against=[run_a], metrics=session.registry.metrics)
         click.echo(describe_changes(changes, f"Run {run_a} -> {run_b}", session.registry.metrics))
         if html is not None:
@@ -119,24 +164,29 @@ def compare(
 
 
 @click.command("report")
-@history_option
+@existing_history_option
 @site_option
 @threshold_options
 @click.pass_obj
-def report_command(session: Session, history: str, site: Path, min_effects: tuple[str, ...], window: int) -> None:
+def report_command(
+    session: Session, history: str, site: Path, min_effects: tuple[str, ...], window: int, min_step_s: float
+) -> None:
     """Rebuild the static HTML report from the history database, without running anything."""
     from benchmark.errors import DataError
     from benchmark.history.database import History
+    from benchmark.progress import Meter
     from benchmark.site import build_site
 
     with History(history, must_exist=True) as database:
         if database.runs().empty:
-            raise DataError(f"history database {history}: no runs yet (run 'trackbench nightly' first)")
-        index = build_site(
-            database,
-            site,
-            session.registry.modalities,
-            thresholds=thresholds(min_effects, window),
-            metrics=session.registry.metrics,
-        )
+            raise DataError(f"history database {database.location}: no runs yet (run 'trackbench nightly' first)")
+        with Meter("site pages") as pages:
+            index = build_site(
+                database,
+                site,
+                session.registry.modalities,
+                thresholds=thresholds(min_effects, window, min_step_s),
+                metrics=session.registry.metrics,
+                report=pages,
+            )
     click.echo(f"wrote {index}")

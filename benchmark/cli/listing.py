@@ -7,7 +7,7 @@ import dataclasses
 import click
 
 from benchmark.cli.session import Session
-from benchmark.report.display import one_line
+from benchmark.text import one_line
 
 
 @click.command("list")

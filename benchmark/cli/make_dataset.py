@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import click
@@ -23,10 +24,14 @@ def make_dataset(session: Session, suite: str, out: Path) -> None:
     their sidecar.
     """
     from benchmark.io import export_sequence
+    from benchmark.progress import Meter
     from benchmark.selection import SelectionError
 
     registry = session.registry
     if suite not in registry.suites:
         raise SelectionError(f"unknown suite {suite!r} (known: {', '.join(sorted(registry.suites)) or 'none'})")
-    for sequence in registry.suites[suite].sequences:
-        click.echo(export_sequence(sequence, out, registry.modalities))
+    sequences = registry.suites[suite].sequences
+    with Meter("sequences", len(sequences)) as meter:
+        for sequence in sequences:
+            meter.write(str(export_sequence(sequence, out, registry.modalities)), sys.stdout)
+            meter.advance()

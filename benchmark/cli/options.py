@@ -111,6 +111,12 @@ _RUN_OPTIONS = [
     ),
     cache_option,
     click.option("--no-cache", is_flag=True, help="Render every simulated sequence in every cell that reads it."),
+    click.option(
+        "-v",
+        "--verbose",
+        is_flag=True,
+        help="A line on stderr for every finished cell, not only for the failed ones.",
+    ),
 ]
 """The options of ``run`` that choose and run the cells, shared by ``nightly``; ``--out`` is each command's own."""
 
@@ -131,13 +137,54 @@ OUT_OPTION = click.option(
 )
 """``--out`` of the commands that read a results database and write their reports beside it."""
 
-history_option = click.option(
-    "--history",
-    default=str(DEFAULT_HISTORY),
-    show_default=True,
-    metavar="FILE|URL",
-    help="The history database: an SQLite file or an SQLAlchemy URL (postgresql://...).",
-)
+class HistoryDatabase(click.ParamType):
+    """A history database, opened and checked as the option is read, before the command runs anything.
+
+    Its driver must import and the database must be a trackbench history
+    (or empty, or, for an SQLite file and unless ``must_exist``, creatable:
+    it is created with its tables), so that ``nightly`` reports a missing
+    driver, an unreachable server or a foreign database before its first
+    cell rather than after its last.  The location is returned as given
+    (:class:`~benchmark.history.database.History` opens it again); a
+    problem is the :class:`~benchmark.errors.DataError` of ``History``,
+    shown as one line ``Error: ...`` with the password masked, exit status 2.
+
+    Parameters
+    ----------
+    must_exist : bool
+        Refuse an SQLite file that does not exist yet (``compare``,
+        ``report``) instead of creating it (``nightly``).
+    """
+
+    name = "history"
+
+    def __init__(self, *, must_exist: bool) -> None:
+        self.must_exist = must_exist
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> str:
+        from benchmark.history.database import History
+
+        if ctx is None or not ctx.resilient_parsing:  # shell completion opens nothing
+            History(value, must_exist=self.must_exist).close()
+        return str(value)
+
+
+def _history_option(*, must_exist: bool) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    return click.option(
+        "--history",
+        type=HistoryDatabase(must_exist=must_exist),
+        default=str(DEFAULT_HISTORY),
+        show_default=True,
+        metavar="FILE|URL",
+        help="The history database: an SQLite file or an SQLAlchemy URL (postgresql://user:password@host/db, "
+        'its driver from pip install "subsea-trackbench[postgres]").',
+    )
+
+
+history_option = _history_option(must_exist=False)
+"""``--history`` of ``nightly``: a history, or an empty database or SQLite file to start one in."""
+existing_history_option = _history_option(must_exist=True)
+"""``--history`` of the commands that read a history: ``compare``, ``report``."""
 site_option = click.option(
     "--site",
     type=click.Path(file_okay=False, path_type=Path),
@@ -148,7 +195,16 @@ site_option = click.option(
 
 
 def threshold_options(command: Callable[..., Any]) -> Callable[..., Any]:
-    """Add ``--min-effect METRIC=VALUE`` and ``--window N``, the thresholds of a regression."""
+    """Add ``--min-effect METRIC=VALUE``, ``--window N`` and ``--min-step-time SECONDS``: a regression's thresholds."""
+    command = click.option(
+        "--min-step-time",
+        "min_step_s",
+        type=click.FloatRange(min=0.0),
+        default=2.0,
+        show_default=True,
+        metavar="SECONDS",
+        help="Judge speed only where the cells of a tracker and dataset spent this much CPU time in their steps.",
+    )(command)
     command = click.option(
         "--window",
         type=click.IntRange(min=1),
@@ -162,11 +218,11 @@ def threshold_options(command: Callable[..., Any]) -> Callable[..., Any]:
         multiple=True,
         metavar="METRIC=VALUE",
         help="Smallest change that counts for a metric: points for a rate (default 2), a share for an RMSE "
-        "or fps (default 0.1) (repeatable).",
+        "or cpu_fps (default 0.1) (repeatable).",
     )(command)
 
 
-def thresholds(min_effects: tuple[str, ...], window: int) -> Thresholds:
+def thresholds(min_effects: tuple[str, ...], window: int, min_step_s: float = 2.0) -> Thresholds:
     """The thresholds of a regression that the options of :func:`threshold_options` give."""
     from benchmark.history.regressions import Thresholds
 
@@ -179,4 +235,4 @@ def thresholds(min_effects: tuple[str, ...], window: int) -> Thresholds:
             sep = ""
         if not sep or not metric.strip():
             raise click.BadParameter(f"expected METRIC=NUMBER, got {text!r}", param_hint="--min-effect")
-    return Thresholds(window=window, overrides=overrides)
+    return Thresholds(window=window, min_step_s=min_step_s, overrides=overrides)

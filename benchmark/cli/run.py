@@ -13,7 +13,10 @@ from benchmark.cli.options import DEFAULT_OUT, run_options
 from benchmark.cli.session import EXIT_FAILED, Session
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from benchmark.harness import RunSummary
+    from benchmark.runner import Cell
 
 
 @click.command("run")
@@ -55,10 +58,16 @@ def run_benchmark(
     scheduler: str | None,
     cache: Path | None,
     no_cache: bool,
+    verbose: bool,
+    only: Callable[[Cell], bool] | None = None,
+    show_board: bool = True,
 ) -> RunSummary:
     """Run the cells the options of :func:`~benchmark.cli.options.run_options` select into ``out``, show the board and say how it went.
 
-    Exits with 130 on the user's Ctrl-C, after publishing the cells finished.
+    ``only``, when given, keeps the selected cells it returns true for (a
+    nightly's repeat of some series); ``show_board=False`` leaves the board
+    in its files only.  Exits with 130 on the user's Ctrl-C, after
+    publishing the cells finished.
     """
     from benchmark.executors import ExecutorOptions, open_executor
     from benchmark.frame_cache import FrameCache
@@ -69,8 +78,10 @@ def run_benchmark(
     session: Session = ctx.obj
     registry = session.registry
     cells = select_cells(registry, Selection(trackers, suites, datasets, params, seeds, init, train))
+    if only is not None:
+        cells = [cell for cell in cells if only(cell)]
     options = {key: list(value) if isinstance(value, tuple) else value for key, value in ctx.params.items()}
-    progress = TerminalProgress()
+    progress = TerminalProgress(verbose=verbose)
     runner = open_executor(executor, ExecutorOptions(jobs, in_process, scheduler))
     try:
         summary = run_benchmark(
@@ -90,7 +101,8 @@ def run_benchmark(
         )
     finally:
         runner.close()
-    show_publication(summary.publication)
+    if show_board:
+        show_publication(summary.publication, full=False)
     click.echo(summary.describe(), err=True)
     if summary.interrupted:
         ctx.exit(128 + summary.interrupted)  # 130 for Ctrl-C, 143 for SIGTERM

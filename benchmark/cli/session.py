@@ -13,7 +13,7 @@ import click
 
 from benchmark import plugins
 from benchmark.registry import Registry
-from benchmark.report.display import one_line
+from benchmark.text import one_line
 
 EXIT_FAILED = 1
 """A cell failed or a plugin was left out; everything else was done."""

@@ -2,8 +2,9 @@
 
 * :mod:`benchmark.history.database`: the history database (SQLite or any
   SQLAlchemy URL) of runs, machines, commits and cell summaries.
-* :mod:`benchmark.history.machine`: the machine and commit of a run.
+* :mod:`benchmark.history.machine`: the machine, its load and the commit of a run.
 * :mod:`benchmark.history.regressions`: changes of a run against earlier
   ones, and steps over the whole history.
-* :mod:`benchmark.history.nightly`: a nightly run from start to site.
+* :mod:`benchmark.history.nightly`: a nightly run from start to site, speed
+  changes repeated before they count.
 """

@@ -4,7 +4,7 @@ A nightly run (``trackbench nightly``) appends one row to ``runs`` and one
 row per cell to ``cells``, copied from the run's results database
 (:mod:`benchmark.store`) in one transaction.  Tables::
 
-    runs(id, started, finished, version, commit, machine_key, machine JSON, argv JSON, seeds)
+    runs(id, started, finished, version, commit, machine_key, machine JSON, argv JSON, seeds, load JSON)
     cells(id, run_id -> runs, tracker, tracker_version, tracker_key, params JSON, dataset,
           dataset_key, modality, seed, init, training, status, message, frames, elapsed_s,
           metrics JSON, deterministic)
@@ -14,6 +14,10 @@ row per cell to ``cells``, copied from the run's results database
 
 These are the tables of :data:`benchmark.schema.HISTORY`, whose cells and
 pictures share their columns with the results database's.
+
+``load`` is how busy the machine was while the run ran
+(:func:`benchmark.history.machine.LoadMeter`; ``{}`` in runs recorded
+before it was kept).
 
 ``metrics`` holds the cell's value of every metric of its board
 (:func:`benchmark.results.summarise`; a metric added later is empty in
@@ -27,6 +31,11 @@ that the site tells the same story.  Frames and pictures (about 0.5 MB for a cam
 that failed often) are kept for the last :data:`DETAILED_RUNS` runs only;
 the summaries of every run stay, for the trends.
 
+Runs recorded before the step's CPU time was measured timed the wall
+clock only: their ``fps`` is read as ``wall_fps`` and their frames'
+``step_ms`` as ``wall_ms`` (with ``step_ms`` empty), so that a trend of
+``cpu_fps`` never starts with wall-clock numbers.
+
 A *series* is what nightly runs are compared along: a tracker's name, the
 dataset's identity key, the seed and the initialisation.  The tracker's
 version and parameters (``tracker_key`` hashes them) are not part of it:
@@ -34,14 +43,19 @@ a change of either is exactly what the regression view must catch, and the
 report names it beside the change.
 
 The database is SQLite by default; any SQLAlchemy URL (``postgresql://...``)
-works too, so a team can share one history.  Any database error is a
-:class:`~benchmark.errors.DataError` naming the database.
+works too, so a team can share one history.  A URL that names no driver
+gets the one of :data:`DEFAULT_DRIVERS` (``postgresql://`` is psycopg's,
+which the ``postgres`` extra installs).  Any database error, a missing
+driver included, is a :class:`~benchmark.errors.DataError` naming the
+database, on one line, with the URL's password masked
+(:func:`shown_location`): the messages of a driver may quote the URL.
 """
 
 from __future__ import annotations
 
 import functools
 import json
+import re
 import zlib
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from datetime import UTC, datetime
@@ -51,7 +65,7 @@ from typing import Any, Concatenate, ParamSpec, TypeVar
 import numpy as np
 import pandas as pd
 import sqlalchemy as sa
-from sqlalchemy.exc import SQLAlchemyError
+from sqlalchemy.exc import ArgumentError, SQLAlchemyError
 
 from benchmark import schema
 from benchmark.errors import DataError
@@ -83,13 +97,35 @@ _P = ParamSpec("_P")
 _T = TypeVar("_T")
 
 
+DEFAULT_DRIVERS = {"postgresql": "psycopg"}
+"""The driver of a URL that names a database but no driver (``postgresql://...``), by database.
+
+SQLAlchemy 2.0 would take psycopg2 for ``postgresql://``, 2.1 psycopg;
+naming it keeps the one the ``postgres`` extra installs, whatever the
+version.  A URL that names its driver (``postgresql+psycopg2://``) keeps it.
+"""
+
+DRIVER_INSTALLS = {
+    "psycopg": 'pip install "subsea-trackbench[postgres]"',
+    "psycopg2": "pip install psycopg2-binary",
+}
+"""The command that installs a database driver, by the name of the module that could not be imported."""
+
+_MASK = "***"
+_URL_PASSWORD = re.compile(r"(?<=://)(?P<user>[^:/@]*):(?P<password>.*)@")
+"""The password of a URL found by its form alone, up to the last ``@`` (masking too much rather than too little)."""
+_SHORTEST_MASKED_ELSEWHERE = 4
+"""A password shorter than this is masked in the URL only, not wherever its letters occur in a driver's message,
+which masking a one-letter password would make unreadable (and such a password guards nothing)."""
+
+
 def _reports_database_errors(method: Callable[Concatenate[History, _P], _T]) -> Callable[Concatenate[History, _P], _T]:
     @functools.wraps(method)
     def wrapper(self: History, /, *args: _P.args, **kwargs: _P.kwargs) -> _T:
         try:
             return method(self, *args, **kwargs)
         except SQLAlchemyError as exc:
-            raise DataError(f"history database {self.location}: {type(exc).__name__}: {exc}") from exc
+            raise self._error(f"{type(exc).__name__}: {exc}") from exc
 
     return wrapper
 
@@ -100,14 +136,68 @@ def database_url(location: str | Path) -> str:
     return text if "://" in text else f"sqlite:///{resolved(Path(text).expanduser())}"
 
 
+def shown_location(location: str | Path) -> str:
+    """A history's location as it may be printed: a URL with its password masked as ``***``, a path as given.
+
+    Examples
+    --------
+    >>> shown_location("postgresql://ci:s3cret@db.example/history")
+    'postgresql://ci:***@db.example/history'
+    >>> shown_location("reports/history.sqlite")
+    'reports/history.sqlite'
+    """
+    text = str(location)
+    if "://" not in text:
+        return text
+    try:
+        return sa.make_url(text).render_as_string(hide_password=True)
+    except (ArgumentError, ValueError):
+        return _without_url_passwords(text)
+
+
+def _without_url_passwords(text: str) -> str:
+    """``text`` with the password of every URL in it masked, found by their form alone (no URL is parsed)."""
+    return _URL_PASSWORD.sub(rf"\g<user>:{_MASK}@", text)
+
+
+def _passwords(location: str | Path) -> list[str]:
+    """The forms in which a URL's password may appear in a message, longest first: as written and as decoded."""
+    text = str(location)
+    written = _URL_PASSWORD.search(text)
+    forms = {written["password"]} if written else set()
+    try:
+        decoded = sa.make_url(text).password if "://" in text else None
+    except (ArgumentError, ValueError):
+        decoded = None
+    forms |= {str(decoded)} if decoded else set()
+    return sorted((form for form in forms if form), key=len, reverse=True)
+
+
 def _pack(frames: pd.DataFrame) -> bytes:
     return zlib.compress(frames.to_json(orient="split", index=False, double_precision=15).encode())
+
+
+WALL_TIMED = {"fps": "wall_fps"}
+"""Metrics of runs recorded before the CPU timing, by the name they are read under: they timed the wall clock."""
 
 
 def _unpack(blob: bytes) -> pd.DataFrame:
     from io import StringIO
 
-    return pd.read_json(StringIO(zlib.decompress(blob).decode()), orient="split")
+    frames = pd.read_json(StringIO(zlib.decompress(blob).decode()), orient="split")
+    if "step_ms" in frames and "wall_ms" not in frames:  # recorded before the CPU timing: step_ms was wall time
+        frames = frames.rename(columns={"step_ms": "wall_ms"})
+        frames.insert(list(frames.columns).index("wall_ms"), "step_ms", float("nan"))
+    return frames
+
+
+def _metrics_of(text: str) -> dict[str, Any]:
+    """A cell's metrics as stored, those of a run recorded before the CPU timing under their wall-time names."""
+    values = json.loads(text)
+    for old, new in WALL_TIMED.items():
+        if old in values:
+            values.setdefault(new, values.pop(old))
+    return values
 
 
 class History:
@@ -123,20 +213,65 @@ class History:
     Raises
     ------
     DataError
-        If the database cannot be opened or is not a trackbench history;
-        every method raises it, naming the database, for any database error.
+        If the database's driver is not installed (naming how to install
+        it), or the database cannot be opened or is not a trackbench
+        history; every method raises it, naming the database, for any
+        database error.  The password of a URL never appears in it.
     """
 
     def __init__(self, location: str | Path, *, must_exist: bool = False) -> None:
-        self.location = str(location)
-        url = database_url(location)
-        if url.startswith("sqlite:///"):
-            path = Path(url.removeprefix("sqlite:///"))
-            if must_exist and not path.is_file():
-                raise DataError(f"history database {self.location}: no such file (run 'trackbench nightly' first)")
-            path.parent.mkdir(parents=True, exist_ok=True)
-        self._engine = sa.create_engine(url)
+        self.location = shown_location(location)
+        """Where the database is, as it may be printed (its password masked)."""
+        self._given = str(location)
+        self._engine = self._open(database_url(location), must_exist)
         self._create()
+
+    def after_fork(self) -> None:
+        """In a process forked from the one that opened the history: leave the parent's connections to it.
+
+        The forked process then opens connections of its own as it needs
+        them, and the parent's stay the parent's (SQLAlchemy's advice for
+        engines shared with a child process).
+        """
+        self._engine.dispose(close=False)
+
+    def _error(self, problem: str) -> DataError:
+        """A :class:`DataError` naming the database, on one line, with its password masked wherever it appears."""
+        message = " ".join(f"history database {self.location}: {problem}".split())
+        message = message.replace(self._given, self.location)
+        for password in _passwords(self._given):
+            if len(password) >= _SHORTEST_MASKED_ELSEWHERE:
+                message = message.replace(password, _MASK)
+        return DataError(message)
+
+    def _open(self, url_text: str, must_exist: bool) -> sa.Engine:
+        """The engine of the database at ``url_text``, its driver imported; an SQLite file's folder is created.
+
+        Nothing is connected to yet: :meth:`_create` does that.
+        """
+        try:
+            url = sa.make_url(url_text)
+        except (ArgumentError, ValueError) as exc:
+            raise self._error(f"neither a file nor an SQLAlchemy URL ({exc})") from exc
+        if url.get_backend_name() == "sqlite" and url.database and url.database != ":memory:":
+            path = Path(url.database)
+            if must_exist and not path.is_file():
+                raise self._error("no such file (run 'trackbench nightly' first)")
+            try:
+                path.parent.mkdir(parents=True, exist_ok=True)
+            except OSError as exc:
+                raise self._error(f"cannot create its folder ({exc.strerror or exc})") from exc
+        if url.drivername in DEFAULT_DRIVERS:
+            url = url.set(drivername=f"{url.drivername}+{DEFAULT_DRIVERS[url.drivername]}")
+        try:
+            return sa.create_engine(url)
+        except ImportError as exc:
+            module = exc.name or url.get_driver_name()
+            install = DRIVER_INSTALLS.get(module)
+            how = f"install it with: {install}" if install else "install the Python package that provides it"
+            raise self._error(f"its driver {module} ({url.drivername}) cannot be imported ({exc}); {how}") from exc
+        except (SQLAlchemyError, ValueError) as exc:
+            raise self._error(f"{type(exc).__name__}: {exc}") from exc
 
     @_reports_database_errors
     def _create(self) -> None:
@@ -152,8 +287,8 @@ class History:
         existing = set(inspector.get_table_names())
         ours = {table.name for table in _metadata.sorted_tables}
         if existing and not existing & ours:
-            raise DataError(
-                f"history database {self.location}: holds other tables ({', '.join(sorted(existing)[:5])}) and "
+            raise self._error(
+                f"holds other tables ({', '.join(sorted(existing)[:5])}) and "
                 "none of a trackbench history's; the database was left unchanged"
             )
         for table in _metadata.sorted_tables:
@@ -161,8 +296,8 @@ class History:
                 continue
             found = {column["name"] for column in inspector.get_columns(table.name)}
             if any(column.server_default is None for column in table.columns if column.name not in found):
-                raise DataError(
-                    f"history database {self.location}: its table {table.name!r} is not a trackbench history's "
+                raise self._error(
+                    f"its table {table.name!r} is not a trackbench history's "
                     "(columns missing); the database was left unchanged"
                 )
         with self._engine.begin() as connection:
@@ -194,6 +329,7 @@ class History:
         argv: Sequence[str],
         seeds: int,
         metrics: Metrics = CORE,
+        load: Mapping[str, Any] | None = None,
     ) -> int:
         """Copy a finished run of a results database into the history and return its history id.
 
@@ -208,9 +344,13 @@ class History:
         started, version, commit, machine, machine_key, argv, seeds
             When the nightly started (ISO 8601), trackbench's version and git
             commit, the machine (:mod:`benchmark.history.machine`), the
-            command line and the number of seeds.
+            command line (kept with the password of any URL in it masked)
+            and the number of seeds.
         metrics : Metrics
             The catalogue of metrics each cell's summary holds (the registry's).
+        load : Mapping, optional
+            How busy the machine was during the run
+            (:meth:`benchmark.history.machine.LoadMeter.stop`), JSON values.
         """
         cells = results.cells(run_id)
         frames = results.frame_tables(cells["id"])
@@ -225,8 +365,9 @@ class History:
                     commit=commit,
                     machine_key=machine_key,
                     machine=json.dumps(dict(machine)),
-                    argv=json.dumps(list(argv)),
+                    argv=json.dumps([_without_url_passwords(argument) for argument in argv]),
                     seeds=seeds,
+                    load=json.dumps(dict(load or {})),
                 )
             ).inserted_primary_key[0]
             for cell in cells.itertuples(index=False):
@@ -284,12 +425,12 @@ class History:
     @_reports_database_errors
     def runs(self) -> pd.DataFrame:
         """Every run, oldest first: ``id``, ``started``, ``finished``, ``version``, ``commit``, ``machine_key``,
-        ``machine`` (a dict), ``argv`` (a list) and ``seeds``."""
+        ``machine`` (a dict), ``argv`` (a list), ``seeds`` and ``load`` (a dict, empty for older runs)."""
         with self._engine.connect() as connection:
             table = pd.DataFrame(connection.execute(sa.select(_runs).order_by(_runs.c.id)).mappings().all())
         if table.empty:
             return pd.DataFrame(columns=[column.name for column in _runs.columns])
-        return table.assign(machine=table["machine"].map(json.loads), argv=table["argv"].map(json.loads))
+        return table.assign(**{column: table[column].map(json.loads) for column in ("machine", "argv", "load")})
 
     @_reports_database_errors
     def cells(self, run_ids: Iterable[int] | None = None) -> pd.DataFrame:
@@ -300,10 +441,10 @@ class History:
         pandas.DataFrame
             The columns of ``cells`` (``params`` as a dict) with ``metrics``
             spread into a column per metric (``correct_pct``, ``rmse_*``,
-            ``fps``, ...; empty where a cell's run did not have it) and
-            :data:`ESTIMATED` (frames with an
-            estimate and a truth), plus the run's ``started`` and
-            ``machine_key``; ordered by run, then cell.
+            ``cpu_fps``, ``wall_fps``, ...; empty where a cell's run did not
+            have it; the ``fps`` of older runs is ``wall_fps``) and
+            :data:`ESTIMATED` (frames with an estimate and a truth), plus the
+            run's ``started`` and ``machine_key``; ordered by run, then cell.
         """
         query = sa.select(_cells, _runs.c.started, _runs.c.machine_key).join(_runs).order_by(_cells.c.id)
         if run_ids is not None:
@@ -312,21 +453,23 @@ class History:
             table = pd.DataFrame(connection.execute(query).mappings().all())
         if table.empty:
             return pd.DataFrame(columns=[*(column.name for column in _cells.columns), "started", "machine_key"])
-        metrics = pd.DataFrame([json.loads(text) for text in table["metrics"]], index=table.index)
+        metrics = pd.DataFrame([_metrics_of(text) for text in table["metrics"]], index=table.index)
         table = table.drop(columns="metrics").assign(params=table["params"].map(json.loads))
         return pd.concat([table, metrics.drop(columns=["frames"], errors="ignore")], axis=1)
 
     @_reports_database_errors
     def frames(self, cell_id: int) -> pd.DataFrame:
-        """The frame table of a cell: ``frame``, ``outcome``, the error columns and ``step_ms``."""
+        """The frame table of a cell: ``frame``, ``outcome``, the error columns, ``step_ms`` (CPU) and ``wall_ms``.
+
+        A cell recorded before the CPU timing has its time as ``wall_ms`` and an empty ``step_ms``.
+        """
         with self._engine.connect() as connection:
             blob = connection.execute(
                 sa.select(_cell_frames.c.frames).where(_cell_frames.c.cell_id == int(cell_id))
             ).scalar_one_or_none()
         if blob is None:
-            raise DataError(
-                f"history database {self.location}: no frame table of cell {cell_id} "
-                f"(only the last {DETAILED_RUNS} runs keep theirs)"
+            raise self._error(
+                f"no frame table of cell {cell_id} (only the last {DETAILED_RUNS} runs keep theirs)"
             )
         return _unpack(blob)
 

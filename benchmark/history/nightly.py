@@ -1,34 +1,50 @@
-"""A nightly run kept in the history: recorded with its machine and commit, and its changes told.
+"""A nightly run kept in the history: recorded with its machine, load and commit, and its changes told.
 
 :func:`run_nightly` is the whole sequence of ``trackbench nightly``: it
-runs the benchmark like ``trackbench run``, then :func:`record_nightly`
-appends the run to the history database,
+runs the benchmark like ``trackbench run`` while measuring how busy the
+machine is (:class:`benchmark.history.machine.LoadMeter`), then
+:func:`record_nightly` appends the run to the history database,
 :func:`benchmark.history.regressions.find_changes` compares it with the
-runs before it, and :func:`benchmark.site.build_site` rewrites the site.
+runs before it, the cells of every series with a speed change run once
+more into ``OUT/repeat`` and a change holds only if the repeat shows it
+too (:func:`benchmark.history.regressions.confirm_speed`), and
+:func:`benchmark.site.build_site` rewrites the site.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import pandas as pd
 
 from benchmark import __version__
 from benchmark.history.database import History
-from benchmark.history.machine import describe_machine, git_commit, machine_key
-from benchmark.history.regressions import Thresholds, find_changes, group_changes
+from benchmark.history.machine import LoadMeter, describe_machine, git_commit, machine_key
+from benchmark.history.regressions import Thresholds, confirm_speed, find_changes, group_changes
 from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
-from benchmark.report.display import alignment, display_table, one_line
+from benchmark.report.display import alignment, display_table
+from benchmark.results import summarise
 from benchmark.site import build_site
 from benchmark.store import DATABASE_NAME, ResultStore
+from benchmark.text import one_line
 
 if TYPE_CHECKING:
     from benchmark.harness import RunSummary
+    from benchmark.progress import Report
+    from benchmark.runner import Cell
+
+REPEAT_FOLDER = "repeat"
+"""The folder of ``OUT`` the repeat of the cells with a speed change writes its results database into."""
+
+Series = frozenset[tuple[str, str]]
+"""Tracker and dataset names whose cells a repeat runs again."""
+RunInto = Callable[[Path, "Callable[[Cell], bool] | None"], "RunSummary"]
+"""``run(out, only)``: runs the benchmark into ``out``, only the cells ``only`` keeps when given."""
 
 
 CHANGES_NAME = "changes.csv"
@@ -37,21 +53,81 @@ CHANGES_NAME = "changes.csv"
 
 @dataclass(frozen=True)
 class Nightly:
-    """A nightly run as kept: how the benchmark run went, its id in the history, its changes and the site."""
+    """A nightly run as kept: how the benchmark run went, its id in the history, its changes and the site.
+
+    Attributes
+    ----------
+    summary : RunSummary
+        How the benchmark run went.
+    run_id : int
+        Its id in the history.
+    changes : pandas.DataFrame
+        Its changes (:func:`~benchmark.history.regressions.find_changes`),
+        speed changes held against the repeat.
+    index : pathlib.Path
+        The site's front page.
+    load : dict
+        How busy the machine was during the run (:meth:`LoadMeter.stop`).
+    repeat : RunSummary or None
+        The repeat of the cells with a speed change; None when none had one.
+    """
 
     summary: RunSummary
     run_id: int
     changes: pd.DataFrame
     index: Path
+    load: dict[str, Any] = field(default_factory=dict)
+    repeat: RunSummary | None = None
+
+    def _regressed(self, kind: str) -> bool:
+        return bool(((self.changes["verdict"] == "regression") & (self.changes["kind"] == kind)).any())
 
     @property
-    def regressed(self) -> bool:
-        """Whether a change is a regression."""
-        return bool((self.changes["verdict"] == "regression").any())
+    def accuracy_regressed(self) -> bool:
+        """Whether a metric other than speed regressed (detection rates, RMSEs, robustness)."""
+        return self._regressed("accuracy")
+
+    @property
+    def speed_regressed(self) -> bool:
+        """Whether a speed regressed beyond its noise and held on the repeat."""
+        return self._regressed("speed")
+
+
+def speed_series(changes: pd.DataFrame) -> Series:
+    """The tracker and dataset names of the speed changes that a repeat is to hold or drop."""
+    judged = changes[changes["kind"].eq("speed") & changes["verdict"].isin(["regression", "improvement"])]
+    return frozenset(zip(judged["tracker"], judged["dataset"]))
+
+
+def of_series(series: Series) -> Callable[[Cell], bool]:
+    """Whether a cell belongs to one of ``series`` (its tracker's and its dataset's names)."""
+    return lambda cell: (cell.tracker.name, cell.dataset) in series
+
+
+def repeat_speeds(folder: Path, run_id: int | None, metrics: Metrics = CORE) -> pd.DataFrame:
+    """The speeds of the cells of run ``run_id`` of the results database in ``folder`` that ended ok.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``tracker``, ``dataset``, ``seed`` and a column per speed metric of
+        every board (:meth:`benchmark.metrics.Metrics.for_board`).
+    """
+    speeds = [metric for metric in metrics.for_board(None, ()) if metric.kind == "speed"]
+    with ResultStore(folder / DATABASE_NAME) as results:
+        cells = results.cells(run_id)
+        cells = cells[cells["status"] == "ok"]
+        frames = results.frame_tables(cells["id"])
+    rows = [
+        {"tracker": cell.tracker, "dataset": cell.dataset, "seed": cell.seed,
+         **summarise(frames[frames["cell_id"] == cell.id], speeds)}
+        for cell in cells.itertuples(index=False)
+    ]
+    return pd.DataFrame(rows, columns=["tracker", "dataset", "seed", *(metric.name for metric in speeds)])
 
 
 def run_nightly(
-    run: Callable[[], RunSummary],
+    run: RunInto,
     history: str | Path,
     out: Path,
     site: Path,
@@ -61,13 +137,17 @@ def run_nightly(
     argv: Sequence[str],
     seeds: int,
     metrics: Metrics = CORE,
+    report: Report | None = None,
 ) -> Nightly:
     """Run the benchmark into ``out``, append the run to ``history``, find its changes and rewrite ``site``.
 
     Parameters
     ----------
     run : callable
-        Runs the benchmark, writing its results database into ``out``.
+        ``run(folder, only)`` runs the benchmark with the nightly's options,
+        writing its results database into ``folder``; ``only``, when given,
+        keeps the cells to run (the repeat's).  It must not take over
+        earlier cells (``--resume``) when ``only`` is given.
     history : str or pathlib.Path
         The history database: an SQLite file or an SQLAlchemy URL.
     out, site : pathlib.Path
@@ -80,9 +160,26 @@ def run_nightly(
         The command line and the number of seeds, kept with the run.
     metrics : Metrics
         The catalogue of metrics kept, judged and shown (the registry's).
+    report : callable, optional
+        Told ``report(done, total)`` pages as the site is built
+        (:class:`benchmark.progress.Meter`).
+
+    Notes
+    -----
+    A speed change (:func:`~benchmark.history.regressions.find_changes`)
+    runs the cells of its tracker and dataset once more, right away, into
+    ``out/repeat``; it stands only if the repeat's median is beyond the same
+    threshold in the same direction
+    (:func:`~benchmark.history.regressions.confirm_speed`).  A burst of load
+    on a shared machine seldom lasts over both, a slower tracker always
+    does.  The repeat's cells are not recorded in the history; the verdicts
+    it gave are, with the run's changes (:meth:`History.record_changes`).
     """
     started = datetime.now(UTC).isoformat(timespec="seconds")
-    summary = run()
+    meter = LoadMeter.start()
+    summary = run(out, None)
+    load = meter.stop()
+    repeat = None
     with History(history) as database:
         run_id = record_nightly(
             database,
@@ -93,12 +190,18 @@ def run_nightly(
             argv=argv,
             seeds=seeds,
             metrics=metrics,
+            load=load,
         )
         changes = find_changes(database.cells(), run_id, thresholds, metrics=metrics)
+        series = speed_series(changes)
+        if series:
+            repeat = run(out / REPEAT_FOLDER, of_series(series))
+            speeds = repeat_speeds(out / REPEAT_FOLDER, repeat.publication.run_id, metrics)
+            changes = confirm_speed(changes, speeds)
         database.record_changes(run_id, changes)
         changes.to_csv(out / CHANGES_NAME, index=False)
-        index = build_site(database, site, modalities, thresholds=thresholds, metrics=metrics)
-    return Nightly(summary, run_id, changes, index)
+        index = build_site(database, site, modalities, thresholds=thresholds, metrics=metrics, report=report)
+    return Nightly(summary, run_id, changes, index, load, repeat)
 
 
 def record_nightly(
@@ -111,8 +214,9 @@ def record_nightly(
     argv: Sequence[str],
     seeds: int,
     metrics: Metrics = CORE,
+    load: Mapping[str, Any] | None = None,
 ) -> int:
-    """Append run ``run_id`` of the results database in ``out`` to ``history``, with this machine and commit.
+    """Append run ``run_id`` of the results database in ``out`` to ``history``, with this machine, its load and commit.
 
     Returns
     -------
@@ -133,6 +237,7 @@ def record_nightly(
             argv=argv,
             seeds=seeds,
             metrics=metrics,
+            load=load,
         )
 
 
@@ -176,6 +281,6 @@ def _first(names: list[str], shown: int = 3) -> str:
 
 
 def _note(rows: pd.DataFrame) -> str:
-    """What a reader must know of a group's changes: the first flag of its rows."""
-    flags = [flag for flag in rows.get("flag", pd.Series(dtype=str)).fillna("") if flag]
-    return flags[0] + (f" (+{len(flags) - 1})" if len(flags) > 1 else "") if flags else ""
+    """What a reader must know of a group's changes: the first note of its rows, and how many more there are."""
+    notes = [note for note in rows["note"].fillna("") if note]
+    return notes[0] + (f" (+{len(notes) - 1})" if len(notes) > 1 else "") if notes else ""

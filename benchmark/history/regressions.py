@@ -13,11 +13,20 @@ compared with the earlier runs of the same series
   2 points for a rate, 10 % of the earlier value for an RMSE).  A
   deterministic tracker, or a single seed on both sides, has a point
   interval, so the minimum effect alone decides.
-* **Speed** (metrics of kind ``speed``: fps) compares the run's median over
-  seeds with the median of the last ``window`` earlier runs *on the same
-  machine*; a change reaches the minimum effect (10 % of the earlier
-  median).  Cells that spent less than ``min_step_s`` in their trackers'
-  steps are too short to time.
+* **Speed** (the judged metrics of kind ``speed``: ``cpu_fps``; ``wall_fps``
+  is shown, never judged, :data:`benchmark.metrics.WALL_SPEED`) compares
+  the run's median over seeds with the median of the per-run medians of the
+  last ``window`` earlier runs *on the same machine*.  A change counts when
+  it exceeds both the minimum effect (10 % of the earlier median) and the
+  series' own noise, ``k`` times the scaled median absolute deviation of
+  those per-run medians (:func:`speed_noise`); the larger of the two is the
+  row's ``noise``.  With fewer than :data:`NOISE_RUNS` earlier runs on the
+  machine there is no noise estimate: a change beyond the minimum effect is
+  then listed with the verdict ``unjudged`` and a ``note`` saying why.  Cells
+  that spent less than ``min_step_s`` in their trackers' steps are too
+  short to time.  A speed change is a candidate until a repeat of its cells
+  holds it (:func:`confirm_speed`, run by :mod:`benchmark.history.nightly`):
+  ``confirmed`` is then true, or the verdict becomes ``unconfirmed``.
 
 A change for the worse is a regression, for the better an improvement.
 :func:`steps` finds where a metric's level changed over the whole history
@@ -53,17 +62,32 @@ CHANGE_COLUMNS = [
     "high",
     "verdict",
     "cause",
+    "noise",
+    "confirmed",
     "effects",
-    "flag",
+    "note",
 ]
 """Columns of :func:`find_changes`'s table."""
 
 ESTIMATED_SHARE = 0.02
 """How much the mean number of frames with an estimate may move (a share of the earlier count) before an RMSE
-change beside it is flagged: a few frames more or less do not change what an RMSE averages over."""
+change beside it is noted: a few frames more or less do not change what an RMSE averages over."""
 
 GROUP_COLUMNS = ["verdict", "kind", "tracker", "cause", "datasets", "metrics", "count", "largest", "headline", "rows"]
 """Columns of :func:`group_changes`'s table."""
+
+NOISE_RUNS = 3
+"""Earlier runs on the same machine without which a speed series has no noise estimate, and no speed verdict.
+
+Three is the fewest whose median absolute deviation is not set by one
+value alone (of two values it is half their distance).
+"""
+
+MAD_TO_SD = 1.4826
+"""The median absolute deviation of normal values times this is their standard deviation."""
+
+NOISE_MULTIPLE = 3.0
+"""``k``: a speed change counts beyond ``k`` scaled MADs of the earlier runs' medians (see :func:`speed_noise`)."""
 
 
 @dataclass(frozen=True)
@@ -81,11 +105,19 @@ class Thresholds:
         Metric name to a minimum effect other than the metric's own, in
         the same terms (points for a rate, a share for an RMSE or fps),
         e.g. ``{"rmse_d_px": 0.2}``.
+
+    noise_multiple : float
+        ``k`` of the speed noise (:func:`speed_noise`).
+    noise_runs : int
+        Earlier runs on the same machine without which a speed series has
+        no noise estimate and no speed verdict.
     """
 
     window: int = 5
     min_step_s: float = 2.0
     overrides: Mapping[str, float] = field(default_factory=dict)
+    noise_multiple: float = NOISE_MULTIPLE
+    noise_runs: int = NOISE_RUNS
 
     def minimum_effect(self, metric: Metric, before: float) -> float:
         """The smallest change of ``metric`` from ``before`` that counts, in the metric's units."""
@@ -93,8 +125,62 @@ class Thresholds:
 
 
 def judged_metrics(cells: pd.DataFrame, metrics: Metrics) -> list[Metric]:
-    """The metrics of ``metrics`` that are columns of a table of cells, in column order."""
-    return [metric for column in cells.columns if (metric := metrics.named(str(column))) is not None]
+    """The metrics of ``metrics`` that are columns of a table of cells and are judged, in column order.
+
+    A metric that is shown but not judged (:attr:`benchmark.metrics.Metric.judged`, such as ``wall_fps``) is left out.
+    """
+    return [metric for column in cells.columns if (metric := metrics.named(str(column))) is not None and metric.judged]
+
+
+def speed_noise(medians: Sequence[float] | np.ndarray, multiple: float = NOISE_MULTIPLE) -> float:
+    """The noise of a speed series: ``multiple`` times the scaled median absolute deviation of its per-run medians.
+
+    Parameters
+    ----------
+    medians : sequence of float
+        One value per earlier run on the machine: the median over its seeds.
+    multiple : float
+        ``k``.
+
+    Returns
+    -------
+    float
+        ``k * 1.4826 * median(|m - median(m)|)``, in the metric's units.
+
+    Notes
+    -----
+    The scaled MAD estimates the standard deviation of normal values and,
+    unlike the standard deviation, is not inflated by one run that a busy
+    neighbour slowed.  ``k = 3`` is the usual three-sigma rule: a normal
+    night leaves it with probability 0.27 %, and a change must also hold on
+    a repeat to count, which a chance excursion does with about that
+    probability again.  The estimate is loose from the three to five runs of
+    a window (the MAD of three values is the middle one's distance to the
+    nearer other), so it may come out small; the metric's minimum effect
+    (10 %) is then the floor, as :func:`find_changes` takes the larger of
+    the two.
+
+    Measured on this project's shared two-core machine (load average 9 to
+    16 from other work throughout): ten tiny nightlies with nothing changed
+    (hough, foresti_lines and condensation-fast on camera/S5 and S6, one
+    seed), five of them while another process spun on both cores.  The
+    scaled MAD of ``cpu_fps`` over five runs was 1.1 % to 7.2 % of the
+    median for eleven of the twelve series, and 19.7 % for
+    condensation-fast on S6 under the extra load (its runs 1103 to 1590
+    fps); that of ``wall_fps`` was 1.3 % to 46 %, its range up to 198 %.
+    With ``k = 3`` the typical CPU series' noise (3 x 2-6 %) lies around
+    the 10 % floor, so the floor decides for a steady series and the noise
+    for one the machine disturbs.  Of the 24 series and nights with a noise
+    estimate (nights 4 and 5 of both sets) none gave a verdict, while the
+    fixed 10 % rule on the same runs flagged up to 2 of 4 nights per series
+    on ``cpu_fps`` and 1 to 4 on ``wall_fps``
+    (``tests/benchmark/history/test_regressions.py`` keeps one such series).
+    """
+    values = np.asarray(medians, dtype=float)
+    values = values[np.isfinite(values)]
+    if not values.size:
+        return math.nan
+    return float(multiple * MAD_TO_SD * np.median(np.abs(values - np.median(values))))
 
 
 def _varies(sample: np.ndarray) -> bool:
@@ -163,7 +249,7 @@ def _effects(change: float, minimum: float) -> float:
     return abs(change) / minimum if minimum > 0 else math.inf
 
 
-def _estimate_flag(metric: Metric, now: pd.DataFrame, earlier: pd.DataFrame) -> str:
+def _estimate_note(metric: Metric, now: pd.DataFrame, earlier: pd.DataFrame) -> str:
     """Why an RMSE change may not mean what it says: the frames it averages over changed in number with it.
 
     An RMSE is taken over the frames with an estimate and a truth; a tracker
@@ -183,8 +269,90 @@ def _estimate_flag(metric: Metric, now: pd.DataFrame, earlier: pd.DataFrame) -> 
 
 
 def _step_seconds(cells: pd.DataFrame) -> float:
-    """The time the cells spent in their trackers' steps, from their frames and fps."""
+    """The CPU time the cells spent in their trackers' steps, from their frames and CPU speed."""
     return float((cells["frames"] / cells[SPEED.name]).sum()) if SPEED.name in cells else 0.0
+
+
+def _speed_change(
+    metric: Metric, current: pd.DataFrame, same_machine: pd.DataFrame, thresholds: Thresholds
+) -> dict[str, object] | None:
+    """The speed change of one series (see the module's notes), or None when there is none to list."""
+    if metric.name not in same_machine or not math.isfinite(now_median := float(current[metric.name].median())):
+        return None
+    timed = same_machine.dropna(subset=[metric.name])
+    runs = sorted(timed["run_id"].unique())[-thresholds.window :]
+    medians = timed[timed["run_id"].isin(runs)].groupby("run_id")[metric.name].median()
+    if medians.empty or _step_seconds(current) < thresholds.min_step_s:
+        return None
+    before = float(medians.median())
+    change = now_median - before
+    minimum = thresholds.minimum_effect(metric, before)
+    if not _verdict(metric, change, True, minimum):
+        return None
+    row: dict[str, object] = dict(
+        metric=metric.name, kind="speed", before=before, after=now_median, change=change, low=math.nan,
+        high=math.nan, confirmed=False, effects=_effects(change, minimum),
+    )
+    if len(medians) < thresholds.noise_runs:
+        note = (
+            f"not judged: {len(medians)} earlier run{'s' if len(medians) != 1 else ''} on this machine, "
+            f"{thresholds.noise_runs} needed to estimate the noise"
+        )
+        return dict(row, verdict="unjudged", noise=math.nan, note=note)
+    spread = speed_noise(medians.to_numpy(), thresholds.noise_multiple)
+    noise = max(minimum, spread)
+    verdict = _verdict(metric, change, True, noise)
+    if not verdict:
+        return None
+    source = "the minimum effect" if noise == minimum else f"{thresholds.noise_multiple:g} x MAD"
+    note = f"beyond {source} of {len(medians)} earlier runs on this machine; not yet repeated"
+    return dict(row, verdict=verdict, noise=noise, effects=_effects(change, noise), note=note)
+
+
+def confirm_speed(changes: pd.DataFrame, repeat: pd.DataFrame) -> pd.DataFrame:
+    """The changes with each speed change held against a repeat of its cells.
+
+    Parameters
+    ----------
+    changes : pandas.DataFrame
+        As :func:`find_changes` gives them.
+    repeat : pandas.DataFrame
+        The repeated cells' values: ``tracker``, ``dataset`` and a column
+        per speed metric, a row per seed (cells that did not end ok left
+        out).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``changes`` where each speed regression or improvement is
+        ``confirmed`` when the repeat's median over seeds also differs from
+        the earlier median (``before``) by at least the row's ``noise``, in
+        the same direction; otherwise its verdict becomes ``unconfirmed``:
+        reported, and neither a regression nor an improvement.  Its ``note``
+        gives the repeat's median.  Regressions stay first.
+    """
+    changes = changes.copy()
+    judged = changes["kind"].eq("speed") & changes["verdict"].isin(["regression", "improvement"])
+    for index in changes.index[judged]:
+        row = changes.loc[index]
+        cells = repeat[(repeat["tracker"] == row["tracker"]) & (repeat["dataset"] == row["dataset"])]
+        again = float(cells[row["metric"]].median()) if row["metric"] in cells and len(cells) else math.nan
+        moved = again - float(row["before"])
+        held = math.isfinite(again) and abs(moved) >= float(row["noise"]) and moved * float(row["change"]) > 0
+        repeated = f"repeat {again:.6g}" if math.isfinite(again) else "the repeat gave no value"
+        changes.loc[index, "confirmed"] = held
+        changes.loc[index, "note"] = f"{repeated}: {'held' if held else 'within the noise, not held'}"
+        if not held:
+            changes.loc[index, "verdict"] = "unconfirmed"
+    return _ordered(changes)
+
+
+def _ordered(table: pd.DataFrame) -> pd.DataFrame:
+    """Regressions first, then by tracker, dataset and metric."""
+    order = table.assign(_regression=table["verdict"] != "regression")
+    return order.sort_values(["_regression", "tracker", "dataset", "metric"]).drop(columns="_regression").reset_index(
+        drop=True
+    )
 
 
 def find_changes(
@@ -219,12 +387,17 @@ def find_changes(
         Columns :data:`CHANGE_COLUMNS`: per tracker, dataset and metric with
         a verdict, the earlier and current values (mean over seeds, or
         median for speed), their difference with its interval, ``kind``
-        (``speed`` for a metric of that kind, else ``accuracy``), ``verdict`` (``regression`` or
-        ``improvement``), ``cause`` (the tracker's version or parameters
-        that changed, if any), ``effects`` (``|change|`` in minimum effects)
-        and ``flag`` (for an RMSE: the number of frames with an estimate
-        changed with it, see :func:`_estimate_flag`).  Only cells with status
-        ``ok`` count.
+        (``speed`` for a metric of that kind, else ``accuracy``), ``verdict``
+        (``regression`` or ``improvement``; for speed also ``unjudged``,
+        a change beyond the minimum effect of a series without a noise
+        estimate), ``cause`` (the tracker's version or parameters that
+        changed, if any), ``noise`` (speed: the threshold the change passed,
+        in the metric's units), ``confirmed`` (accuracy: true; speed: false
+        until :func:`confirm_speed` holds it on a repeat), ``effects``
+        (``|change|`` in minimum effects, or in ``noise`` for speed) and
+        ``note`` (what a reader must know: for an RMSE, that the number of
+        frames with an estimate changed with it, see :func:`_estimate_note`;
+        for speed, how it was judged).  Only cells with status ``ok`` count.
     """
     thresholds = thresholds or Thresholds()
     cells = history_cells[history_cells["status"] == "ok"]
@@ -256,31 +429,16 @@ def find_changes(
                 rows.append(
                     dict(shared, metric=metric.name, kind="accuracy", before=float(before.mean()),
                          after=float(after.mean()), change=change, low=low, high=high, verdict=verdict,
-                         effects=_effects(change, minimum), flag=_estimate_flag(metric, current, baseline))
+                         noise=math.nan, confirmed=True, effects=_effects(change, minimum),
+                         note=_estimate_note(metric, current, baseline))
                 )
         same_machine = earlier[earlier["machine_key"] == machine]
-        speed_runs = sorted(same_machine["run_id"].unique())[-thresholds.window :]
-        step_s = _step_seconds(current)
         for metric in (m for m in judged if m.kind == "speed"):
-            speeds = same_machine[same_machine["run_id"].isin(speed_runs)].groupby("run_id")[metric.name].median()
-            speeds = speeds.dropna()
-            now_median = float(current[metric.name].median())
-            if len(speeds) and math.isfinite(now_median) and step_s >= thresholds.min_step_s:
-                before_median = float(speeds.median())
-                change = now_median - before_median
-                minimum = thresholds.minimum_effect(metric, before_median)
-                verdict = _verdict(metric, change, True, minimum)
-                if verdict:
-                    rows.append(
-                        dict(shared, metric=metric.name, kind="speed", before=before_median, after=now_median,
-                             change=change, low=math.nan, high=math.nan, verdict=verdict,
-                             effects=_effects(change, minimum), flag="")
-                    )
-    table = pd.DataFrame(rows, columns=CHANGE_COLUMNS)
-    order = table.assign(_regression=table["verdict"] != "regression")
-    return order.sort_values(["_regression", "tracker", "dataset", "metric"]).drop(columns="_regression").reset_index(
-        drop=True
-    )
+            speed = _speed_change(metric, current, same_machine, thresholds)
+            if speed is not None:
+                rows.append(dict(shared, **speed))
+    table = pd.DataFrame(rows, columns=CHANGE_COLUMNS).astype({"confirmed": bool})
+    return _ordered(table)
 
 
 def group_changes(changes: pd.DataFrame, metrics: Metrics = CORE) -> pd.DataFrame:

@@ -1,7 +1,7 @@
 """The metrics room: every number a board, the history and the regressions report about a tracker.
 
 A :class:`Metric` declares all there is to know about one number: its name
-(the board column, unit last: ``correct_pct``, ``rmse_d_px``, ``fps``), which
+(the board column, unit last: ``correct_pct``, ``rmse_d_px``, ``cpu_fps``), which
 direction is better, how a cell's value comes from its frames, how it is
 shown and the smallest change a regression counts.  Results
 (:func:`benchmark.results.summarise`), intervals over seeds
@@ -24,7 +24,12 @@ error), which keeps the sums finite for any finite errors.
 Where metrics come from
 -----------------------
 The detection rates (seeds/004, section VI-C, Table V) and the speed
-(seeds/000, section 5.2.5) are core metrics, on every board.  Each error
+(seeds/000, section 5.2.5) are core metrics, on every board.  Speed is
+counted twice: ``cpu_fps`` per second of the CPU time of the thread that
+ran ``step``, the tracker's own work, which is what is ranked, trended and
+judged; and ``wall_fps`` per second of its wall time, which also counts
+the waits for a core that other processes held, shown beside it and never
+judged (:mod:`benchmark.runner`).  Each error
 column ``err_X`` of a modality's scorer is an RMSE ``rmse_X``
 (seeds/000, section 5.2.3); the first of them ranks the board after the
 correct rate.  Plugins add others through the ``trackbench_register_metrics``
@@ -136,6 +141,10 @@ class Metric:
         metrics before it).
     headline : bool
         Whether trend plots show it.
+    judged : bool
+        Whether regressions judge it (:mod:`benchmark.history.regressions`);
+        a number that measures the machine's other work more than the
+        tracker's, such as the wall-clock speed, is shown but not judged.
     """
 
     name: Annotated[str, Field(pattern=NAME_PATTERN)]
@@ -153,10 +162,11 @@ class Metric:
     spread: bool = False
     ranks: bool = False
     headline: bool = False
+    judged: bool = True
 
     @property
     def unit(self) -> str:
-        """The unit, the last word of the name: ``pct``, ``px``, ``fps``."""
+        """The unit, the last word of the name: ``pct``, ``px``, ``fps`` (of ``cpu_fps``)."""
         return self.name.rsplit("_", 1)[-1]
 
     @property
@@ -249,9 +259,14 @@ def _root_mean_square(sums: np.ndarray, scale: float) -> np.ndarray:
         return scale * np.sqrt(sums[..., 1] / sums[..., 0])
 
 
-def _step_sums(frames: pd.DataFrame, scale: float) -> tuple[float, float]:
-    """Frames processed, and milliseconds of ``step``."""
-    return float(len(frames)), float(frames["step_ms"].sum()) if "step_ms" in frames else 0.0
+def _time_sums(column: str, frames: pd.DataFrame, scale: float) -> tuple[float, float]:
+    """Frames processed whose ``step`` was timed in ``column``, and its milliseconds over them.
+
+    A frame without a time (``step_ms`` of a results file older than the
+    CPU timing, :mod:`benchmark.store`) counts in neither sum.
+    """
+    times = _finite(frames, column)
+    return float(times.size), float(times.sum())
 
 
 def _frames_per_second(sums: np.ndarray, scale: float) -> np.ndarray:
@@ -280,19 +295,48 @@ RATES: tuple[Metric, ...] = tuple(
 """The detection rates, percentages of scored frames summing to 100 (seeds/004, section VI-C, Table V)."""
 
 SPEED = Metric(
-    name="fps",
+    name="cpu_fps",
     better="higher",
     kind="speed",
     columns=("step_ms",),
-    sums=_step_sums,
+    sums=functools.partial(_time_sums, "step_ms"),
     value=_frames_per_second,
     digits=0,
     minimum_effect=Effect(0.10, relative=True),
-    description="frames processed per second of the tracker's step (seeds/000, section 5.2.5)",
+    description="frames processed per second of CPU time of the thread running the tracker's step "
+    "(seeds/000, section 5.2.5)",
     interval=False,
     headline=True,
 )
-"""Frames processed per second of ``step`` time; it measures the machine too, so it has no interval over seeds."""
+"""Frames processed per second of the CPU time of ``step``'s thread: the tracker's own work.
+
+It measures the machine's CPU too, so it has no interval over seeds and is
+compared on the same machine only.
+"""
+
+WALL_SPEED = Metric(
+    name="wall_fps",
+    better="higher",
+    kind="speed",
+    columns=("wall_ms",),
+    sums=functools.partial(_time_sums, "wall_ms"),
+    value=_frames_per_second,
+    digits=0,
+    minimum_effect=Effect(0.10, relative=True),
+    description="frames processed per second of wall-clock time of the tracker's step, waits for a core "
+    "held by other processes included; shown, not judged",
+    interval=False,
+    judged=False,
+)
+"""Frames processed per second of the wall time of ``step``; not judged for regressions.
+
+The wall time adds to the tracker's work every wait for a core that
+another process held: on a shared two-core machine it told how busy the
+neighbours were, and judged at 10 % it turned nightlies with nothing
+changed red.  :data:`SPEED` judges the tracker's speed; this one is shown
+beside it, so that a reader sees how far the machine's load stretched the
+run.
+"""
 
 
 def error_metric(column: str, *, ranks: bool = False) -> Metric:
@@ -371,19 +415,19 @@ class Metrics:
         return Metrics((*self.added, (metric, modality)))
 
     def _all(self) -> Iterable[tuple[Metric, str | None]]:
-        yield from ((metric, None) for metric in (*RATES, SPEED))
+        yield from ((metric, None) for metric in (*RATES, SPEED, WALL_SPEED))
         yield from self.added
 
     def for_board(self, modality: str | None, error_columns: Sequence[str]) -> tuple[Metric, ...]:
         """The metrics of a board of ``modality`` whose scorer has ``error_columns``, in board order.
 
         Board order is by kind (:data:`KINDS`), then the rates, the RMSEs
-        in the scorer's order, the speed and the added metrics in the order
-        they were added.
+        in the scorer's order, the speeds (CPU, then wall) and the added
+        metrics in the order they were added.
         """
         errors = [error_metric(column, ranks=i == 0) for i, column in enumerate(error_columns)]
         added = [metric for metric, scope in self.added if scope is None or scope == modality]
-        ordered = [*RATES, *errors, SPEED, *added]
+        ordered = [*RATES, *errors, SPEED, WALL_SPEED, *added]
         return tuple(sorted(ordered, key=lambda metric: KINDS.index(metric.kind)))
 
     def named(self, name: str) -> Metric | None:
@@ -415,6 +459,7 @@ __all__ = [
     "KINDS",
     "RATES",
     "SPEED",
+    "WALL_SPEED",
     "Effect",
     "Metric",
     "Metrics",

@@ -3,7 +3,7 @@
 Boards keep full precision (and CSV exports them so); the Markdown, HTML and
 terminal forms round each metric to its declared digits
 (:attr:`benchmark.metrics.Metric.digits`: percentages to 0.1, RMSEs to
-0.01, fps to 1), and other columns by their unit (the tables of
+0.01, frames per second to 1), and other columns by their unit (the tables of
 ``trackbench pose-table``: metres to 0.01, degrees to 0.1, pixels to 1,
 variances to three digits).
 """
@@ -11,34 +11,13 @@ variances to three digits).
 from __future__ import annotations
 
 import math
-import re
 
 import pandas as pd
 
 from benchmark.metrics import CORE, Metrics
+from benchmark.text import one_line, printable  # noqa: F401 - re-exported: code written against this module
 
 
-_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
-"""Control characters but tab and newline: C0, DEL and C1, terminal escapes (ESC, CSI) among them."""
-
-
-def printable(text: object) -> str:
-    r"""``text`` with every control character but tab and newline written as an escape, ``\x1b`` for ESC.
-
-    Names and messages come from plugins and data files; shown raw, their
-    escape sequences would recolour, retitle or rewrite the user's terminal.
-
-    Examples
-    --------
-    >>> print(printable("\x1b[31mred\x07"))
-    \x1b[31mred\x07
-    """
-    return _CONTROL.sub(lambda match: match.group().encode("unicode_escape").decode("ascii"), str(text))
-
-
-def one_line(text: object) -> str:
-    """``text`` on one line, printable: runs of whitespace, newlines included, become one space (:func:`printable`)."""
-    return printable(" ".join(str(text).split()))
 
 
 def format_value(column: str, value: object, metrics: Metrics = CORE) -> str:

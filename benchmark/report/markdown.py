@@ -15,7 +15,8 @@ from collections.abc import Mapping, Sequence
 import pandas as pd
 
 from benchmark.metrics import CORE, RATES, Metrics
-from benchmark.report.display import alignment, display_table, format_value, one_line, printable
+from benchmark.report.display import alignment, display_table, format_value
+from benchmark.text import one_line, printable
 
 _INLINE_MARKUP = re.compile(r"[\\`*_\[\]|~$]")
 """Characters that mean something anywhere in a line: code, emphasis, links, table cells, strikethrough, math."""

@@ -28,6 +28,7 @@ implements the cache builder and the three per-frame parts.
 
 from __future__ import annotations
 
+import functools
 from abc import abstractmethod
 from collections.abc import Iterator, Mapping
 from typing import Any, ClassVar, Generic, Protocol, Self, TypeVar
@@ -97,9 +98,13 @@ class SimulatedScene(Sequence, Generic[SpecT, CacheT]):
         """The definition of this sequence."""
         return self._spec
 
-    @property
+    @functools.cached_property
     def identity(self) -> DatasetIdentity:
-        """The scene's identity: its generator and version as source, its spec's digest as fingerprint."""
+        """The scene's identity: its generator and version as source, its spec's digest as fingerprint.
+
+        Worked out once: the spec is frozen, and the registry asks every
+        sequence's identity each time a suite is added.
+        """
         return DatasetIdentity(
             self._spec.name, self.info.modality, source=generator_source(type(self)), fingerprint=digest(self._spec)
         )

@@ -32,7 +32,7 @@ the cell it is compared with.  The build's ``manifest.json`` keeps each
 page's hash and files; a page whose hash equals the shown build's is
 hard-linked from it (copied where links fail) instead of drawn.  The
 pages to draw are drawn by worker processes, forked with the history
-loaded (:data:`WORKERS`), each opening the database on its own.
+loaded (:data:`WORKERS`), each connecting to the database on its own.
 """
 
 from __future__ import annotations
@@ -166,9 +166,9 @@ _night: Night | None = None
 
 
 def _open_own_history() -> None:
-    """In a worker: a connection of its own to the history (a forked connection is the parent's)."""
+    """In a worker: connections of its own to the history (a forked connection is the parent's)."""
     assert _night is not None
-    _night.history = History(_night.history.location, must_exist=True)
+    _night.history.after_fork()
 
 
 def _draw(kind: str, key: Any, out: Path) -> Drawn:

@@ -59,6 +59,7 @@ the rule.
 
 from __future__ import annotations
 
+import functools
 import tomllib
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import field
@@ -195,9 +196,24 @@ def shipped_world(name: Any, where: str) -> dict[str, Any]:
     if not item.is_file():
         raise DataError(f"{where}: {WORLD_KEY} {name!r} names no world in {WORLDS_FOLDER}/")
     try:
-        return tomllib.loads(item.read_text(encoding="utf-8"))
+        return _copied(_parsed(item.read_text(encoding="utf-8")))
     except tomllib.TOMLDecodeError as exc:
         raise DataError(f"{WORLDS_FOLDER}/{name}.toml: not valid TOML: {exc}") from exc
+
+
+@functools.lru_cache(maxsize=16)
+def _parsed(text: str) -> dict[str, Any]:
+    """``text`` parsed as TOML, once for every sequence drawn in the same world (:func:`_copied` before use)."""
+    return tomllib.loads(text)
+
+
+def _copied(value: Any) -> Any:
+    """A copy of parsed TOML whose tables and arrays are new (its other values are immutable)."""
+    if isinstance(value, dict):
+        return {key: _copied(item) for key, item in value.items()}
+    if isinstance(value, list):
+        return [_copied(item) for item in value]
+    return value
 
 
 def shipped_table(reference: str, where: str, _chain: tuple[str, ...] = ()) -> dict[str, Any]:

@@ -42,8 +42,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from trackbench_condensation.measure import best_pairs, line_scores
+from benchmark.lazy import lazy_module
 from trackbench_condensation.observation import as_grey_image
+
+# The numba kernels load on the first frame, so that listing the trackers does not import numba.
+measure = lazy_module("trackbench_condensation.measure")
 
 
 @dataclass(frozen=True)
@@ -124,8 +127,8 @@ class LineScan:
                 return np.zeros((0, 4)), np.zeros(0)
         reach = 0.5 * math.hypot(width, height)
         offsets = np.arange(-reach, reach + 1e-9, self.offset_step_px)
-        responses = line_scores(image, taps, float(spacing), alphas, offsets)
-        pairs, values = best_pairs(
+        responses = measure.line_scores(image, taps, float(spacing), alphas, offsets)
+        pairs, values = measure.best_pairs(
             responses, offsets, float(self.width_range_px[0]), float(self.width_range_px[1]), int(self.pairs_per_angle)
         )
         order = np.argsort(-values, kind="stable")[:count]

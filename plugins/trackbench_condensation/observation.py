@@ -46,8 +46,11 @@ from typing import Literal, get_args
 import numpy as np
 
 from benchmark.errors import DataError
+from benchmark.lazy import lazy_module
 from trackbench_condensation.kernel import dog_taps
-from trackbench_condensation.measure import particle_weights
+
+# The numba kernels load on the first frame, so that listing the trackers does not import numba.
+measure = lazy_module("trackbench_condensation.measure")
 
 Interpolation = Literal["nearest", "bilinear"]
 """How the image is read between pixel centres."""
@@ -140,7 +143,7 @@ class BorderObservation:
         return self._weights(states, image, float(self.exponent))
 
     def _weights(self, states: np.ndarray, image: np.ndarray, exponent: float) -> np.ndarray:
-        return particle_weights(
+        return measure.particle_weights(
             np.ascontiguousarray(states, dtype=float),
             as_grey_image(image),
             self.taps,

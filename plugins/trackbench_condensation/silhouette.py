@@ -52,9 +52,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from benchmark.lazy import lazy_module
 from trackbench_condensation.kernel import dog_sigma
-from trackbench_condensation.measure import line_scores
 from trackbench_condensation.observation import as_grey_image
+
+# The numba kernels load on the first frame, so that listing the trackers does not import numba.
+measure = lazy_module("trackbench_condensation.measure")
 
 
 @dataclass(frozen=True)
@@ -134,7 +137,7 @@ class Silhouette:
         def counts(side: int, offsets: np.ndarray) -> np.ndarray:
             # side -1: the left border, moved inwards (+n) by the offsets; +1: the right one (-n).
             lines = (d + side * (0.5 * w - offsets)) * cos_beta
-            return line_scores(image, self.taps, self.spacing, normals[(side + 1) // 2], lines)[0]
+            return measure.line_scores(image, self.taps, self.spacing, normals[(side + 1) // 2], lines)[0]
 
         # Eq. (4.11)'s polarity: a bright cable has c_l < 0 < c_r.
         here = np.zeros(1)

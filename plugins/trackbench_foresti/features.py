@@ -41,17 +41,18 @@ from typing import Any
 
 import numpy as np
 
+from benchmark.lazy import lazy_module
 from benchmark.modalities.camera.geometry import ImageSize, Line
 from benchmark.modalities.camera.io.video import check_grey_image
-from trackbench_foresti.domains import compile_kernels as compile_domain_kernels
-from trackbench_foresti.domains import restore_domain
 from trackbench_foresti.edges import EdgeMap, as_grey, canny_from_gradient, smoothed_gradient
 from trackbench_foresti.grouping import choose_pair
-from trackbench_foresti.hough import compile_kernels as compile_hough_kernels
-from trackbench_foresti.hough import hough_lines
 from trackbench_foresti.params import FeatureParams
 from trackbench_foresti.reliability import is_reliable, length_and_robustness, reliability, strength
 from trackbench_foresti.thresholds import THRESHOLD_RULES
+
+# The numba kernels load on the first frame, so that listing the trackers does not import numba.
+domains = lazy_module("trackbench_foresti.domains")
+hough = lazy_module("trackbench_foresti.hough")
 
 __all__ = ["CandidateLine", "FeatureExtractor", "FeatureParams", "as_grey", "compile_kernels"]
 
@@ -184,11 +185,11 @@ class FeatureExtractor:
         check_grey_image(image)
         p = self.params
         height = image.shape[0]
-        found = hough_lines(self.edges(image), **self._hough_for(height))
+        found = hough.hough_lines(self.edges(image), **self._hough_for(height))
         max_gap, min_run = p.scaled_count(p.max_gap, height), p.scaled_count(p.min_run, height)
         kept = []
         for line in found:
-            domain = restore_domain(line.domain, max_gap, min_run)
+            domain = domains.restore_domain(line.domain, max_gap, min_run)
             pl, pr = length_and_robustness(domain)
             if is_reliable(pl, pr, p.min_pl, p.min_pr):
                 kept.append((line, domain, pl, pr))
@@ -253,5 +254,5 @@ def compile_kernels() -> None:
     Trackers call this before their first timed frame, so that frames per
     second measure the extractor rather than the compiler.
     """
-    compile_hough_kernels()
-    compile_domain_kernels()
+    hough.compile_kernels()
+    domains.compile_kernels()

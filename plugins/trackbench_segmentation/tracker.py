@@ -35,22 +35,30 @@ deterministic and does not use the random generator.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from benchmark.filters.kalman import Gaussian, GaussianBeliefView
 from benchmark.filters.kalman import compile_kernels as compile_filter_kernels
+from benchmark.lazy import lazy_module
 from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
-from trackbench_segmentation.contours import compile_kernels as compile_walk_kernels
-from trackbench_segmentation.detector import Prediction, detect_pairs
-from trackbench_segmentation.pairing import BorderPair
-from trackbench_segmentation.histogram import compile_kernels as compile_histogram_kernels
-from trackbench_segmentation.lines import compile_kernels as compile_group_kernels
 from trackbench_segmentation.params import SegmentationParams
 from trackbench_segmentation.scaling import frame_params
 from trackbench_segmentation.tracking import CableKalman, region_of_interest
+
+if TYPE_CHECKING:
+    from trackbench_segmentation.detector import Prediction
+    from trackbench_segmentation.pairing import BorderPair
+
+# The detector and its numba kernels load on the first frame, so that listing the trackers does not import numba.
+contours = lazy_module("trackbench_segmentation.contours")
+detector = lazy_module("trackbench_segmentation.detector")
+histogram = lazy_module("trackbench_segmentation.histogram")
+lines = lazy_module("trackbench_segmentation.lines")
 
 
 class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
@@ -115,9 +123,9 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
             starts the filter.
         """
         compile_filter_kernels()
-        compile_walk_kernels()
-        compile_histogram_kernels()
-        compile_group_kernels()
+        contours.compile_kernels()
+        histogram.compile_kernels()
+        lines.compile_kernels()
         self.filter.forget()
         self.prediction = None
         self._misses = 0
@@ -171,8 +179,8 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
         else:
             roi, _ = region_of_interest(belief, (width, height), p.roi_margin_px, p.roi_sigmas)
             alpha = float(np.clip(belief.mean[1], -1.4, 1.4))
-            self.prediction = Prediction(roi, alpha, float(belief.mean[2]))
-        pair = self._first_in_gate(detect_pairs(image, p, self.prediction), p.gate_sigmas)
+            self.prediction = detector.Prediction(roi, alpha, float(belief.mean[2]))
+        pair = self._first_in_gate(detector.detect_pairs(image, p, self.prediction), p.gate_sigmas)
         if pair is None:
             self._misses += 1
             if self._misses >= p.max_misses:

@@ -40,7 +40,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import ndtr
 
 from benchmark.modalities.sonar.model import beam_footprint
 from trackbench_sonar.cross_section import CrossSection
@@ -146,6 +145,8 @@ def smoothed_box(offset: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     """The unit box (1 for ``|v| < 1``) convolved with ``N(0, sigma^2)``: ``Phi((v+1)/r) - Phi((v-1)/r)``."""
     v = np.asarray(offset, dtype=float)
     r = np.maximum(np.asarray(sigma, dtype=float), 1e-9)
+    from scipy.special import ndtr  # here, so that loading the plugin does not import SciPy
+
     return ndtr((v + 1.0) / r) - ndtr((v - 1.0) / r)
 
 

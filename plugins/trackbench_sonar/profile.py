@@ -40,7 +40,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-import pandas as pd
 
 from benchmark.errors import DataError
 from benchmark.modalities.sonar.model import Swath
@@ -112,6 +111,8 @@ def running_median(values: np.ndarray, window: int) -> np.ndarray:
         Shape ``(n,)``; near the ends the window is cut to the values that
         exist, which keeps it centred where it can.
     """
+    import pandas as pd  # here, so that loading the plugin does not import pandas
+
     return pd.Series(values).rolling(window, center=True, min_periods=1).median().to_numpy()
 
 

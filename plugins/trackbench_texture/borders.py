@@ -44,7 +44,6 @@ import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Literal
 
 import cv2
 import numba
@@ -52,6 +51,7 @@ import numpy as np
 
 from benchmark.modalities.camera.geometry import Line, cable_from_borders
 from benchmark.modalities.camera.model import CableState
+from trackbench_texture.params import Pairing
 from trackbench_texture.partner import MIN_STRENGTH, WIDEST_SHARE, partner_line
 from trackbench_texture.working import WorkingImage
 
@@ -386,9 +386,6 @@ def _paired(
             return sorted([line, second], key=lambda border: border.at(middle))
     return None
 
-
-Pairing = Literal["sides", "parallel", "profile", "parallel-profile"]
-"""The names of :data:`PAIRINGS`."""
 
 PAIRINGS: dict[str, Callable[..., list[ScanLine] | None]] = {
     "sides": _by_sides,

@@ -38,16 +38,24 @@ from __future__ import annotations
 import enum
 import functools
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-from sklearn._loss.loss import HalfBinomialLoss, HalfMultinomialLoss
-from sklearn.cluster import KMeans
-from sklearn.ensemble import HistGradientBoostingClassifier
 from threadpoolctl import threadpool_limits
 
 from benchmark.errors import DataError
-from trackbench_texture.descriptors import NAMES
-from trackbench_texture.forest import Forest
+from benchmark.lazy import lazy_module
+
+if TYPE_CHECKING:
+    from sklearn._loss.loss import HalfBinomialLoss, HalfMultinomialLoss
+    from sklearn.ensemble import HistGradientBoostingClassifier
+
+    from trackbench_texture.forest import Forest
+
+# scikit-learn and the numba kernels are imported where a model is fitted or applied, so that listing the trackers
+# does not import them.
+forest = lazy_module("trackbench_texture.forest")
+pixel_descriptors = lazy_module("trackbench_texture.descriptors")
 
 
 class Region(enum.IntEnum):
@@ -87,8 +95,10 @@ def split_ground(ground: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     spread = ground.std(axis=0)
     scaled = (ground - ground.mean(axis=0)) / np.where(spread > 0, spread, 1.0)
     with threadpool_limits(1):
+        from sklearn.cluster import KMeans
+
         clusters = KMeans(n_clusters=2, n_init=4, random_state=_seed(rng)).fit_predict(scaled)
-    blurriness = NAMES.index("blurriness")
+    blurriness = pixel_descriptors.NAMES.index("blurriness")
     means = [ground[clusters == k, blurriness].mean() for k in (0, 1)]
     sand = int(np.argmax(means))
     labels[clusters != sand] = Region.STONES_AND_VEGETATION
@@ -120,7 +130,7 @@ class RegionClassifier:
     @classmethod
     def of(cls, classifier: HistGradientBoostingClassifier, min_confidence: float) -> RegionClassifier:
         """The region classifier of a fitted scikit-learn classifier."""
-        return cls(Forest.of(classifier), tuple(int(c) for c in classifier.classes_), float(min_confidence))
+        return cls(forest.Forest.of(classifier), tuple(int(c) for c in classifier.classes_), float(min_confidence))
 
     @property
     def regions(self) -> tuple[Region, ...]:
@@ -130,6 +140,8 @@ class RegionClassifier:
     @functools.cached_property
     def _loss(self) -> HalfBinomialLoss | HalfMultinomialLoss:
         """The link from raw predictions to probabilities scikit-learn's classifier uses for this many classes."""
+        from sklearn._loss.loss import HalfBinomialLoss, HalfMultinomialLoss
+
         return HalfBinomialLoss() if len(self.classes) == 2 else HalfMultinomialLoss(n_classes=len(self.classes))
 
     def probabilities(self, descriptors: np.ndarray) -> np.ndarray:
@@ -199,6 +211,8 @@ def train_regions(
         raise DataError(f"texture: the training frames show no {missing} pixel, so the regions cannot be learned")
     labels = np.full(len(descriptors), Region.CABLE, dtype=np.int64)
     labels[~on_cable] = split_ground(descriptors[~on_cable], rng)
+    from sklearn.ensemble import HistGradientBoostingClassifier
+
     classifier = HistGradientBoostingClassifier(max_iter=rounds, early_stopping=False, random_state=_seed(rng))
     with threadpool_limits(1):
         classifier.fit(descriptors.astype(np.float64), labels)

@@ -28,11 +28,14 @@ classifier has at most 31 leaves per tree and only numeric descriptors.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numba
 import numpy as np
 from numba.cpython.unsafe.numbers import trailing_zeros
-from sklearn.ensemble import HistGradientBoostingClassifier
+
+if TYPE_CHECKING:
+    from sklearn.ensemble import HistGradientBoostingClassifier
 
 MAX_LEAVES = 64
 """The most leaves a tree may have: one bit of a ``uint64`` mask each."""

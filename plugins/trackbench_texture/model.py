@@ -20,6 +20,8 @@ same model bit for bit.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from collections.abc import Iterable
 from collections.abc import Sequence as SequenceOf
 from dataclasses import dataclass
@@ -27,14 +29,20 @@ from dataclasses import dataclass
 import numpy as np
 
 from benchmark.errors import DataError
+from benchmark.lazy import lazy_module
 from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState
 from benchmark.model import Frame, Sequence
 from trackbench_texture.classes import RegionClassifier, train_regions
-from trackbench_texture.descriptors import PixelKinds, densities, densities_at, pixel_kinds
 from trackbench_texture.labels import cable_mask
 from trackbench_texture.params import DescriptorParams, TextureParams
 from trackbench_texture.working import WorkingImage, working_image
+
+if TYPE_CHECKING:
+    from trackbench_texture.descriptors import PixelKinds
+
+# The numba kernels load on the first frame, so that listing the trackers does not import numba.
+pixel_descriptors = lazy_module("trackbench_texture.descriptors")
 
 
 @dataclass(frozen=True, eq=False)
@@ -97,7 +105,7 @@ class TextureModel:
         height, width = work.image.shape
         rows = np.arange(min(offset, height - 1), height, step)
         cols = np.arange(min(offset, width - 1), width, step)
-        classes = self.regions.classify(densities_at(kinds, settings.window_px, rows, cols))
+        classes = self.regions.classify(pixel_descriptors.densities_at(kinds, settings.window_px, rows, cols))
         nearest_row = np.clip(np.rint((np.arange(height) - rows[0]) / step).astype(int), 0, len(rows) - 1)
         nearest_col = np.clip(np.rint((np.arange(width) - cols[0]) / step).astype(int), 0, len(cols) - 1)
         return kinds, RegionGrid(classes, nearest_row, nearest_col), work
@@ -107,7 +115,7 @@ def working_kinds(work: WorkingImage, settings: DescriptorParams) -> PixelKinds:
     """The pixels the descriptors count on a working image: the lines on the normalised image, the
     specks and soft pixels on the normalised or the resampled one as ``settings.normalised_kinds`` says."""
     noise = work.grey if settings.normalised_kinds == "lines" else None
-    return pixel_kinds(work.image, settings, noise)
+    return pixel_descriptors.pixel_kinds(work.image, settings, noise)
 
 
 def prepare(image: np.ndarray, settings: DescriptorParams) -> WorkingImage:
@@ -183,7 +191,7 @@ def _reservoir(sequence: Sequence, k: int, rng: np.random.Generator) -> list[_La
 def _pixels(frame: _Labelled, settings: DescriptorParams, count: int, rng: np.random.Generator):
     """``count`` pixels of a frame's working image, half on the cable, half off: their descriptors and labels."""
     work = prepare(frame.image, settings)
-    descriptors = densities(working_kinds(work, settings), settings.window_px)
+    descriptors = pixel_descriptors.densities(working_kinds(work, settings), settings.window_px)
     on_cable = work.frame_mask(cable_mask(frame.cable, work.frame_size)).ravel()
     chosen = []
     for side in (np.flatnonzero(on_cable), np.flatnonzero(~on_cable)):

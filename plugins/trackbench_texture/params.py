@@ -192,8 +192,10 @@ import pydantic
 from annotated_types import Ge, Interval, Le
 
 from benchmark.parameters import NonNegative, Positive, Share, require_order
-from trackbench_texture.borders import Pairing
 from trackbench_texture.working import Normalisation
+
+Pairing = Literal["sides", "parallel", "profile", "parallel-profile"]
+"""The names of :data:`trackbench_texture.borders.PAIRINGS` (here, so that the parameters load without numba)."""
 
 OddSize = Annotated[int, Ge(3), Le(63)]
 """A mask size in px; even values are rounded up to the next odd one."""

@@ -29,22 +29,29 @@ tends to fail."  Nothing here tries to make up for it.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import math
 from collections.abc import Sequence as SequenceOf
 
 import cv2
 import numpy as np
 
+from benchmark.lazy import lazy_module
 from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import Sequence, SequenceInfo
 from benchmark.tracker import Tracker
-from trackbench_texture.borders import PROFILE_PAIRINGS, cable_strip, fit_borders
 from trackbench_texture.classes import Region
-from trackbench_texture.descriptors import PixelKinds
 from trackbench_texture.feet import border_feet
 from trackbench_texture.model import TextureModel, train
 from trackbench_texture.params import TextureParams
+
+if TYPE_CHECKING:
+    from trackbench_texture.descriptors import PixelKinds
+
+# The numba kernels load on the first frame, so that listing the trackers does not import numba.
+borders = lazy_module("trackbench_texture.borders")
 
 
 class TextureTracker(Tracker[CameraTruth, CableState]):
@@ -177,10 +184,10 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
             raise RuntimeError("texture: call reset(info, rng) before step")
         p = self.params
         on_cable = grid.classes == Region.CABLE
-        strip = cable_strip(on_cable, p.min_region_px, grid.rows, grid.cols)
+        strip = borders.cable_strip(on_cable, p.min_region_px, grid.rows, grid.cols)
         if strip is None:
             return None
-        state = fit_borders(
+        state = borders.fit_borders(
             strip,
             kinds.straight,
             self._rng,
@@ -194,7 +201,7 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
             min_width_px=p.min_width_px,
             max_width_px=p.max_width_px,
             max_skew=math.radians(p.max_skew_deg),
-            grey=_smoothed(work.grey, p.smoothing_sigma) if p.border_pairing in PROFILE_PAIRINGS else None,
+            grey=_smoothed(work.grey, p.smoothing_sigma) if p.border_pairing in borders.PROFILE_PAIRINGS else None,
         )
         if state is None or p.foot_reach_px == 0:
             return state

@@ -15,10 +15,13 @@ from click.testing import CliRunner
 import benchmark.plugins
 from benchmark.cli import main
 from benchmark.errors import PluginError
-from benchmark.metrics import derived_column
+from benchmark.metrics import SPEED, WALL_SPEED, derived_column
 from benchmark.registry import Registry
 
 from .conftest import Invoke
+
+SPEEDS = [SPEED.name, WALL_SPEED.name]
+"""The board columns that time the machine, which two runs of the same cells do not share."""
 
 
 def board(out: Path) -> pd.DataFrame:
@@ -76,7 +79,18 @@ def test_run_writes_the_three_files_and_prints_the_board(invoke: Invoke, tmp_pat
     assert per_dataset.loc[("perfect", "fake/S1"), "correct_pct"] == 100.0
     assert per_dataset.loc[("blind", "fake/S2"), "missed_pct"] == 100.0
     assert (per_dataset["seeds"] == 2).all() and (per_dataset["status"] == "ok").all()
-    assert "perfect" in result.stdout and "correct_pct" in result.stdout and "(all)" in result.stdout
+    summary = result.stdout.splitlines()
+    assert summary[0] == "camera: 2 trackers over 2 datasets" and summary[1].split()[:2] == ["tracker", "correct_pct"]
+    assert [line.split()[0] for line in summary[2:4]] == ["perfect", "blind"] and "(all)" not in result.stdout
+    assert f"  {out / 'leaderboard.md'}" in summary and max(map(len, summary)) <= 80 + len(str(out))
+    assert not [line for line in result.stderr.splitlines() if " seed " in line]  # no line per ok cell without -v
+    assert "cells 8/8, 0 failed, elapsed " in result.stderr
+
+
+def test_run_verbose_writes_a_line_per_cell(invoke: Invoke, tmp_path: Path) -> None:
+    result = invoke("run", "--tracker", "perfect", "--tracker", "blind", "--seeds", "2", "--in-process",
+                    "--out", str(tmp_path / "out"), "-v")
+    assert result.exit_code == 0, result.output
     progress = [line for line in result.stderr.splitlines() if " seed " in line]
     assert len(progress) == 8
     assert any(line.startswith("perfect  fake/S1  seed 1  ok  correct 100.0%") for line in progress)
@@ -166,7 +180,7 @@ def test_resume_skips_ok_cells_and_redoes_failed_ones(
     second = cell_rows(out)
     added = second[len(first):]
     assert [(row[1], row[2], row[5]) for row in added] == [(2, "raising", "error"), (2, "raising", "error")]
-    pd.testing.assert_frame_equal(board(out).drop(columns="fps"), first_board.drop(columns="fps"))
+    pd.testing.assert_frame_equal(board(out).drop(columns=SPEEDS), first_board.drop(columns=SPEEDS))
 
     assert invoke(*args).exit_code == 1
     assert fakes.Counting.created == 4
@@ -259,6 +273,7 @@ def test_make_dataset_exports_every_sequence_of_a_suite(invoke: Invoke, tmp_path
     assert result.exit_code == 0, result.output
     written = [Path(line) for line in result.stdout.splitlines()]
     assert len(written) == 2 and all(path.is_file() for path in written)
+    assert "sequences 2/2, elapsed " in result.stderr
     assert len(list(out.rglob("*.png"))) == 10 + 6
     assert invoke("make-dataset", "nope", "--out", str(out)).exit_code == 2
 

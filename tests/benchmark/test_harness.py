@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import io
 import sqlite3
 import types
 from pathlib import Path
@@ -13,6 +14,7 @@ import pytest
 from benchmark import harness
 from benchmark.errors import DataError
 from benchmark.harness import describe_result, publish, run_benchmark
+from benchmark.progress import Meter, TerminalProgress
 from benchmark.registry import Registry
 from benchmark.runner import run_cell
 from benchmark.selection import Selection, select_cells
@@ -31,10 +33,15 @@ def stored(out: Path) -> list[tuple]:
 
 def test_a_run_stores_every_cell_and_publishes_one_board_per_modality(registry: Registry, tmp_path: Path) -> None:
     cells = select_cells(registry, Selection(trackers=("perfect", "blind", "raising"), suites=("fake",)))
-    lines: list[str] = []
-    summary = run_benchmark(cells, registry.modalities, tmp_path, jobs=0, argv=["test"], log=lines.append)
+    shown = io.StringIO()
+    progress = TerminalProgress(Meter("cells", stream=shown, enabled=False))
+    summary = run_benchmark(cells, registry.modalities, tmp_path, jobs=0, argv=["test"], progress=progress)
     publication = summary.publication
-    assert len(stored(tmp_path)) == 6 and len(lines) == 6
+    assert len(stored(tmp_path)) == 6
+    lines = shown.getvalue().splitlines()  # a line for each failed cell, and the count at the end
+    failed = [["raising", f"fake/{name}", "seed 0", "error"] for name in ("S1", "S2")]
+    assert [line.split("  ")[:4] for line in lines[:2]] == failed
+    assert lines[2].startswith("cells 6/6, 2 failed, elapsed ") and len(lines) == 3
     assert sorted(publication.boards) == ["camera"]
     board = publication.boards["camera"]
     overall = board[board["dataset"] == "(all)"].set_index("tracker")
@@ -194,7 +201,7 @@ def test_a_tracker_that_needs_what_a_sequence_lacks_is_reported_before_the_run_a
     lines: list[str] = []
     summary = run_benchmark(cells, registry.modalities, tmp_path, jobs=0, log=lines.append)
     expected = [f"calibrated cannot run on fake/{name}: it needs calibration" for name in ("S1", "S2")]
-    assert lines[:2] == expected and len(lines) == 2 + 4
+    assert lines[:2] == expected and len(lines) == 2
     assert {row[1] for row in stored(tmp_path)} == {"perfect"}
     assert summary.publication.problems == expected and not summary.clean
     assert summary.statuses == {"ok": 4}

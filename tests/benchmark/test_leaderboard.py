@@ -66,6 +66,7 @@ class Cells:
                     "frame": index,
                     "outcome": outcome,
                     "step_ms": step_ms,
+                    "wall_ms": 2 * step_ms,
                     "err_d_px": d_error,
                     "err_alpha_deg": d_error / 10,
                     "err_w_px": 0.0 if outcome not in (None, "missed") else math.nan,
@@ -86,10 +87,10 @@ def test_camera_board_has_unit_named_columns() -> None:
     data.add("a", "s/1", 0, ["correct", "false"], [1.0, 2.0])
     board = data.boards()["camera"]
     for column in ("rank", "tracker", "dataset", "seeds", "frames", "correct_pct", "false_pct", "missed_pct",
-                   "rmse_d_px", "rmse_alpha_deg", "rmse_w_px", "rmse_beta_deg", "fps", "status"):
+                   "rmse_d_px", "rmse_alpha_deg", "rmse_w_px", "rmse_beta_deg", "cpu_fps", "wall_fps", "status"):
         assert column in board.columns
     numeric = [c for c in board.columns if pd.api.types.is_float_dtype(board[c])]
-    assert numeric and all(re.search(r"(_pct|_px|_deg|_m|^fps)$", column) for column in numeric)
+    assert numeric and all(re.search(r"(_pct|_px|_deg|_m|_fps)$", column) for column in numeric)
 
 
 def test_seeds_pool_by_frames_not_by_mean_of_rates() -> None:
@@ -100,7 +101,7 @@ def test_seeds_pool_by_frames_not_by_mean_of_rates() -> None:
     assert row["seeds"] == 2 and row["frames"] == 5
     assert (row["correct_pct"], row["false_pct"], row["missed_pct"]) == pytest.approx((60.0, 20.0, 20.0))
     assert row["rmse_d_px"] == pytest.approx(math.sqrt((1 + 1 + 1 + 16) / 4))
-    assert row["fps"] == pytest.approx(5 / 0.07)
+    assert row["cpu_fps"] == pytest.approx(5 / 0.07)
     assert row["status"] == "ok"
 
 
@@ -229,7 +230,7 @@ def test_a_modality_no_plugin_registers_is_boarded_by_name_with_the_error_column
 
 
 def test_error_columns_come_from_the_modality_or_else_from_the_frames() -> None:
-    frames = pd.DataFrame(columns=["cell_id", "frame", "outcome", "err_range_m", "step_ms", "err_bearing_deg"])
+    frames = pd.DataFrame(columns=["cell_id", "frame", "outcome", "err_range_m", "step_ms", "wall_ms", "err_bearing_deg"])
     assert error_columns(SONAR, frames) == ("err_across_m",)
     assert error_columns(None, frames) == ("err_range_m", "err_bearing_deg")
     assert error_columns(None, pd.DataFrame()) == ()

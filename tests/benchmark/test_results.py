@@ -22,7 +22,7 @@ outcomes = st.lists(st.sampled_from([*Outcome, None]), min_size=1, max_size=60)
 
 @given(outcomes)
 def test_rates_sum_to_100_over_scored_frames(sequence):
-    scores = [FrameScore(i, o, dict(zip(COLUMNS, (1.0,) * 4)), 0.01) for i, o in enumerate(sequence)]
+    scores = [FrameScore(i, o, dict(zip(COLUMNS, (1.0,) * 4)), 0.01, 0.02) for i, o in enumerate(sequence)]
     summary = summarise(frame_table(scores), CORE.for_board(None, COLUMNS))
     scored = sum(o is not None for o in sequence)
     assert summary["frames"] == scored
@@ -30,7 +30,8 @@ def test_rates_sum_to_100_over_scored_frames(sequence):
         total = summary["correct_pct"] + summary["false_pct"] + summary["missed_pct"]
         assert total == pytest.approx(100.0)
         assert summary["missed_pct"] == pytest.approx(100.0 * sequence.count(Outcome.MISSED) / scored)
-    assert summary["fps"] == pytest.approx(100.0)
+    assert summary["cpu_fps"] == pytest.approx(100.0)
+    assert summary["wall_fps"] == pytest.approx(50.0)
 
 
 def test_rmse_ignores_frames_without_an_error():
@@ -39,21 +40,22 @@ def test_rmse_ignores_frames_without_an_error():
     summary = summarise(frame_table(scores), CORE.for_board(None, COLUMNS))
     assert summary["rmse_d_px"] == pytest.approx(np.sqrt((9 + 16) / 2))
     assert summary["rmse_alpha_deg"] == pytest.approx(1.0)
-    assert summary["fps"] == pytest.approx(2.0)
+    assert summary["cpu_fps"] == pytest.approx(2.0)
 
 
-def test_frame_table_has_frame_outcome_errors_and_step_ms():
-    table = frame_table([FrameScore(0, Outcome.FALSE, {"err_x_m": 0.5}, 0.002), FrameScore(1, None)])
-    assert list(table.columns) == ["frame", "outcome", "err_x_m", "step_ms"]
+def test_frame_table_has_frame_outcome_errors_step_ms_and_wall_ms():
+    table = frame_table([FrameScore(0, Outcome.FALSE, {"err_x_m": 0.5}, 0.002, 0.003), FrameScore(1, None)])
+    assert list(table.columns) == ["frame", "outcome", "err_x_m", "step_ms", "wall_ms"]
     assert table["outcome"][0] == "false" and pd.isna(table["outcome"][1])
     assert table["step_ms"].tolist() == pytest.approx([2.0, 0.0])
+    assert table["wall_ms"].tolist() == pytest.approx([3.0, 0.0])
     assert math.isnan(table["err_x_m"][1])
 
 
 def test_summary_of_nothing_is_nan_but_names_every_column():
     summary = summarise(pd.DataFrame(), CORE.for_board(None, ("err_x_m", "err_y_deg")))
     assert summary["frames"] == 0.0
-    assert set(summary) == {"frames", "correct_pct", "false_pct", "missed_pct", "rmse_x_m", "rmse_y_deg", "fps"}
+    assert set(summary) == {"frames", "correct_pct", "false_pct", "missed_pct", "rmse_x_m", "rmse_y_deg", "cpu_fps", "wall_fps"}
     assert all(math.isnan(summary[key]) for key in summary if key != "frames")
 
 

@@ -44,7 +44,7 @@ def make_cell(fakes: types.ModuleType, fake_registry: Registry) -> MakeCell:
 
 
 def without_timing(result: CellResult) -> pd.DataFrame:
-    return result.frames.drop(columns="step_ms")
+    return result.frames.drop(columns=["step_ms", "wall_ms"])
 
 
 def test_perfect_tracker_scores_every_frame_correct(make_cell: MakeCell, fake_registry: Registry) -> None:

@@ -89,7 +89,7 @@ def test_a_cell_round_trips_with_its_frames(tmp_path: Path, results: dict[str, C
     expected = noisy.frames
     assert frames["frame"].tolist() == expected["frame"].tolist()
     assert frames["outcome"].tolist() == expected["outcome"].tolist()
-    for column in (*ERRORS, "step_ms"):
+    for column in (*ERRORS, "step_ms", "wall_ms"):
         np.testing.assert_allclose(frames[column].to_numpy(float), expected[column].to_numpy(float), equal_nan=True)
 
 
@@ -312,6 +312,9 @@ def test_a_version_1_database_is_upgraded_in_place(tmp_path: Path, results: dict
         old = store.cells(1)
         assert old[["id", "dataset", "dataset_key", "training"]].values.tolist() == [[7, "fake/S1", "fake/S1", ""]]
         assert store.frame_tables([7])["err_d_px"].tolist() == [1.5]
+        # Version 1 timed the wall clock in step_ms: it is the wall time now, and the CPU time is unknown.
+        assert store.frame_tables([7])["wall_ms"].tolist() == [2.0]
+        assert store.frame_tables([7])["step_ms"].isna().all()
         assert store.run_problems(1) == []
         assert store.find_ok_cells([results["noisy"].key, old_key]) == {old_key: 7}
         assert store.pictures([7]) == {}
@@ -335,6 +338,8 @@ def older_database(tmp_path: Path, result: CellResult, version: int, downgrade: 
     with ResultStore(path) as store:
         cell_id = store.add_cell(store.start_run([], {}), result)
     connection = sqlite3.connect(path)
+    if version < 7 and TO_VERSION_6 not in downgrade:
+        downgrade = f"{TO_VERSION_6} {downgrade}"
     connection.executescript(f"{downgrade} PRAGMA user_version = {version};")
     connection.close()
     return path, cell_id
@@ -361,7 +366,7 @@ def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, resul
         new_id = store.add_cell(store.start_run([], {}), dataclasses.replace(results["noisy"], pictures=PICTURES))
         assert store.pictures([old_id, new_id]) == {new_id: list(PICTURES)}
     connection = sqlite3.connect(path)
-    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 6
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 7
     columns = [(row[1], row[2], row[5]) for row in connection.execute("PRAGMA table_info(pictures)")]
     connection.close()
     assert columns == [("cell_id", "INTEGER", 1), ("frame", "INTEGER", 2), ("outcome", "VARCHAR(16)", 0), ("png", "BLOB", 0)]
@@ -474,11 +479,15 @@ def test_a_version_5_database_s_cells_declare_nothing_and_new_cells_keep_their_d
         assert store.cells(all_runs=True)["deterministic"].tolist() == [False, True]
 
 
+TO_VERSION_6 = "ALTER TABLE frames DROP COLUMN step_ms; ALTER TABLE frames RENAME COLUMN wall_ms TO step_ms;"
+"""Versions up to 6 timed a step by the wall clock only, in ``step_ms``."""
+
 DOWNGRADES = {
-    5: "ALTER TABLE cells DROP COLUMN deterministic;",
-    4: "DROP TABLE conditions; ALTER TABLE cells DROP COLUMN deterministic;",
-    3: "DROP TABLE conditions; DROP TABLE pictures; ALTER TABLE cells DROP COLUMN deterministic;",
-    2: "DROP TABLE conditions; DROP TABLE pictures; ALTER TABLE cells DROP COLUMN deterministic; "
+    6: TO_VERSION_6,
+    5: f"{TO_VERSION_6} ALTER TABLE cells DROP COLUMN deterministic;",
+    4: f"{TO_VERSION_6} DROP TABLE conditions; ALTER TABLE cells DROP COLUMN deterministic;",
+    3: f"{TO_VERSION_6} DROP TABLE conditions; DROP TABLE pictures; ALTER TABLE cells DROP COLUMN deterministic;",
+    2: f"{TO_VERSION_6} DROP TABLE conditions; DROP TABLE pictures; ALTER TABLE cells DROP COLUMN deterministic; "
     "ALTER TABLE cells DROP COLUMN training;",
 }
 """SQL that turns a database of this schema into one as schema version ``N`` had it (see the module docstring)."""
@@ -517,10 +526,13 @@ def test_an_older_database_is_upgraded_in_place_with_its_data_intact(
     connection = sqlite3.connect(path)
     connection.executescript(f"{DOWNGRADES[version]} PRAGMA user_version = {version};")
     connection.close()
-    # What the older schema could not keep comes back as its default: no pictures, no training, nothing declared.
+    # What the older schema could not keep comes back as its default: no pictures, no training, nothing declared;
+    # its step times were wall times, and the CPU time is unknown.
     expected = dict(before, pictures={} if version <= 3 else before["pictures"])
+    expected["frames"] = before["frames"].assign(step_ms=np.nan)
     for table in (expected["all cells"], *expected["cells"]):
-        table["deterministic"] = False
+        if version <= 5:
+            table["deterministic"] = False
         if version == 2:
             table["training"] = ""
 

@@ -53,6 +53,7 @@ def diagnose_command(
 
     from benchmark.files import make_folder, write_text_atomically
     from benchmark.modalities.camera.diagnostics import ceiling_markdown, ceiling_report
+    from benchmark.progress import Meter
     from benchmark.selection import select_sequences, select_trackers
     from benchmark.store import DATABASE_NAME, ResultStore
 
@@ -60,8 +61,8 @@ def diagnose_command(
     (entry,) = select_trackers(registry, [tracker])
     sequences = select_sequences(registry, suites, datasets)
     database = out / DATABASE_NAME
-    with ResultStore(database) if database.is_file() else nullcontext() as store:
-        table, skipped = ceiling_report(entry, sequences, registry.modalities, store)
+    with ResultStore(database) if database.is_file() else nullcontext() as store, Meter("sequences") as meter:
+        table, skipped = ceiling_report(entry, sequences, registry.modalities, store, report=meter)
     for line in skipped:
         click.echo(line, err=True)
     text = ceiling_markdown(table, entry.name)
@@ -94,12 +95,14 @@ def pose_table_command(
     """
     from benchmark.files import make_folder, write_text_atomically
     from benchmark.modalities.camera.pose_table import pose_table
+    from benchmark.progress import Meter
     from benchmark.report.markdown import titled_table
     from benchmark.selection import select_sequences, select_trackers
 
     (entry,) = select_trackers(session.registry, [tracker])
     (sequence,) = select_sequences(session.registry, (), (dataset,))
-    table = pose_table(entry.create(), sequence, first, frames, init == "truth")
+    with Meter("frames") as meter:
+        table = pose_table(entry.create(), sequence, first, frames, init == "truth", report=meter)
     text = titled_table(table, f"{entry.name} on {sequence.info.name}, frames {first}-{first + len(table) - 1}")
     click.echo(text)
     path = write_text_atomically(make_folder(out) / f"pose_{entry.name}.md", text, "pose table")

@@ -43,6 +43,7 @@ from benchmark.selection import SelectionError
 from benchmark.tracker import ScoresStates
 
 if TYPE_CHECKING:
+    from benchmark.progress import Report
     from benchmark.registry import TrackerEntry
     from benchmark.store import ResultStore
 
@@ -344,6 +345,7 @@ def ceiling_report(
     modalities: Mapping[str, Modality],
     store: ResultStore | None = None,
     window: CeilingWindow = CeilingWindow(),
+    report: Report | None = None,
 ) -> tuple[pd.DataFrame, list[str]]:
     """The likelihood ceiling of a registered tracker on every camera sequence, beside its stored result.
 
@@ -362,6 +364,9 @@ def ceiling_report(
         it the column is empty.
     window : CeilingWindow
         The grid searched around each true state.
+    report : callable, optional
+        Told ``report(done, total)`` sequences as each is diagnosed
+        (:class:`benchmark.progress.Meter`).
 
     Returns
     -------
@@ -391,7 +396,10 @@ def ceiling_report(
         )
     rows: list[dict[str, Any]] = []
     skipped: list[str] = []
-    for sequence in sequences:
+    sequences = list(sequences)
+    for done, sequence in enumerate(sequences):
+        if report is not None:
+            report(done, len(sequences))
         identity = sequence.identity
         if identity.modality != CAMERA:
             skipped.append(f"skipped {identity.name}: a {identity.modality} sequence, not a camera sequence")
@@ -401,6 +409,8 @@ def ceiling_report(
         rows.append(dict(zip(REPORT_COLUMNS, (identity.name, result.labelled, result.ceiling_pct, stored))))
     if not rows:
         raise SelectionError(f"nothing to diagnose: no camera sequence selected ({'; '.join(skipped) or 'none'})")
+    if report is not None:
+        report(len(sequences), len(sequences))
     return pd.DataFrame(rows, columns=list(REPORT_COLUMNS)), skipped
 
 

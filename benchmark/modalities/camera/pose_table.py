@@ -16,7 +16,7 @@ the covariance.  The errors are estimate minus truth, like the board's
 from __future__ import annotations
 
 import math
-from typing import Any, Protocol, runtime_checkable
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 import numpy as np
 import pandas as pd
@@ -24,6 +24,9 @@ import pandas as pd
 from benchmark.modalities.camera.model import PosedCableState
 from benchmark.model import Sequence
 from benchmark.selection import SelectionError
+
+if TYPE_CHECKING:
+    from benchmark.progress import Report
 
 CAMERA = "camera"
 """The modality whose sequences carry the camera pose."""
@@ -59,7 +62,14 @@ class MeasuresBorders(Protocol):
     """The last frame's measurement, or None when it had none."""
 
 
-def pose_table(tracker: Any, sequence: Sequence, first: int = 0, frames: int = 12, init: bool = False) -> pd.DataFrame:
+def pose_table(
+    tracker: Any,
+    sequence: Sequence,
+    first: int = 0,
+    frames: int = 12,
+    init: bool = False,
+    report: Report | None = None,
+) -> pd.DataFrame:
     """Run a pose-reporting camera tracker over a sequence and tabulate frames ``first .. first + frames - 1``.
 
     Parameters
@@ -72,6 +82,9 @@ def pose_table(tracker: Any, sequence: Sequence, first: int = 0, frames: int = 1
         The span of frames tabulated; the tracker runs from frame 0.
     init : bool
         Hand the tracker the first frame's truth (``--init truth``) or not.
+    report : callable, optional
+        Told ``report(done, total)`` frames as the tracker steps through
+        them (:class:`benchmark.progress.Meter`).
 
     Returns
     -------
@@ -108,6 +121,8 @@ def pose_table(tracker: Any, sequence: Sequence, first: int = 0, frames: int = 1
         if frame.index >= first + frames:
             break
         estimate = tracker.step(frame)
+        if report is not None:
+            report(frame.index + 1, first + frames)
         if frame.index >= first:
             rows.append(_row(frame.index, tracker, estimate, frame.truth))
     if not rows:

@@ -17,7 +17,7 @@ from benchmark.store import DATABASE_NAME, ResultStore
 
 distributed = pytest.importorskip("distributed", reason="the Dask executor needs dask.distributed")
 
-SPEED_COLUMNS = {"fps", "ms_per_frame", "elapsed_s"}
+SPEED_COLUMNS = {"cpu_fps", "wall_fps", "ms_per_frame", "elapsed_s"}
 SELECTION = [
     *("--tracker", "hough", "--tracker", "sonar_pf", "--tracker", "stereo_ekf"),
     *("--dataset", "camera/S6", "--dataset", "sonar/concrete", "--dataset", "stereo/case1-slow"),

@@ -1,5 +1,6 @@
 from __future__ import annotations
 
+import json
 import sqlite3
 from pathlib import Path
 
@@ -7,7 +8,8 @@ import pandas as pd
 import pytest
 
 from benchmark.errors import DataError
-from benchmark.history.database import History, database_url
+from benchmark.history.database import History, database_url, shown_location
+from benchmark.history.database import _pack as database_pack
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.results import Picture
 from benchmark.store import ResultStore
@@ -36,7 +38,7 @@ def test_a_recorded_run_keeps_cells_metrics_frames_and_pictures(invoke: Invoke, 
         cells = history.cells([run_id])
         board = pd.read_csv(out / "leaderboard.csv")
         assert set(cells["seed"]) == {0, 1}
-        assert {"correct_pct", "false_pct", "missed_pct", "rmse_d_px", "fps"} <= set(cells.columns)
+        assert {"correct_pct", "false_pct", "missed_pct", "rmse_d_px", "cpu_fps", "wall_fps"} <= set(cells.columns)
         with ResultStore(out / "results.sqlite") as results:
             stored = results.cells()
             first = int(stored["id"].iloc[0])
@@ -69,7 +71,7 @@ def test_a_runs_changes_are_kept_as_they_were_said_and_replaced_when_said_again(
     out = tmp_path / "out"
     assert invoke("run", "--tracker", "blind", "--in-process", "--out", str(out)).exit_code == 0
     said = pd.DataFrame(
-        {"tracker": ["t"], "metric": ["cpu_fps"], "change": [-12.5], "confirmed": [False], "flag": [""]}
+        {"tracker": ["t"], "metric": ["cpu_fps"], "change": [-12.5], "confirmed": [False], "note": [""]}
     )
     with History(tmp_path / "history.sqlite") as history:
         run_id = record(history, out)
@@ -84,6 +86,51 @@ def test_a_runs_changes_are_kept_as_they_were_said_and_replaced_when_said_again(
 def test_urls_and_paths() -> None:
     assert database_url("postgresql://u@h/db") == "postgresql://u@h/db"
     assert database_url("x.sqlite").startswith("sqlite:///") and database_url("x.sqlite").endswith("/x.sqlite")
+
+
+@pytest.mark.parametrize(
+    ("location", "shown"),
+    [
+        ("postgresql://ci:s3cret@db.example:5432/history", "postgresql://ci:***@db.example:5432/history"),
+        ("postgresql+psycopg://ci:p%40ss@/h?host=/run/pg", "postgresql+psycopg://ci:***@/h?host=%2Frun%2Fpg"),
+        ("postgresql://ci:s3cret@db.example:port/history", "postgresql://ci:***@db.example:port/history"),
+        ("postgresql://ci@db.example/history", "postgresql://ci@db.example/history"),
+        ("reports/history.sqlite", "reports/history.sqlite"),
+    ],
+    ids=["password", "encoded password and socket", "unparsable port", "no password", "a file"],
+)
+def test_a_location_is_shown_with_its_password_masked(location: str, shown: str) -> None:
+    assert shown_location(location) == shown
+
+
+def test_a_drivers_message_quoting_the_url_is_masked_and_on_one_line(monkeypatch: pytest.MonkeyPatch) -> None:
+    import sqlalchemy as sa
+
+    def quoting(url: sa.URL) -> sa.Engine:
+        raise sa.exc.ArgumentError(f"cannot use\n{url.render_as_string(hide_password=False)} (password p@ss-word)")
+
+    monkeypatch.setattr("benchmark.history.database.sa.create_engine", quoting)
+    with pytest.raises(DataError) as caught:
+        History("postgresql://ci:p%40ss-word@db.example/history")
+    message = str(caught.value)
+    assert "p@ss-word" not in message and "p%40ss-word" not in message and "\n" not in message
+    assert message.startswith("history database postgresql://ci:***@db.example/history: ArgumentError: cannot use")
+
+
+def test_the_command_line_is_kept_with_the_passwords_of_its_urls_masked(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "perfect", "--in-process", "--out", str(out)).exit_code == 0
+    argv = ["trackbench", "nightly", "--history=postgresql://ci:s3cret@db/h", "--scheduler", "tcp://u:pw@host:8786"]
+    with History(tmp_path / "history.sqlite") as history:
+        record(history, out, argv=argv)
+        kept = history.runs()["argv"].iloc[0]
+    assert kept == [*argv[:2], "--history=postgresql://ci:***@db/h", "--scheduler", "tcp://u:***@host:8786"]
+
+
+def test_a_history_whose_folder_cannot_be_made_is_a_data_error_naming_it(tmp_path: Path) -> None:
+    (tmp_path / "file").write_text("")
+    with pytest.raises(DataError, match="file/history.sqlite: cannot create its folder"):
+        History(tmp_path / "file" / "history.sqlite")
 
 
 def test_a_file_that_is_no_database_is_a_data_error_naming_it(tmp_path: Path) -> None:
@@ -143,3 +190,46 @@ def test_an_older_history_gets_the_declaration_column_and_keeps_its_cells(invoke
     declared = cells.groupby(["run_id", "tracker"])["deterministic"].all()
     assert not declared[first, "perfect"] and not declared[first, "noisy"]  # cells of old declare nothing
     assert declared[second, "perfect"] and not declared[second, "noisy"]
+
+
+def test_a_run_keeps_its_load_and_an_older_history_gains_the_column_empty(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "perfect", "--in-process", "--out", str(out)).exit_code == 0
+    path = tmp_path / "history.sqlite"
+    with History(path) as history:
+        first = record(history, out)
+    connection = sqlite3.connect(path)
+    connection.execute("ALTER TABLE runs DROP COLUMN load")  # as a history of trackbench 0.6 has it
+    connection.close()
+    load = {"cores": 2, "busy_pct": 97.5, "others_pct": 48.0}
+    with History(path) as history:
+        second = record(history, out, load=load)
+        runs = history.runs().set_index("id")
+    assert runs.loc[first, "load"] == {} and runs.loc[second, "load"] == load
+
+
+def test_a_run_recorded_before_the_cpu_timing_reads_its_fps_and_step_times_as_wall_times(
+    invoke: Invoke, tmp_path: Path
+) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "perfect", "--in-process", "--out", str(out)).exit_code == 0
+    path = tmp_path / "history.sqlite"
+    with History(path) as history:
+        run = record(history, out)
+        cell_id = int(history.cells([run])["id"].iloc[0])
+        frames = history.frames(cell_id)
+        fps = float(history.cells([run])["wall_fps"].iloc[0])
+    # What an older trackbench wrote: its fps and step_ms timed the wall clock.
+    old_frames = frames.drop(columns="step_ms").rename(columns={"wall_ms": "step_ms"})
+    connection = sqlite3.connect(path)
+    old_metrics = json.dumps({"correct_pct": 100.0, "fps": fps})
+    connection.execute("UPDATE cells SET metrics = ? WHERE id = ?", (old_metrics, cell_id))
+    connection.execute("UPDATE cell_frames SET frames = ? WHERE cell_id = ?", (database_pack(old_frames), cell_id))
+    connection.commit()
+    connection.close()
+    with History(path) as history:
+        cell = history.cells([run]).set_index("id").loc[cell_id]
+        read = history.frames(cell_id)
+    assert cell["wall_fps"] == fps and pd.isna(cell["cpu_fps"]) and "fps" not in cell.index
+    assert read["wall_ms"].tolist() == frames["wall_ms"].tolist() and read["step_ms"].isna().all()
+    assert list(read.columns) == list(frames.columns)

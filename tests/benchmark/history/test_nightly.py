@@ -2,14 +2,28 @@
 
 from __future__ import annotations
 
+import contextlib
+import dataclasses
+import os
+import signal
+import subprocess
+import sys
+import types
+from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pandas as pd
+import pytest
 
-from benchmark.cli import EXIT_REGRESSION
+import benchmark.plugins
+from benchmark.cli import EXIT_REGRESSION, EXIT_SPEED_REGRESSION
 from benchmark.history.database import History
+from benchmark.history.nightly import REPEAT_FOLDER
+from benchmark.history.regressions import NOISE_RUNS
+from benchmark.model import Frame
 
-from ..conftest import Invoke
+from ..conftest import ALL_TRACKERS, Invoke, Perfect
 
 
 def nightly(invoke: Invoke, tmp_path: Path, *extra: str):  # noqa: ANN201
@@ -24,6 +38,7 @@ def test_a_worsened_parameter_is_a_regression_in_the_exit_status_the_output_and_
 ) -> None:
     first = nightly(invoke, tmp_path)
     assert first.exit_code == 0, first.output
+    assert "cells 4/4, 0 failed, elapsed " in first.stderr and "site pages " in first.stderr  # a log's progress
     assert "no change beyond the thresholds" in first.stdout
     second = nightly(invoke, tmp_path, "--param", "noisy.sigma_px=40")
     assert second.exit_code == EXIT_REGRESSION, second.output
@@ -48,6 +63,7 @@ def test_a_worsened_parameter_is_a_regression_in_the_exit_status_the_output_and_
     (tmp_path / "site" / "index.html").unlink()
     rebuilt = invoke("report", "--history", str(tmp_path / "history.sqlite"), "--site", str(tmp_path / "site"))
     assert rebuilt.exit_code == 0, rebuilt.output
+    assert "site pages " in rebuilt.stderr
     assert "rmse_d_px" in (tmp_path / "site" / "index.html").read_text()
 
 
@@ -60,3 +76,78 @@ def test_compare_and_report_name_a_missing_history_or_run(invoke: Invoke, tmp_pa
     assert unknown.exit_code == 2 and "no run 7" in unknown.output
     bad = nightly(invoke, tmp_path, "--min-effect", "correct_pct")
     assert bad.exit_code == 2 and "METRIC=NUMBER" in bad.output
+
+
+@dataclasses.dataclass(frozen=True)
+class BusyParams:
+    work: int = 1
+
+
+class Busy(Perfect):
+    """The true state after a fixed amount of arithmetic per step, ``work`` times over: CPU work and nothing else."""
+
+    name = "busy"
+    Params = BusyParams
+
+    def step(self, frame: Frame) -> Any:
+        total = 0
+        for value in range(20_000 * self.params.work):
+            total += value * value
+        return frame.truth.cable if total >= 0 else None
+
+
+@pytest.fixture
+def invoke_busy(invoke: Invoke, fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch) -> Invoke:
+    """``invoke`` with the fake registry and the tracker ``busy``."""
+    monkeypatch.setattr(benchmark.plugins, "load_registry", lambda *a, **k: fakes.make_registry((*ALL_TRACKERS, Busy)))
+    return invoke
+
+
+@contextlib.contextmanager
+def both_cores_busy() -> Iterator[None]:
+    """Another process spinning on both cores while the block runs (a neighbour on a shared machine)."""
+    spinner = subprocess.Popen(
+        [sys.executable, "-c", "import os; os.fork(); exec('while True: pass')"], start_new_session=True
+    )
+    try:
+        yield
+    finally:
+        os.killpg(spinner.pid, signal.SIGKILL)
+        spinner.wait()
+
+
+MIN_STEP_S = 0.005
+"""Small enough that the tiny sequence's steps are judged (about 0.7 ms each here), large enough to mean something."""
+
+
+def busy_nightly(invoke: Invoke, tmp_path: Path, *extra: str):  # noqa: ANN201
+    return invoke(
+        "nightly", "--tracker", "busy", "--dataset", "fake/S1", "--seeds", "2", "--in-process",
+        "--min-step-time", str(MIN_STEP_S),
+        "--out", str(tmp_path / "out"), "--history", str(tmp_path / "history.sqlite"), "--site", str(tmp_path / "site"),
+        *extra,
+    )
+
+
+def test_nightlies_with_nothing_changed_stay_green_while_another_process_loads_both_cores_and_a_slower_tracker_does_not(
+    invoke_busy: Invoke, tmp_path: Path
+) -> None:
+    with both_cores_busy():
+        for night in range(5):  # with --fail-on-speed: a speed regression found on noise would exit 4
+            kept = busy_nightly(invoke_busy, tmp_path, "--fail-on-speed")
+            assert kept.exit_code == 0, (night, kept.output)
+            assert "machine load during the run: cores:" in kept.output
+        with History(tmp_path / "history.sqlite") as history:
+            runs, cells = history.runs(), history.cells()
+        assert len(runs) == 5 and all(0 <= run["others_pct"] <= run["busy_pct"] <= 100 for run in runs["load"])
+        # Speed was judged: the last nights had the earlier runs a noise estimate needs, and enough step time.
+        last = cells[cells["run_id"] == runs["id"].iloc[-1]]
+        step_s = (last["frames"] / last["cpu_fps"]).groupby(last["dataset"]).sum()
+        assert len(runs) - 1 >= NOISE_RUNS and step_s.min() >= MIN_STEP_S
+
+        slower = busy_nightly(invoke_busy, tmp_path, "--param", "busy.work=3", "--fail-on-speed")
+        reported = busy_nightly(invoke_busy, tmp_path, "--param", "busy.work=3")  # still slow against the window
+    assert slower.exit_code == EXIT_SPEED_REGRESSION, slower.output
+    assert "regression" in slower.stdout and "cpu_fps" in slower.stdout and "held" in slower.stdout
+    assert (tmp_path / "out" / REPEAT_FOLDER / "results.sqlite").is_file()
+    assert reported.exit_code == 0 and "regression" in reported.stdout and "held" in reported.stdout, reported.output

@@ -6,11 +6,20 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from benchmark.history.regressions import Thresholds, find_changes, group_changes, steps
+from benchmark.history.regressions import (
+    CHANGE_COLUMNS,
+    NOISE_RUNS,
+    Thresholds,
+    confirm_speed,
+    find_changes,
+    group_changes,
+    speed_noise,
+    steps,
+)
 
 
-def cells(run_id: int, correct: list[float], rmse: float = 1.0, fps: float = 100.0, *, machine: str = "m",
-          tracker: str = "t", key: str = "k1") -> pd.DataFrame:
+def cells(run_id: int, correct: list[float], rmse: float = 1.0, fps: float | list[float] = 100.0, *,
+          machine: str = "m", tracker: str = "t", key: str = "k1", wall_fps: float = 100.0) -> pd.DataFrame:
     """One run's cells of one tracker on one dataset, a seed per value of ``correct``."""
     return pd.DataFrame(
         {
@@ -29,7 +38,8 @@ def cells(run_id: int, correct: list[float], rmse: float = 1.0, fps: float = 100
             "false_pct": [100.0 - c for c in correct],
             "missed_pct": 0.0,
             "rmse_d_px": rmse,
-            "fps": fps,
+            "cpu_fps": fps,
+            "wall_fps": wall_fps,
             "frames": 1000,
         }
     )
@@ -84,6 +94,70 @@ def test_speed_is_compared_on_the_same_machine_only_against_the_median_of_the_wi
     assert find_changes(history(*runs, slow), 5, Thresholds(min_step_s=20.0)).empty
 
 
+def speed_history(values: list[float], **columns: object) -> pd.DataFrame:
+    """Runs 1, 2, ... of one series on one machine, their CPU speeds ``values`` (the last is tonight's)."""
+    runs = [cells(i, [90.0], fps=fps, **columns) for i, fps in enumerate(values, start=1)]  # type: ignore[arg-type]
+    return history(*runs)
+
+
+def test_a_speed_change_must_exceed_the_series_own_noise_as_well_as_the_minimum_effect() -> None:
+    noisy = [100.0, 130.0, 80.0, 115.0, 95.0]  # per-run medians 100 +- 15: a MAD of 15
+    assert speed_noise(noisy) == pytest.approx(3 * 1.4826 * 15.0)
+    assert find_changes(speed_history([*noisy, 80.0]), 6).empty  # 20 % slower, within 3 MADs of this series
+    steady = [100.0, 101.0, 99.0, 100.0, 100.5]
+    row = find_changes(speed_history([*steady, 80.0]), 6).iloc[0]
+    assert (row["metric"], row["verdict"], row["confirmed"]) == ("cpu_fps", "regression", False)
+    assert row["noise"] == pytest.approx(10.0)  # 3 MADs (3 x 1.48 x 0.5) are below the minimum effect, the floor
+    assert "not yet repeated" in row["note"]
+    wider = find_changes(speed_history([*noisy, 30.0]), 6).iloc[0]  # 70 below, beyond 3 MADs (67)
+    assert wider["verdict"] == "regression" and wider["noise"] == pytest.approx(speed_noise(noisy))
+
+
+def test_without_enough_earlier_runs_on_the_machine_speed_has_no_verdict_and_says_why() -> None:
+    row = find_changes(speed_history([100.0, 100.0, 50.0]), 3).iloc[0]
+    assert row["verdict"] == "unjudged" and not row["confirmed"] and np.isnan(row["noise"])
+    assert f"2 earlier runs on this machine, {NOISE_RUNS} needed" in row["note"]
+    assert find_changes(speed_history([100.0, 100.0, 100.0, 50.0]), 4).iloc[0]["verdict"] == "regression"
+    assert list(find_changes(speed_history([100.0, 100.0, 95.0]), 3).columns) == CHANGE_COLUMNS
+
+
+def test_the_wall_clock_speed_is_shown_but_never_judged() -> None:
+    runs = [cells(i, [90.0], wall_fps=wall) for i, wall in enumerate([100.0, 100.0, 100.0, 100.0, 30.0], start=1)]
+    assert find_changes(history(*runs), 5).empty
+
+
+RECORDED_CPU_FPS = [1188.0, 1103.0, 1590.0, 1369.0, 1392.0]
+RECORDED_WALL_FPS = [411.0, 239.0, 636.0, 595.0, 517.0]
+"""condensation-fast on camera/S6, one seed, five nightlies with nothing changed on this project's shared 2-core
+machine (load average about 15) while another process spun on both cores: its CPU and wall speeds."""
+
+
+def test_the_old_fixed_ten_per_cent_rule_flags_nights_with_nothing_changed_and_the_noise_rule_does_not() -> None:
+    timed = Thresholds(min_step_s=0.0)  # the nightlies ran with --min-step-time 0.1; these are 1000-frame cells
+    old_rule = Thresholds(min_step_s=0.0, noise_multiple=0.0, noise_runs=1)  # the minimum effect alone, as before
+    nights = range(2, len(RECORDED_WALL_FPS) + 1)
+    as_old_fps = [find_changes(speed_history(RECORDED_WALL_FPS[:night]), night, old_rule) for night in nights]
+    assert "regression" in set(pd.concat(as_old_fps)["verdict"])  # the old fps was wall-clock time: red on noise
+    on_cpu = [find_changes(speed_history(RECORDED_CPU_FPS[:night]), night, old_rule) for night in nights]
+    assert "improvement" in set(pd.concat(on_cpu)["verdict"])  # CPU time alone is not enough on a machine this busy
+    judged = pd.concat([find_changes(speed_history(RECORDED_CPU_FPS[:night]), night, timed) for night in nights])
+    assert set(judged["verdict"]) == {"unjudged"}  # night 3 (+39 %) had two earlier runs, too few to judge it
+
+
+def test_a_repeat_holds_a_speed_change_beyond_its_noise_in_the_same_direction_or_drops_it() -> None:
+    changes = find_changes(speed_history([100.0, 101.0, 99.0, 100.0, 80.0]), 5)
+    def repeat(fps: float) -> pd.DataFrame:
+        return pd.DataFrame({"tracker": "t", "dataset": "s/1", "seed": [0, 1], "cpu_fps": [fps, fps]})
+
+    held = confirm_speed(changes, repeat(82.0)).iloc[0]
+    assert (held["verdict"], held["confirmed"]) == ("regression", True) and "repeat 82" in held["note"]
+    for again in (95.0, 130.0, np.nan):  # back within the noise, the other way, or no value at all
+        dropped = confirm_speed(changes, repeat(again)).iloc[0]
+        assert (dropped["verdict"], dropped["confirmed"]) == ("unconfirmed", False), again
+    accuracy = find_changes(history(cells(1, [90.0]), cells(2, [80.0], key="k2")), 2)
+    assert confirm_speed(accuracy, repeat(10.0)).equals(accuracy) and accuracy["confirmed"].all()
+
+
 def test_compare_takes_the_runs_it_is_given() -> None:
     table = history(cells(1, [90.0]), cells(2, [50.0]), cells(3, [90.0]))
     assert set(find_changes(table, 3, Thresholds(window=1))["verdict"]) == {"improvement"}
@@ -127,16 +201,16 @@ def test_an_rmse_change_over_fewer_estimated_frames_is_flagged() -> None:
     fewer = with_estimates(cells(2, [90.0], rmse=1.0), 212)
     row = find_changes(history(before, fewer), 2).set_index("metric").loc["rmse_d_px"]
     assert row["verdict"] == "improvement"
-    assert row["flag"] == "frames with an estimate 300 -> 212"
+    assert row["note"] == "frames with an estimate 300 -> 212"
     same = with_estimates(cells(2, [90.0], rmse=1.0), 299)
-    assert find_changes(history(before, same), 2).set_index("metric").loc["rmse_d_px", "flag"] == ""
+    assert find_changes(history(before, same), 2).set_index("metric").loc["rmse_d_px", "note"] == ""
     unknown = cells(2, [90.0], rmse=1.0)  # a run recorded before the count was kept
-    assert find_changes(history(cells(1, [90.0], rmse=2.0), unknown), 2).set_index("metric").loc["rmse_d_px", "flag"] == ""
+    assert find_changes(history(cells(1, [90.0], rmse=2.0), unknown), 2).set_index("metric").loc["rmse_d_px", "note"] == ""
 
 
 def test_a_rate_change_is_never_flagged_for_its_estimates() -> None:
     changes = find_changes(history(with_estimates(cells(1, [90.0]), 300), with_estimates(cells(2, [70.0]), 100)), 2)
-    assert changes.set_index("metric").loc["correct_pct", "flag"] == ""
+    assert changes.set_index("metric").loc["correct_pct", "note"] == ""
 
 
 def test_one_cause_on_many_datasets_and_metrics_is_one_group_led_by_its_largest_change() -> None:

@@ -11,7 +11,18 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from benchmark.metrics import CORE, KINDS, RATES, SPEED, Effect, Metric, derived_column, error_metric, percentage
+from benchmark.metrics import (
+    CORE,
+    KINDS,
+    RATES,
+    SPEED,
+    WALL_SPEED,
+    Effect,
+    Metric,
+    derived_column,
+    error_metric,
+    percentage,
+)
 from benchmark.model import Outcome
 from benchmark.results import FrameScore, frame_table, summarise
 
@@ -28,7 +39,7 @@ def counted(name: str = "estimated_pct", **changes: object) -> Metric:
 
 def test_core_board_order_is_by_kind_rates_then_errors_in_scorer_order_then_speed() -> None:
     names = [metric.name for metric in CORE.for_board("camera", ("err_d_px", "err_alpha_deg"))]
-    assert names == ["correct_pct", "false_pct", "missed_pct", "rmse_d_px", "rmse_alpha_deg", "fps"]
+    assert names == ["correct_pct", "false_pct", "missed_pct", "rmse_d_px", "rmse_alpha_deg", "cpu_fps", "wall_fps"]
     ranking = [metric.name for metric in CORE.for_board("camera", ("err_d_px", "err_alpha_deg")) if metric.ranks]
     assert ranking == ["correct_pct", "rmse_d_px"]
 
@@ -93,10 +104,18 @@ def test_a_pooled_value_is_the_value_of_the_pooled_sums(first: list, second: lis
 
 
 def test_the_core_summary_of_a_cell_has_rates_errors_and_speed() -> None:
-    scores = [FrameScore(0, Outcome.CORRECT, {"err_x_m": 3.0}, 0.5), FrameScore(1, Outcome.MISSED, {}, 0.5),
-              FrameScore(2, None, {}, 0.5)]
+    scores = [FrameScore(0, Outcome.CORRECT, {"err_x_m": 3.0}, 0.5, 1.0), FrameScore(1, Outcome.MISSED, {}, 0.5, 1.0),
+              FrameScore(2, None, {}, 0.5, 1.0)]
     summary = summarise(frame_table(scores), CORE.for_board(None, ("err_x_m",)))
     assert summary == {"frames": 2.0, "correct_pct": 50.0, "false_pct": 0.0, "missed_pct": 50.0,
-                       "rmse_x_m": 3.0, "fps": 2.0}
-    assert math.isnan(summarise(frame_table([]), (SPEED,))["fps"])
+                       "rmse_x_m": 3.0, "cpu_fps": 2.0, "wall_fps": 1.0}
+    assert math.isnan(summarise(frame_table([]), (SPEED,))["cpu_fps"])
+
+
+def test_frames_without_a_cpu_time_count_in_neither_sum_of_the_cpu_speed() -> None:
+    frames = pd.DataFrame({"step_ms": [10.0, np.nan, 30.0], "wall_ms": [20.0, 40.0, 60.0]})
+    assert SPEED.of(frames) == pytest.approx(2 / 0.04)
+    assert WALL_SPEED.of(frames) == pytest.approx(3 / 0.12)
+    assert math.isnan(SPEED.of(frames.assign(step_ms=np.nan)))
+    assert SPEED.judged and not WALL_SPEED.judged
     assert KINDS.index("detection") < KINDS.index("robustness")

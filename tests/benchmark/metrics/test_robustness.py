@@ -98,7 +98,7 @@ def test_they_are_registered_for_every_modality_through_the_hook() -> None:
     registry = Registry()
     robustness.trackbench_register_metrics(registry)
     assert [m.name for m in registry.metrics.for_board("sonar", ())][-3:] == [m.name for m in METRICS]
-    assert registry.metrics is not CORE and CORE.for_board("sonar", ())[-1].name == "fps"
+    assert registry.metrics is not CORE and CORE.for_board("sonar", ())[-1].name == "wall_fps"
 
 
 def test_trackbench_installs_them_as_a_plugin_like_any_other() -> None:
@@ -111,7 +111,7 @@ def test_more_failures_than_the_minimum_effect_is_a_regression() -> None:
         return pd.DataFrame({
             "run_id": run_id, "tracker": "t", "tracker_version": "1", "tracker_key": "k", "params": [{}],
             "dataset": "s/1", "dataset_key": "d", "seed": 0, "init": "truth", "status": "ok", "machine_key": "m",
-            "frames": 100, "fps": 100.0, FAILURES.name: failures,
+            "frames": 100, "cpu_fps": 100.0, FAILURES.name: failures,
         })
 
     metrics = CORE.adding(FAILURES)

@@ -195,7 +195,7 @@ def test_its_trackers_run_and_are_ranked_on_a_board_of_their_own(
     assert result.exit_code == 0, result.output
     board = pd.read_csv(tmp_path / "leaderboard.csv")
     assert set(board["modality"]) == {"altimeter"}
-    assert {"rmse_depth_m", "correct_pct", "fps"} <= set(board.columns)
+    assert {"rmse_depth_m", "correct_pct", "cpu_fps", "wall_fps"} <= set(board.columns)
     assert not any(column.startswith("rmse_d_") for column in board.columns)
     overall = board[board["dataset"] == "(all)"].set_index("tracker")
     # The spikes (every tenth reading, 5 m) make the raw tracker false on 10 % of frames; the median removes them.

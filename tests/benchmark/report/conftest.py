@@ -37,6 +37,7 @@ def boards() -> dict[str, pd.DataFrame]:
                 "frame": index,
                 "outcome": outcome,
                 "step_ms": 3.0,
+                "wall_ms": 3.0,
                 "err_d_px": d_error,
                 "err_alpha_deg": d_error / 10,
                 "err_w_px": 0.0,

@@ -7,14 +7,14 @@ import math
 import pandas as pd
 import pytest
 
-from benchmark.report.display import alignment, display_table, format_value, one_line, printable
+from benchmark.report.display import alignment, display_table, format_value
 
 
-def test_display_rounds_rates_rmses_and_fps(boards: dict[str, pd.DataFrame]) -> None:
+def test_display_rounds_rates_rmses_and_speeds(boards: dict[str, pd.DataFrame]) -> None:
     board = boards["camera"]
     shown = display_table(board).iloc[0]
     assert shown["correct_pct"] == "66.7" and shown["rmse_d_px"] == f"{math.sqrt(14 / 3):.2f}"
-    assert shown["fps"] == "333" and shown["rmse_beta_deg"] == ""
+    assert shown["cpu_fps"] == "333" and shown["rmse_beta_deg"] == ""
     assert board["correct_pct"].iloc[0] == pytest.approx(200 / 3)  # the board itself keeps full precision
 
 
@@ -23,7 +23,8 @@ def test_display_rounds_rates_rmses_and_fps(boards: dict[str, pd.DataFrame]) -> 
     [
         ("missed_pct", 12.345, "12.3"),
         ("rmse_across_m", 0.125001, "0.13"),
-        ("fps", 1234.5678, "1235"),
+        ("cpu_fps", 1234.5678, "1235"),
+        ("wall_fps", 1234.5678, "1235"),
         ("frames", 17, "17"),
         ("status", "error (1/2 cells): x", "error (1/2 cells): x"),
         ("rmse_d_px", math.nan, ""),
@@ -40,23 +41,6 @@ def test_numbers_align_right_and_text_left() -> None:
     assert display_table(board).dtypes.tolist() == [object] * 4
 
 
-@pytest.mark.parametrize(
-    ("text", "shown"),
-    [
-        ("\x1b[31mred\x1b[0m", "\\x1b[31mred\\x1b[0m"),
-        ("bell\x07 and C1 \x9b2J", "bell\\x07 and C1 \\x9b2J"),
-        ("tab\tand\nnewline stay", "tab\tand\nnewline stay"),
-        ("accents é and 雪 stay", "accents é and 雪 stay"),
-    ],
-)
-def test_printable_writes_control_characters_as_escapes(text: str, shown: str) -> None:
-    assert printable(text) == shown
-
-
-def test_one_line_is_printable_and_on_one_line() -> None:
-    assert one_line("a\n\x1b[2Jb\t c") == "a \\x1b[2Jb c"
-
-
 def _cells_and_frames(outcomes: dict[tuple[str, str], list[object]]) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Cells of tracker ``a`` by (dataset, status), with frames of the given outcomes (None: no truth), 2 ms a step."""
     cells, frames = [], []
@@ -66,8 +50,8 @@ def _cells_and_frames(outcomes: dict[tuple[str, str], list[object]]) -> tuple[pd
              "modality": "camera", "seed": 0, "init": "truth", "status": status, "message": ""}
         )
         frames += [
-            {"cell_id": cell_id, "frame": index, "outcome": outcome, "step_ms": 2.0, "err_d_px": math.nan,
-             "err_alpha_deg": math.nan, "err_w_px": math.nan, "err_beta_deg": math.nan}
+            {"cell_id": cell_id, "frame": index, "outcome": outcome, "step_ms": 2.0, "wall_ms": 4.0,
+             "err_d_px": math.nan, "err_alpha_deg": math.nan, "err_w_px": math.nan, "err_beta_deg": math.nan}
             for index, outcome in enumerate(frame_outcomes)
         ]
     return pd.DataFrame(cells), pd.DataFrame(frames)
@@ -83,7 +67,7 @@ def test_a_row_without_truth_says_so_where_its_rates_would_be_and_keeps_its_spee
     board = leaderboards(cells, frames, {"camera": CAMERA})["camera"]
     shown = display_table(board).set_index(board["dataset"])
     assert shown.loc["video", ["correct_pct", "false_pct", "missed_pct"]].tolist() == ["no truth"] * 3
-    assert shown.loc["video", "fps"] == "500" and shown.loc["video", "frames"] == "0"
+    assert shown.loc["video", ["cpu_fps", "wall_fps", "frames"]].tolist() == ["500", "250", "0"]
     assert shown.loc["labelled", ["correct_pct", "false_pct"]].tolist() == ["50.0", "50.0"]
     assert shown.loc["broken", "correct_pct"] == ""  # a cell that failed before any frame is not a row without truth
     assert shown.loc["(all)", "correct_pct"] == "50.0"

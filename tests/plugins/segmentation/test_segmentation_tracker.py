@@ -171,12 +171,12 @@ def test_values_outside_the_declared_domains_are_parameter_errors(bad):
 def test_the_gate_passes_over_better_scored_pairs_the_filter_cannot_have_produced(
     scene, monkeypatch, gate_sigmas, reported
 ):
-    import trackbench_segmentation.tracker as tracker_module
+    import trackbench_segmentation.detector as detector_module
     from trackbench_segmentation.pairing import BorderPair
 
     cable = CableState(0.0, 0.0, 30.0, 0.0)
     states = {"distractor": CableState(4.0, math.radians(25.0), 30.0, 0.0), "cable": CableState(2.0, 0.01, 31.0, 0.0)}
     pairs = [BorderPair(0, 1, cable_borders(state), state, score) for state, score in zip(states.values(), (900.0, 500.0))]
-    monkeypatch.setattr(tracker_module, "detect_pairs", lambda image, params, prediction: pairs)
+    monkeypatch.setattr(detector_module, "detect_pairs", lambda image, params, prediction: pairs)
     tracker = fresh(init=CameraTruth(cable), gate_sigmas=gate_sigmas)
     assert tracker.step(Frame(0, scene.cable(cable))) == states[reported]

@@ -102,6 +102,7 @@ def test_diagnose_without_a_database_leaves_the_result_empty(diagnose: Invoke, t
     assert result.exit_code == 0, result.output
     assert ceiling_rows(result.stdout) == {"fake/S3": ["4", "100.0", ""]}
     assert "skipped sonar/x: a sonar sequence, not a camera sequence" in result.stderr
+    assert "sequences 2/2, elapsed " in result.stderr  # the progress of a log that is not a terminal
     assert (out / "diagnose_peaked.md").is_file()
 
 

@@ -67,6 +67,13 @@ def test_the_table_holds_measurement_state_error_and_variance_for_the_span():
     assert text.startswith("# lagging on poses") and "2.50e-01" in text and "-0.10" in text
 
 
+
+def test_progress_is_reported_frame_by_frame_up_to_the_span_s_end():
+    reported = []
+    pose_table(Lagging(), Poses(), first=2, frames=3, report=lambda done, total: reported.append((done, total)))
+    assert reported == [(done, 5) for done in range(1, 6)]
+
+
 def test_the_span_must_lie_in_the_sequence():
     with pytest.raises(ValueError, match="not a span"):
         pose_table(Lagging(), Poses(), first=0, frames=0)
