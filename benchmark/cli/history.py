@@ -118,6 +118,12 @@ def nightly(
 @click.argument("run_b", type=int)
 @existing_history_option
 @threshold_options
+@click.option(
+    "--html",
+    "html",
+    type=click.Path(dir_okay=False, path_type=Path),
+    help="Also write the comparison as one self-contained HTML page to this file.",
+)
 @click.pass_obj
 def compare(
     session: Session,
@@ -127,12 +133,14 @@ def compare(
     min_effects: tuple[str, ...],
     window: int,
     min_step_s: float,
+    html: Path | None,
 ) -> None:
     """Print what changed from nightly run RUN_A to RUN_B of the history.
 
     Speeds are compared only when both ran on the same machine; with one
     earlier run there is no noise estimate, so a speed change beyond the
-    minimum effect is listed as unjudged.
+    minimum effect is listed as unjudged.  With --html, the page shows the
+    changes grouped by cause and every metric of both runs side by side.
     """
     from benchmark.errors import DataError
     from benchmark.history.database import History
@@ -142,11 +150,17 @@ def compare(
     limits = thresholds(min_effects, window, min_step_s)
     with History(history, must_exist=True) as database:
         cells = database.cells([run_a, run_b])
-    missing = sorted({run_a, run_b} - set(cells["run_id"]))
-    if missing:
-        raise DataError(f"history database {database.location}: no run {', '.join(map(str, missing))}")
-    changes = find_changes(cells, run_b, limits, against=[run_a], metrics=session.registry.metrics)
-    click.echo(describe_changes(changes, f"Run {run_a} -> {run_b}", session.registry.metrics))
+        missing = sorted({run_a, run_b} - set(cells["run_id"]))
+        if missing:
+            raise DataError(f"history database {database.location}: no run {', '.join(map(str, missing))}")
+        changes = find_changes(cells, run_b, limits, against=[run_a], metrics=session.registry.metrics)
+        click.echo(describe_changes(changes, f"Run {run_a} -> {run_b}", session.registry.metrics))
+        if html is not None:
+            from benchmark.site.compare import write_comparison
+
+            registry = session.registry
+            write_comparison(html, database, run_a, run_b, changes, registry.modalities, limits, registry.metrics)
+            click.echo(f"wrote {html}", err=True)
 
 
 @click.command("report")

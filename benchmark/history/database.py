@@ -226,6 +226,15 @@ class History:
         self._engine = self._open(database_url(location), must_exist)
         self._create()
 
+    def after_fork(self) -> None:
+        """In a process forked from the one that opened the history: leave the parent's connections to it.
+
+        The forked process then opens connections of its own as it needs
+        them, and the parent's stay the parent's (SQLAlchemy's advice for
+        engines shared with a child process).
+        """
+        self._engine.dispose(close=False)
+
     def _error(self, problem: str) -> DataError:
         """A :class:`DataError` naming the database, on one line, with its password masked wherever it appears."""
         message = " ".join(f"history database {self.location}: {problem}".split())

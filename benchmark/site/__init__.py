@@ -1,7 +1,10 @@
-"""The nightly site: static HTML pages of a history's latest run, readable from ``file://``.
+"""The nightly site: static HTML pages of a history's runs, readable from ``file://``.
 
-* :mod:`benchmark.site.build`: :func:`build_site`, the pages and what each shows.
-* :mod:`benchmark.site.figures`: trend plots and a cell's frames, drawn with matplotlib.
+* :mod:`benchmark.site.build`: :func:`build_site`, which pages a history has; drawing them in parallel and
+  only where their inputs changed; the atomic switch to the new build.
+* :mod:`benchmark.site.pages`: each kind of page and what it shows.
+* :mod:`benchmark.site.compare`: any two runs side by side (the compare page and ``trackbench compare --html``).
+* :mod:`benchmark.site.figures`: trends over the runs and a cell's frames, as interactive plotly figures.
 * :mod:`benchmark.site.tables`: tables that sort and filter in the browser (ITables, offline).
 """
 

@@ -1,345 +1,251 @@
-"""The nightly site: what the latest run of a history shows, page by page.
+"""The nightly site: every run of a history, its latest run first, page by page.
 
 :func:`build_site` writes::
 
-    index.html             the run, its regressions and improvements, one board per modality
-    trackers/<name>.html   a tracker's metrics over the history, and its cells of the run
-    cells/<id>.html        one cell of the run: its frames, errors, failed frames and parameters
-    assets/itables.js      the table library, shared by every page (:mod:`benchmark.site.tables`)
-
-with each figure as a PNG file beside its page.
+    index.html             the latest run: its changes grouped by cause, one full board per modality
+    runs.html              every run: when, commit, machine, load, cells, regressions
+    runs/<id>.html         one run: its changes against the runs before it, its boards from the cells' summaries
+    compare.html           any two runs side by side, picked in the browser
+    trackers/<name>.html   a tracker's headline metrics over the runs (interactive), its cells, changed parameters
+    cells/<id>.html        one cell of a run that keeps its details: frames (interactive), pictures, parameters
+    assets/itables.js      the table library (:mod:`benchmark.site.tables`)
+    assets/plotly.js       the plotting library (:mod:`benchmark.site.figures`)
 
 The site changes in one step.  A build writes its pages into a folder of
 their own, ``site/.builds/run-N-XXXX``; when all are written, the link
-``site/.current`` is pointed at it by one rename, and ``index.html``,
-``trackers``, ``cells`` and ``assets`` are links through ``.current``.  So
-a reader (a browser, a web server, a copy) sees the previous site or the new
-one, never a mixture, and a build that is killed or fails (a full or
-read-only disk is a :class:`~benchmark.errors.DataError` naming the site)
-leaves the previous site as it was.  Builds take turns (a lock,
-``site/.lock``): each removes what killed builds left, and every build
-but the new one and the one before it, which a reader may still be
-browsing.
+``site/.current`` is pointed at it by one rename, and the names above are
+links through ``.current``.  So a reader (a browser, a web server, a copy)
+sees the previous site or the new one, never a mixture, and a build that
+is killed or fails (a full or read-only disk is a
+:class:`~benchmark.errors.DataError` naming the site) leaves the previous
+site as it was.  Builds take turns (a lock, ``site/.lock``): each removes
+what killed builds left, and every build but the new one and the one
+before it, which a reader may still be browsing.
+
+A build draws only what changed.  Each page has a hash of its inputs
+(:func:`_plan`): the code and templates of trackbench, the thresholds and
+metrics, and what of the history the page shows.  A history only grows:
+a run and its cells never change once recorded, only the details of old
+runs are dropped, so a run's page is named by the runs up to it, its
+successor and whether it keeps details, and a cell's page by its row and
+the cell it is compared with.  The build's ``manifest.json`` keeps each
+page's hash and files; a page whose hash equals the shown build's is
+hard-linked from it (copied where links fail) instead of drawn.  The
+pages to draw are drawn by worker processes, forked with the history
+loaded (:data:`WORKERS`), each connecting to the database on its own.
 """
 
 from __future__ import annotations
 
 import hashlib
+import json
 import math
+import multiprocessing
 import os
-import re
 import shutil
 import tempfile
 import uuid
-from collections.abc import Mapping
+from collections.abc import Callable, Iterator, Mapping
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
-from datetime import datetime
 from pathlib import Path
 from typing import Any
 
 import filelock
-import jinja2
 import pandas as pd
-from markupsafe import Markup
 
+import benchmark
 from benchmark.errors import DataError
 from benchmark.files import make_folder
 from benchmark.history.database import History
-from benchmark.history.regressions import Step, Thresholds, find_changes, steps
-from benchmark.leaderboard import error_columns, is_pooled, leaderboards
-from benchmark.metrics import CORE, Metric, Metrics, error_columns_of
+from benchmark.history.regressions import Thresholds
+from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
-from benchmark.report.display import alignment, display_table, format_value
-from benchmark.site.figures import OUTCOME_COLOURS, cell_figure, trend_figure
-from benchmark.site.tables import datatable, escaped, link, write_bundle
+from benchmark.site.compare import compare_page
+from benchmark.site.figures import PLOTLY_ASSET, write_plotly
+from benchmark.site.pages import PAGE_KINDS, Drawn, Night, PageKind, page_name
+from benchmark.site.tables import ASSET as ITABLES_ASSET
+from benchmark.site.tables import write_bundle
 
-OWNED = ("index.html", "assets", "trackers", "cells")
+OWNED = ("index.html", "runs.html", "compare.html", "assets", "runs", "trackers", "cells")
 """What the site shows at its top, each a link through :data:`CURRENT`; nothing else there is touched."""
 BUILDS = ".builds"
 """The site's folder of builds, each a complete site."""
 CURRENT = ".current"
 """The link to the build the site shows."""
 LOCK = ".lock"
-
-SHARED_COLUMNS = ("init", "seeds", "training")
-"""Board columns shown once above the board instead when every row has the same value."""
-
-
-_templates = jinja2.Environment(
-    loader=jinja2.FileSystemLoader(Path(__file__).with_name("templates")),
-    autoescape=True,
-    undefined=jinja2.StrictUndefined,
-    trim_blocks=True,
-    lstrip_blocks=True,
-)
+MANIFEST = "manifest.json"
+"""Each page of a build with the hash of its inputs and its files, for the next build to reuse."""
+WORKERS = 2
+"""Processes drawing pages at most (never more than the machine's cores)."""
+POOL_FROM = 8
+"""Fewer pages to draw than this are drawn in the building process: starting workers would cost more."""
 
 
-def page_name(tracker: str) -> str:
-    """A file stem for a tracker's page: its name where that is a safe file name, else a slug and a hash."""
-    slug = re.sub(r"[^A-Za-z0-9._-]+", "-", tracker).strip("-.") or "tracker"
-    if slug == tracker:
-        return slug
-    return f"{slug}-{hashlib.sha256(tracker.encode()).hexdigest()[:8]}"
+def assets_page(night: Night, key: None, site: Path) -> Drawn:
+    """The shared scripts: the table and the plotting library."""
+    return Drawn([write_bundle(site).relative_to(site).as_posix(), write_plotly(site).relative_to(site).as_posix()])
 
 
-def _when(started: str) -> str:
-    try:
-        return datetime.fromisoformat(started).strftime("%Y-%m-%d %H:%M %Z").strip()
-    except ValueError:
-        return started
+KINDS: dict[str, PageKind] = {"assets": assets_page, **PAGE_KINDS, "compare": compare_page}
+"""Every kind of page by name."""
+LAST = ("index", "runs")
+"""Pages drawn in the building process after all others: the index's boards read the frames the latest run's
+cell pages read, and the runs page shows what each run page found."""
 
 
-def _signed(metric: str, value: float, metrics: Metrics) -> str:
-    shown = format_value(metric, value, metrics)
-    return f"+{shown}" if value > 0 and shown.strip("0.") else shown
+@dataclass(frozen=True)
+class Page:
+    """One page to have: its kind, key, and the hash of its inputs."""
 
-
-def _named_by(label: str, name: str, key: str) -> bool:
-    """Whether a board label (``name`` or ``name [key prefix]``) stands for ``name`` with ``key``."""
-    return label == name or label == f"{name} [{key[:8]}]"
-
-
-def _labelled(cells: pd.DataFrame, label: str, name: str, key: str) -> pd.DataFrame:
-    """The cells whose ``name`` and ``key`` columns a board label stands for."""
-    mask = [_named_by(label, str(n), str(k)) for n, k in zip(cells[name], cells[key])]
-    return cells[pd.Series(mask, index=cells.index, dtype=bool)]
-
-
-@dataclass
-class _Night:
-    """What the pages of one run are made of."""
-
-    history: History
-    modalities: Mapping[str, Modality]
-    metrics: Metrics
-    thresholds: Thresholds
-    runs: pd.DataFrame
-    cells: pd.DataFrame
-    latest: pd.DataFrame
-    frames: dict[int, pd.DataFrame]
-    changes: pd.DataFrame | None
+    kind: str
+    key: Any
+    inputs: str
 
     @property
-    def run(self) -> pd.Series:
-        return self.runs.iloc[-1]
-
-    def tracker_href(self, tracker: str, root: str) -> str:
-        return f"{root}trackers/{page_name(tracker)}.html"
-
-    def cell_links(self, cells: pd.DataFrame, root: str) -> Markup:
-        """Links to the pages of ``cells``, one per seed."""
-        ordered = cells.sort_values(["seed", "id"])
-        return Markup(" ").join(
-            link(f"seed {cell.seed}", f"{root}cells/{cell.id}.html") for cell in ordered.itertuples()
-        )
-
-    def metrics_of(self, cells: pd.DataFrame) -> list[Metric]:
-        """The metrics of the boards of ``cells``'s modalities that have a value in ``cells``, in board order."""
-        found: dict[str, Metric] = {}
-        for modality in cells["modality"].unique():
-            registered = self.modalities.get(str(modality))
-            errors = registered.error_columns if registered else error_columns_of(cells.columns)
-            found |= {metric.name: metric for metric in self.metrics.for_board(str(modality), errors)}
-        return [metric for metric in found.values() if metric.name in cells and cells[metric.name].notna().any()]
-
-    def errors_of(self, modality: str, frames: pd.DataFrame) -> list[str]:
-        """The error columns of a modality that have a value in ``frames``."""
-        columns = error_columns(self.modalities.get(modality), frames)
-        return [c for c in columns if c in frames and pd.to_numeric(frames[c], errors="coerce").notna().any()]
+    def name(self) -> str:
+        return self.kind if self.key is None else f"{self.kind}/{self.key}"
 
 
-def _load(history: History, modalities: Mapping[str, Modality], metrics: Metrics, thresholds: Thresholds) -> _Night:
+def _digest(*parts: object) -> str:
+    return hashlib.sha256(json.dumps(parts, default=str, sort_keys=True).encode()).hexdigest()[:20]
+
+
+def _code_digest() -> str:
+    """A hash of trackbench's code and the site's templates: pages drawn by other code are drawn again."""
+    root = Path(benchmark.__file__).parent
+    digest = hashlib.sha256()
+    for path in sorted([*root.rglob("*.py"), *root.joinpath("site", "templates").iterdir()]):
+        digest.update(path.relative_to(root).as_posix().encode())
+        digest.update(path.read_bytes())
+    from importlib.metadata import version
+
+    digest.update(f"{version('plotly')} {version('itables')}".encode())
+    return digest.hexdigest()[:20]
+
+
+def _plan(night: Night) -> list[Page]:
+    """Every page of the site with the hash of its inputs, in drawing order."""
+    code = _code_digest()
+    shared = (code, repr(night.thresholds), [(metric.name, scope) for metric, scope in night.metrics.added], sorted(night.modalities))
+    ids = [int(run) for run in night.runs["id"]]
+    everything = _digest(shared, ids, len(night.cells))
+    detailed = night.detailed
+    pages = [Page("assets", None, _digest(code)), Page("index", None, everything)]
+    for position, run_id in enumerate(ids):
+        following = ids[position + 1] if position + 1 < len(ids) else None
+        kept = night.kept.get(run_id)
+        pages.append(Page("run", run_id, _digest(shared, ids[: position + 1], following, run_id in detailed,
+                                                 None if kept is None else kept.to_json(orient="split"))))
+    pages += [Page("tracker", str(tracker), everything) for tracker in sorted(night.latest["tracker"].unique())]
+    by_id = night.cells.set_index("id", drop=False)
+    for cell in night.cells[night.cells["run_id"].isin(detailed)].to_dict("records"):
+        earlier = night.previous.get(int(cell["id"]))
+        compared = None
+        if earlier is not None:
+            row = by_id.loc[earlier]
+            compared = (earlier, int(row["run_id"]) in detailed, row["tracker_version"], row["params"])
+        # Empty values left out: a column added to the history later (a new metric) leaves old cells' pages as they are.
+        known = {name: value for name, value in cell.items() if not (isinstance(value, float) and math.isnan(value))}
+        pages.append(Page("cell", int(cell["id"]), _digest(shared, known, compared)))
+    pages += [Page("compare", None, everything), Page("runs", None, everything)]
+    return pages
+
+
+def _load(history: History, modalities: Mapping[str, Modality], metrics: Metrics, thresholds: Thresholds) -> Night:
     runs = history.runs()
     if runs.empty:
         raise DataError(f"history database {history.location}: no runs yet, so no site to build")
-    cells = history.cells()
-    run_id = int(runs["id"].iloc[-1])
-    latest = cells[cells["run_id"] == run_id].reset_index(drop=True)
-    frames = {int(cell_id): history.frames(int(cell_id)) for cell_id in latest["id"]}
-    changes = find_changes(cells, run_id, thresholds, metrics=metrics) if len(runs) > 1 else None
-    return _Night(history, modalities, metrics, thresholds, runs, cells, latest, frames, changes)
+    kept = {int(run_id): history.changes(int(run_id)) for run_id in runs["id"]}
+    return Night(history, modalities, metrics, thresholds, runs, history.cells(), {},
+                 {run_id: changes for run_id, changes in kept.items() if changes is not None})
 
 
-def _render(template: str, night: _Night, root: str, title: str, **context: Any) -> str:
-    """A page: ``template`` with the run's header, links relative to the page's folder ``root``."""
-    run = night.run.to_dict()
-    machine = run["machine"] if isinstance(run["machine"], Mapping) else {}
-    return _templates.get_template(template).render(
-        root=root,
-        title=title,
-        run=run,
-        when=_when(str(run["started"])),
-        machine=" \u00b7 ".join(f"{key}: {value}" for key, value in machine.items()),
-        colours=OUTCOME_COLOURS,
-        **context,
-    )
+_night: Night | None = None
+"""The night a worker process draws from: set before the workers are forked, so they share it unpickled."""
 
 
-def _change_rows(night: _Night, verdict: str, root: str) -> list[dict[str, Any]]:
-    if night.changes is None:
-        return []
-    rows = []
-    for change in night.changes[night.changes["verdict"] == verdict].itertuples():
-        metric = str(change.metric)
-        interval = ""
-        if math.isfinite(change.low) and math.isfinite(change.high) and change.low != change.high:
-            interval = f"[{_signed(metric, change.low, night.metrics)}, {_signed(metric, change.high, night.metrics)}]"
-        cells = night.latest[(night.latest["tracker"] == change.tracker) & (night.latest["dataset"] == change.dataset)]
-        rows.append(
-            dict(
-                tracker=change.tracker, dataset=change.dataset, metric=metric, kind=change.kind, verdict=verdict,
-                before=format_value(metric, change.before, night.metrics),
-                after=format_value(metric, change.after, night.metrics),
-                change=_signed(metric, change.change, night.metrics), interval=interval, cause=change.cause,
-                tracker_href=night.tracker_href(str(change.tracker), root), cells=night.cell_links(cells, root),
-            )
-        )
-    return rows
+def _open_own_history() -> None:
+    """In a worker: connections of its own to the history (a forked connection is the parent's)."""
+    assert _night is not None
+    _night.history.after_fork()
 
 
-def _board(night: _Night, board: pd.DataFrame, table_id: str, root: str) -> dict[str, Any]:
-    """A leaderboard as an interactive table, trackers linked to their pages and dataset rows to their cells.
-
-    Returns ``table``, the table, and ``shared``, the columns left out of it
-    because every row has the same value there (``init``, ``seeds``), with
-    that value.
-    """
-    shown = display_table(board, night.metrics)
-    numeric = [c for c, side in zip(shown.columns, alignment(board, night.metrics)) if side == "right" and c != "rank"]
-    empty = [c for c in shown.columns if c not in ("tracker", "dataset") and (shown[c] == "").all()]
-    shared = {c: shown[c].iloc[0] for c in SHARED_COLUMNS if c not in empty and len(shown) and shown[c].nunique() == 1}
-    table = escaped(shown.drop(columns=[*empty, *shared]))
-    numeric = [c for c in numeric if c in table]
-    for column in numeric:
-        table[column] = table[column].str.replace(r"^(\S+) (\[.*\])$", r'\1 <span class="ci">\2</span>', regex=True)
-    latest = night.latest
-    trackers, cells = [], []
-    for row in board.itertuples():
-        of_tracker = _labelled(latest, row.tracker, "tracker", "tracker_key")
-        name = str(of_tracker["tracker"].iloc[0]) if len(of_tracker) else str(row.tracker)
-        trackers.append(link(row.tracker, night.tracker_href(name, root)))
-        of_row = _labelled(of_tracker[of_tracker["init"] == row.init], row.dataset, "dataset", "dataset_key")
-        cells.append(night.cell_links(of_row, root) if not is_pooled(row.dataset) else Markup(""))
-    table["tracker"] = [str(markup) for markup in trackers]
-    table.insert(list(table.columns).index("dataset") + 1, "cells", [str(markup) for markup in cells])
-    return {"table": datatable(table, table_id, numeric), "shared": shared}
+def _draw(kind: str, key: Any, out: Path) -> Drawn:
+    assert _night is not None
+    return KINDS[kind](_night, key, out)
 
 
-def _index(night: _Night) -> str:
-    boards = leaderboards(
-        night.latest,
-        pd.concat([frames.assign(cell_id=cell_id) for cell_id, frames in night.frames.items()], ignore_index=True)
-        if night.frames else pd.DataFrame(),
-        night.modalities,
-        night.metrics,
-    )
-    return _render(
-        "index.html",
-        night,
-        "",
-        "trackbench nightly",
-        compared=night.changes is not None,
-        earlier=len(night.runs) - 1,
-        regressions=_change_rows(night, "regression", ""),
-        improvements=_change_rows(night, "improvement", ""),
-        boards={modality: _board(night, board, f"board-{i}", "") for i, (modality, board) in enumerate(boards.items())},
-        datatables=True,
-    )
+def _drawn_in_parallel(pages: list[Page], out: Path, workers: int) -> Iterator[tuple[Page, Drawn]]:
+    """Draw ``pages`` in ``workers`` forked processes; yield each with what it left as it is done."""
+    context = multiprocessing.get_context("fork")
+    with ProcessPoolExecutor(workers, mp_context=context, initializer=_open_own_history) as pool:
+        futures = {pool.submit(_draw, page.kind, page.key, out): page for page in pages}
+        for future in as_completed(futures):
+            yield futures[future], future.result()
 
 
-def _trend_levels(night: _Night, tracker: str) -> tuple[dict[str, pd.DataFrame], dict[tuple[str, str], list[Step]]]:
-    """Per metric, the mean over seeds of each run and dataset of ``tracker``; and the steps of each series."""
-    cells = night.cells[(night.cells["tracker"] == tracker) & (night.cells["status"] == "ok")]
-    several_inits = cells["init"].nunique() > 1
-    series = cells["dataset"] + (" [init " + cells["init"] + "]" if several_inits else "")
-    position = cells["run_id"].map({int(run): i for i, run in enumerate(night.runs["id"])})
-    levels, found = {}, {}
-    for metric in (m for m in night.metrics_of(cells) if m.headline):
-        table = cells.groupby([position, series])[metric.name].mean().unstack()
-        table = table.reindex(range(len(night.runs)))
-        levels[metric.name] = table
-        for name in table.columns:
-            values = table[name].dropna()
-            if len(values):
-                minimum = night.thresholds.minimum_effect(metric, float(values.median()))
-                found[(metric.name, str(name))] = steps(values, minimum)
-    return levels, found
+def _reuse(page: Page, shown: Path, before: Mapping[str, Any], out: Path) -> Drawn | None:
+    """The shown build's files of ``page`` linked into ``out`` when its inputs are unchanged, else None."""
+    entry = before.get(page.name)
+    if not entry or entry["inputs"] != page.inputs or not all((shown / f).is_file() for f in entry["files"]):
+        return None
+    for name in entry["files"]:
+        target = out / name
+        target.parent.mkdir(parents=True, exist_ok=True)
+        try:
+            os.link(shown / name, target)
+        except OSError:
+            shutil.copy2(shown / name, target)
+    return Drawn(list(entry["files"]), dict(entry.get("facts", {})))
 
 
-def _tracker(night: _Night, tracker: str, folder: Path) -> str:
-    stem = page_name(tracker)
-    levels, found = _trend_levels(night, tracker)
-    runs = [_when(str(started))[:10] for started in night.runs["started"]]
-    figure = trend_figure(levels, runs, found, folder / f"{stem}-trends.png", night.metrics) if levels else None
-    cells = night.latest[night.latest["tracker"] == tracker]
-    numeric = ["seed", *(m.name for m in night.metrics_of(cells) if m.kind == "detection" or m.headline)]
-    columns = ["dataset", "init", "seed", "status", *numeric[1:], "message"]
-    shown = pd.DataFrame({c: [format_value(c, v, night.metrics) for v in cells[c]] for c in columns}, dtype=object)
-    table = escaped(shown)
-    table.insert(0, "cell", [str(link(f"#{cell_id}", f"../cells/{cell_id}.html")) for cell_id in cells["id"]])
-    steps_found = [
-        dict(metric=metric, dataset=dataset, run=runs[step.run_id],
-             before=format_value(metric, step.before, night.metrics),
-             after=format_value(metric, step.after, night.metrics))
-        for (metric, dataset), found_steps in found.items() for step in found_steps
-    ]
-    changes = [row for verdict in ("regression", "improvement") for row in _change_rows(night, verdict, "../")
-               if row["tracker"] == tracker]
-    parameters = {cell.tracker_key: (cell.tracker_version, cell.params) for cell in cells.itertuples()}
-    return _render(
-        "tracker.html",
-        night,
-        "../",
-        f"{tracker} \u00b7 trackbench nightly",
-        tracker=tracker,
-        figure=figure.name if figure else None,
-        steps=steps_found,
-        changes=changes,
-        cells=datatable(table, "cells", numeric),
-        parameters=parameters,
-        datatables=True,
-    )
+def _write(night: Night, out: Path, shown: Path | None, report: Callable[[int, int], None], workers: int) -> None:
+    """Write every page into ``out``, reusing the shown build's pages whose inputs are unchanged."""
+    global _night
+    pages = _plan(night)
+    before: dict[str, Any] = {}
+    if shown is not None and (shown / MANIFEST).is_file():
+        before = json.loads((shown / MANIFEST).read_text(encoding="utf-8"))
+    manifest: dict[str, Any] = {}
+    done = 0
 
+    def record(page: Page, drawn: Drawn) -> None:
+        nonlocal done
+        if drawn.frames is not None:
+            night.frames[int(page.key)] = drawn.frames
+        manifest[page.name] = {"inputs": page.inputs, "files": drawn.files, "facts": drawn.facts}
+        if page.kind == "run":
+            night.run_facts[int(page.key)] = drawn.facts
+        done += 1
+        report(done, len(pages))
 
-def _cell(night: _Night, cell: pd.Series, folder: Path) -> str:
-    cell_id = int(cell["id"])
-    frames = night.frames[cell_id]
-    errors = night.errors_of(str(cell["modality"]), frames)
-    figure = cell_figure(frames, errors, folder / f"{cell_id}-frames.png") if len(frames) else None
-    pictures = []
-    for picture in night.history.pictures(cell_id):
-        name = f"{cell_id}-frame-{picture.frame}.png"
-        (folder / name).write_bytes(picture.png)
-        pictures.append(dict(src=name, frame=picture.frame, outcome=picture.outcome))
-    counts = frames["outcome"].fillna("unscored").value_counts() if "outcome" in frames else pd.Series(dtype=int)
-    of_board = night.metrics.for_board(str(cell["modality"]), errors)
-    summary = {metric.name: metric.format(cell[metric.name]) for metric in of_board if metric.name in cell}
-    return _render(
-        "cell.html",
-        night,
-        "../",
-        f"{cell['tracker']} on {cell['dataset']} \u00b7 trackbench nightly",
-        cell=cell.to_dict(),
-        tracker_href=night.tracker_href(str(cell["tracker"]), "../"),
-        figure=figure.name if figure else None,
-        outcomes={outcome: int(counts.get(outcome, 0)) for outcome in OUTCOME_COLOURS},
-        summary=summary,
-        pictures=pictures,
-        datatables=False,
-    )
-
-
-def _write(night: _Night, out: Path) -> None:
-    write_bundle(out)
-    (out / "index.html").write_text(_index(night), encoding="utf-8")
-    trackers = out / "trackers"
-    trackers.mkdir()
-    for tracker in sorted(night.latest["tracker"].unique()):
-        (trackers / f"{page_name(tracker)}.html").write_text(_tracker(night, tracker, trackers), encoding="utf-8")
-    cells = out / "cells"
-    cells.mkdir()
-    for _, cell in night.latest.iterrows():
-        (cells / f"{int(cell['id'])}.html").write_text(_cell(night, cell, cells), encoding="utf-8")
+    to_draw, last = [], []
+    for page in pages:
+        reused = _reuse(page, shown, before, out) if shown is not None else None
+        if reused is not None:
+            record(page, reused)
+        elif page.kind in LAST:
+            last.append(page)
+        else:
+            to_draw.append(page)
+    last.sort(key=lambda page: LAST.index(page.kind))
+    workers = min(workers, os.cpu_count() or 1)
+    if any(page.kind == "tracker" for page in to_draw):
+        night.changes  # found once here, not in each worker
+    _night = night
+    try:
+        if workers > 1 and len(to_draw) >= POOL_FROM:
+            for page, drawn in _drawn_in_parallel(to_draw, out, workers):
+                record(page, drawn)
+        else:
+            for page in to_draw:
+                record(page, KINDS[page.kind](night, page.key, out))
+        for page in last:
+            record(page, KINDS[page.kind](night, page.key, out))
+    finally:
+        _night = None
+    (out / MANIFEST).write_text(json.dumps(manifest, default=str), encoding="utf-8")
 
 
 def build_site(
@@ -349,13 +255,15 @@ def build_site(
     *,
     thresholds: Thresholds | None = None,
     metrics: Metrics = CORE,
+    report: Callable[[int, int], None] | None = None,
+    workers: int = WORKERS,
 ) -> Path:
-    """Write the whole site for the history's latest run into ``site`` (created, old pages replaced); return index.html.
+    """Write the site of the history into ``site`` (created, old pages replaced); return index.html.
 
     Parameters
     ----------
     history : History
-        The history database; its latest run is the one shown.
+        The history database; its latest run is the one the index shows.
     site : pathlib.Path
         The site's folder.  Only the site's own files in it
         (:data:`OWNED`) are replaced; anything else there is left alone.
@@ -367,6 +275,12 @@ def build_site(
         of :class:`~benchmark.history.regressions.Thresholds`.
     metrics : Metrics
         The catalogue of metrics shown and judged (the registry's).
+    report : callable, optional
+        Called with ``(done, total)`` pages after each page is drawn or
+        reused, for a progress display.
+    workers : int
+        Processes that draw pages at once (at most the machine's cores);
+        1 draws them in this process.
 
     Returns
     -------
@@ -389,7 +303,8 @@ def build_site(
                 shutil.rmtree(leftover, ignore_errors=True)
             staging = Path(tempfile.mkdtemp(prefix="staging-", dir=builds))
             try:
-                _write(night, staging)
+                _write(night, staging, builds / shown if shown and (builds / shown).is_dir() else None,
+                       report or (lambda done, total: None), workers)
                 build = staging.rename(builds / f"run-{int(night.run['id'])}-{uuid.uuid4().hex[:8]}")
             finally:
                 shutil.rmtree(staging, ignore_errors=True)

@@ -1,8 +1,10 @@
-"""The site in a real browser from ``file://``: no console errors, boards sort, and a screenshot to look at.
+"""The site in a real browser from ``file://``: no console errors, boards sort, plots draw, runs compare.
 
 Needs Python playwright and a Chromium at ``/usr/bin/chromium``; skipped
 without them.  ``TRACKBENCH_SCREENSHOT=path.png`` also saves the index's
-screenshot there.
+screenshot there; ``TRACKBENCH_SCREENSHOTS=folder`` saves the index with
+its grouped changes open (``nightly-index.png``) and the compare page
+(``nightly-compare.png``) there, as the README shows them.
 """
 
 from __future__ import annotations
@@ -69,15 +71,80 @@ def test_index_board_is_a_sortable_datatable(browser: Browser, nightly: Site, tm
     assert browser.problems == []
 
 
-def test_tracker_and_cell_pages_load_cleanly(browser: Browser, nightly: Site) -> None:
+def save_for_readme(page: sync_api.Page, name: str, tmp_path: Path) -> None:
+    """A full-page screenshot, kept in ``$TRACKBENCH_SCREENSHOTS`` when that names a folder."""
+    screenshot = tmp_path / name
+    page.screenshot(path=str(screenshot), full_page=True)
+    assert screenshot.stat().st_size > 10_000
+    if os.environ.get("TRACKBENCH_SCREENSHOTS"):
+        shutil.copyfile(screenshot, Path(os.environ["TRACKBENCH_SCREENSHOTS"]) / name)
+
+
+def test_tracker_and_cell_pages_draw_their_plots(browser: Browser, nightly: Site) -> None:
     page = browser.open(nightly.root / "trackers" / "hough.html")
     page.wait_for_selector("#cells.dataTable")
-    assert page.evaluate("[...document.images].every(image => image.complete && image.naturalWidth > 0)")
+    page.wait_for_selector("#trends .main-svg")
+    points = page.locator("#trends .scatterlayer .trace").first.locator(".point")
+    assert points.count() == 3
+    ticks = [str(tick.text_content()) for tick in page.query_selector_all("#trends .xtick text")]
+    assert ticks[0].startswith("#1 \u00b7 0123456 \u00b7 2024-06-10") and ticks[2].startswith("#3 ")
+    box = points.nth(2).bounding_box()
+    assert box is not None
+    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    page.wait_for_selector("#trends .hovertext")
+    assert "#3 \u00b7 0123456" in str(page.text_content("#trends .hovertext"))
     with page.expect_navigation(wait_until="load"):
         page.click("#cells tbody a")
     assert "/cells/" in page.url
+    page.wait_for_selector("#frames .main-svg")
     assert page.evaluate("[...document.images].every(image => image.complete && image.naturalWidth > 0)")
     assert len(page.query_selector_all(".pictures img")) >= 1
+    assert page.is_visible("tr.changed")
+    assert browser.problems == []
+
+
+def test_index_groups_the_changes_and_opens_each(browser: Browser, nightly: Site, tmp_path: Path) -> None:
+    page = browser.open(nightly.index)
+    page.wait_for_selector("#board-0.dataTable")
+    groups = page.query_selector_all("table.groups > tbody > tr.regression")
+    assert len(groups) == 1
+    inner = "table.groups > tbody > tr.regression table.inner"
+    assert page.is_hidden(inner)
+    page.click("table.groups > tbody > tr.regression summary")
+    assert page.is_visible(inner)
+    assert "correct_pct" in page.inner_text(inner)
+    save_for_readme(page, "nightly-index.png", tmp_path)
+    assert browser.problems == []
+
+
+def test_runs_page_leads_to_each_run_and_its_comparison(browser: Browser, nightly: Site, tmp_path: Path) -> None:
+    page = browser.open(nightly.root / "runs.html")
+    assert [link.inner_text() for link in page.query_selector_all("#runs tbody tr td:first-child a")] == [
+        "#3", "#2", "#1"]
+    with page.expect_navigation(wait_until="load"):
+        page.click("#runs a[href='runs/2.html']")
+    assert page.url.endswith("/runs/2.html")
+    page.wait_for_selector("#board-0.dataTable")
+    with page.expect_navigation(wait_until="load"):
+        page.click("a[rel=next]")
+    assert page.url.endswith("/runs/3.html")
+    with page.expect_navigation(wait_until="load"):
+        page.click("nav.neighbours a.compare")
+    assert page.input_value("#run-a") == "2" and page.input_value("#run-b") == "3"
+    worse = page.query_selector_all("#comparison tbody tr:has(td.worse)")
+    assert any("hough" in row.inner_text() and "correct_pct" in row.inner_text() for row in worse)
+    page.select_option("#run-b", "2")
+    page.wait_for_function("document.querySelectorAll('#comparison tbody tr').length === 0")
+    page.select_option("#run-a", "1")
+    page.select_option("#run-b", "3")
+    assert page.evaluate("location.hash") == "#a=1&b=3"
+    rows = [row.inner_text().split("\t") for row in page.query_selector_all("#comparison tbody tr")]
+    correct = next(row for row in rows if row[0] == "hough" and row[2] == "correct_pct")
+    assert float(correct[3]) > float(correct[4]) and correct[5].startswith("-")
+    page.fill("#filter", "condensation")
+    assert all(row.inner_text().startswith("condensation") for row in page.query_selector_all("#comparison tbody tr"))
+    page.fill("#filter", "")
+    save_for_readme(page, "nightly-compare.png", tmp_path)
     assert browser.problems == []
 
 
