@@ -181,6 +181,13 @@ history_cell_frames = sa.Table(
     sa.Column("frames", sa.LargeBinary, nullable=False),
 )
 history_cell_pictures = sa.Table("cell_pictures", HISTORY, *picture_columns("cells"))
+history_run_boards = sa.Table(
+    "run_boards",
+    HISTORY,
+    sa.Column("run_id", sa.Integer, sa.ForeignKey("runs.id"), primary_key=True),
+    sa.Column("modality", sa.Text, primary_key=True),
+    sa.Column("board", sa.Text, nullable=False),
+)
 history_run_changes = sa.Table(
     "run_changes",
     HISTORY,

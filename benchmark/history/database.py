@@ -10,6 +10,7 @@ row per cell to ``cells``, copied from the run's results database
           metrics JSON, deterministic)
     cell_frames(cell_id -> cells, frames BLOB)
     cell_pictures(cell_id -> cells, frame, outcome, png BLOB)
+    run_boards(run_id -> runs, modality, board JSON)
     run_changes(run_id -> runs, changes JSON)
 
 These are the tables of :data:`benchmark.schema.HISTORY`, whose cells and
@@ -25,7 +26,9 @@ earlier runs); ``cell_frames`` its frame table
 (outcome, errors and step time of every frame, compressed JSON) and
 ``cell_pictures`` the frames it failed on, drawn
 (:class:`benchmark.results.Picture`), so that the site can be rebuilt from
-the history alone.  ``run_changes`` keeps what the nightly said of its run
+the history alone.  ``run_boards`` keeps the run's leaderboards as the nightly published
+them, so that a site need not work them out again from every frame table;
+``run_changes`` keeps what the nightly said of its run
 (:func:`benchmark.history.regressions.find_changes`, after any repeat), so
 that the site tells the same story.  Frames and pictures (about 0.5 MB for a camera cell
 that failed often) are kept for the last :data:`DETAILED_RUNS` runs only;
@@ -92,6 +95,7 @@ _cells = schema.history_cells
 _cell_frames = schema.history_cell_frames
 _cell_pictures = schema.history_cell_pictures
 _run_changes = schema.history_run_changes
+_run_boards = schema.history_run_boards
 
 _P = ParamSpec("_P")
 _T = TypeVar("_T")
@@ -177,14 +181,41 @@ def _pack(frames: pd.DataFrame) -> bytes:
     return zlib.compress(frames.to_json(orient="split", index=False, double_precision=15).encode())
 
 
+def _dump_table(table: pd.DataFrame) -> str:
+    """A table as JSON text with its column types, which :func:`_load_table` reads back equal."""
+    split = json.loads(table.to_json(orient="split", index=False, double_precision=15))
+    return json.dumps({"dtypes": {str(c): str(t) for c, t in table.dtypes.items()}, "table": split})
+
+
+def _load_table(text: str) -> pd.DataFrame:
+    """A table written by :func:`_dump_table`."""
+    from io import StringIO
+
+    kept = json.loads(text)
+    return pd.read_json(StringIO(json.dumps(kept["table"])), orient="split", dtype=kept["dtypes"])
+
+
 WALL_TIMED = {"fps": "wall_fps"}
 """Metrics of runs recorded before the CPU timing, by the name they are read under: they timed the wall clock."""
 
 
 def _unpack(blob: bytes) -> pd.DataFrame:
-    from io import StringIO
+    """A frame table packed by :func:`_pack`: ``frame`` an integer, ``outcome`` text, every other column a float.
 
-    frames = pd.read_json(StringIO(zlib.decompress(blob).decode()), orient="split")
+    Read column by column with the table's known types rather than by
+    :func:`pandas.read_json`, which guesses each column's type and takes
+    four times as long (a site reads every frame table of a run).
+    """
+    table = json.loads(zlib.decompress(blob))
+    names, rows = table["columns"], table["data"]
+    values = list(zip(*rows, strict=True)) if rows else [()] * len(names)
+    frames = pd.DataFrame(
+        {
+            name: pd.array(column, dtype="str") if name == "outcome"
+            else np.array(column, dtype=float).astype(np.int64 if name == "frame" else float, copy=False)
+            for name, column in zip(names, values, strict=True)
+        }
+    )
     if "step_ms" in frames and "wall_ms" not in frames:  # recorded before the CPU timing: step_ms was wall time
         frames = frames.rename(columns={"step_ms": "wall_ms"})
         frames.insert(list(frames.columns).index("wall_ms"), "step_ms", float("nan"))
@@ -330,6 +361,7 @@ class History:
         seeds: int,
         metrics: Metrics = CORE,
         load: Mapping[str, Any] | None = None,
+        boards: Mapping[str, pd.DataFrame] | None = None,
     ) -> int:
         """Copy a finished run of a results database into the history and return its history id.
 
@@ -351,6 +383,9 @@ class History:
         load : Mapping, optional
             How busy the machine was during the run
             (:meth:`benchmark.history.machine.LoadMeter.stop`), JSON values.
+        boards : Mapping, optional
+            The run's leaderboards by modality, as published
+            (:attr:`benchmark.harness.Publication.boards`), kept as they are.
         """
         cells = results.cells(run_id)
         frames = results.frame_tables(cells["id"])
@@ -392,6 +427,12 @@ class History:
                 ]
                 if rows:
                     connection.execute(_cell_pictures.insert(), rows)
+            kept_boards = [
+                {"run_id": history_run, "modality": modality, "board": _dump_table(board)}
+                for modality, board in (boards or {}).items()
+            ]
+            if kept_boards:
+                connection.execute(_run_boards.insert(), kept_boards)
             self._forget_details(connection)
         return int(history_run)
 
@@ -406,7 +447,7 @@ class History:
     @_reports_database_errors
     def record_changes(self, run_id: int, changes: pd.DataFrame) -> None:
         """Keep what the nightly said of run ``run_id``: its table of changes, replacing any kept before."""
-        text = changes.to_json(orient="split", index=False, double_precision=15)
+        text = _dump_table(changes)
         with self._engine.begin() as connection:
             connection.execute(_run_changes.delete().where(_run_changes.c.run_id == int(run_id)))
             connection.execute(_run_changes.insert().values(run_id=int(run_id), changes=text))
@@ -414,13 +455,19 @@ class History:
     @_reports_database_errors
     def changes(self, run_id: int) -> pd.DataFrame | None:
         """The changes the nightly of run ``run_id`` kept (:meth:`record_changes`); None where it kept none."""
-        from io import StringIO
-
         with self._engine.connect() as connection:
             text = connection.execute(
                 sa.select(_run_changes.c.changes).where(_run_changes.c.run_id == int(run_id))
             ).scalar_one_or_none()
-        return None if text is None else pd.read_json(StringIO(text), orient="split")
+        return None if text is None else _load_table(text)
+
+    @_reports_database_errors
+    def boards(self, run_id: int) -> dict[str, pd.DataFrame] | None:
+        """The leaderboards of run ``run_id`` by modality as its nightly published them; None where none were kept."""
+        query = sa.select(_run_boards.c.modality, _run_boards.c.board).where(_run_boards.c.run_id == int(run_id))
+        with self._engine.connect() as connection:
+            rows = connection.execute(query.order_by(_run_boards.c.modality)).all()
+        return {str(modality): _load_table(text) for modality, text in rows} or None
 
     @_reports_database_errors
     def runs(self) -> pd.DataFrame:

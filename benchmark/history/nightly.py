@@ -191,6 +191,7 @@ def run_nightly(
             seeds=seeds,
             metrics=metrics,
             load=load,
+            boards=summary.publication.boards,
         )
         changes = find_changes(database.cells(), run_id, thresholds, metrics=metrics)
         series = speed_series(changes)
@@ -215,8 +216,11 @@ def record_nightly(
     seeds: int,
     metrics: Metrics = CORE,
     load: Mapping[str, Any] | None = None,
+    boards: Mapping[str, pd.DataFrame] | None = None,
 ) -> int:
     """Append run ``run_id`` of the results database in ``out`` to ``history``, with this machine, its load and commit.
+
+    ``boards``, the run's published leaderboards, are kept with it.
 
     Returns
     -------
@@ -238,6 +242,7 @@ def record_nightly(
             seeds=seeds,
             metrics=metrics,
             load=load,
+            boards=boards,
         )
 
 

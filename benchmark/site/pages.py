@@ -241,7 +241,7 @@ def _change_row(night: Night, change: pd.Series, cells: pd.DataFrame, root: str)
         interval = f"[{signed(metric, low, night.metrics)}, {signed(metric, high, night.metrics)}]"
     of_row = cells[(cells["tracker"] == change["tracker"]) & (cells["dataset"] == change["dataset"])]
     return dict(
-        dataset=change["dataset"], metric=metric, flag=str(change.get("flag", "") or ""),
+        dataset=change["dataset"], metric=metric, note=str(change.get("note", "") or ""),
         before=format_value(metric, change["before"], night.metrics),
         after=format_value(metric, change["after"], night.metrics),
         change=signed(metric, float(change["change"]), night.metrics), interval=interval,
@@ -326,14 +326,21 @@ def _summary_board(night: Night, cells: pd.DataFrame, modality: str, table_id: s
     return {"table": datatable(table, table_id, ["seeds", *(m.name for m in metrics)]), "shared": {}}
 
 
-def _run_page(night: Night, run_id: int, root: str, full_boards: bool) -> tuple[str, dict[str, Any]]:
-    """The page of a run: its changes against the runs before it, grouped, and its boards."""
+def _run_page(night: Night, run_id: int, root: str, index: bool) -> tuple[str, dict[str, Any]]:
+    """The page of a run: its changes against the runs before it, grouped, and its boards.
+
+    The boards are those the nightly published and kept; for a run that kept
+    none, the index works them out from the frame tables, and a run's own
+    page shows each metric's mean over the seeds' summaries.
+    """
     cells = night.cells_of(run_id)
     changes = night.changes if run_id == int(night.run["id"]) else night.changes_of(run_id)
-    if full_boards:
+    boards = night.history.boards(run_id)  # as the nightly published them; else worked out from the frames
+    if boards is None and index:
         frames = [night.frames_of(int(cell_id)).assign(cell_id=int(cell_id)) for cell_id in cells["id"]]
         boards = leaderboards(cells, pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(),
                               night.modalities, night.metrics)
+    if boards is not None:
         tables = {modality: _board(night, board, cells[cells["modality"] == modality], f"board-{i}", root)
                   for i, (modality, board) in enumerate(boards.items())}
     else:
@@ -346,24 +353,24 @@ def _run_page(night: Night, run_id: int, root: str, full_boards: bool) -> tuple[
     run = night.run_row(run_id).to_dict()
     html = render(
         "run.html", night, run, root,
-        "trackbench nightly" if full_boards else f"run #{run_id} \u00b7 trackbench nightly",
-        index=full_boards, compared=changes is not None, earlier=int((night.runs["id"] < run_id).sum()),
+        "trackbench nightly" if index else f"run #{run_id} \u00b7 trackbench nightly",
+        index=index, compared=changes is not None, earlier=int((night.runs["id"] < run_id).sum()),
         changes=groups, boards=tables, previous=previous, following=following, detailed=run_id in night.detailed,
-        full_boards=full_boards, datatables=True,
+        full_boards=boards is not None, datatables=True,
     )
     return html, facts
 
 
 def index_page(night: Night, key: None, site: Path) -> Drawn:
     """``index.html``: the latest run, its grouped changes and full leaderboards."""
-    html, facts = _run_page(night, int(night.run["id"]), "", full_boards=True)
+    html, facts = _run_page(night, int(night.run["id"]), "", index=True)
     (site / "index.html").write_text(html, encoding="utf-8")
     return Drawn(["index.html"], facts)
 
 
 def run_page(night: Night, run_id: int, site: Path) -> Drawn:
-    """``runs/<id>.html``: a run, its changes against the runs before it, its boards from the cells' summaries."""
-    html, facts = _run_page(night, run_id, "../", full_boards=False)
+    """``runs/<id>.html``: a run, its changes against the runs before it, and its boards."""
+    html, facts = _run_page(night, run_id, "../", index=False)
     path = site / "runs" / f"{run_id}.html"
     path.parent.mkdir(exist_ok=True)
     path.write_text(html, encoding="utf-8")

@@ -10,6 +10,7 @@ import pytest
 from benchmark.errors import DataError
 from benchmark.history.database import History, database_url, shown_location
 from benchmark.history.database import _pack as database_pack
+from benchmark.leaderboard import load_leaderboards
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.results import Picture
 from benchmark.store import ResultStore
@@ -81,6 +82,21 @@ def test_a_runs_changes_are_kept_as_they_were_said_and_replaced_when_said_again(
         history.record_changes(run_id, said.iloc[0:0])
         kept = history.changes(run_id)
         assert kept is not None and kept.empty and list(kept.columns) == list(said.columns)
+
+
+def test_a_runs_published_boards_are_kept_equal_to_what_was_published(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "noisy", "--seeds", "2", "--in-process", "--out", str(out)).exit_code == 0
+    with ResultStore(out / "results.sqlite") as results:
+        published = load_leaderboards(results, {"camera": CAMERA})
+    with History(tmp_path / "history.sqlite") as history:
+        without = record(history, out)
+        assert history.boards(without) is None
+        run_id = record(history, out, boards=published)
+        kept = history.boards(run_id)
+    assert kept is not None and list(kept) == list(published)
+    for modality, board in published.items():
+        pd.testing.assert_frame_equal(kept[modality], board)
 
 
 def test_urls_and_paths() -> None:

@@ -20,6 +20,7 @@ from benchmark import cli
 from benchmark.errors import DataError
 from benchmark.history.database import History
 from benchmark.history.regressions import Thresholds
+from benchmark.leaderboard import leaderboards
 from benchmark.registry import Registry
 from benchmark.site import build_site
 from benchmark.site import build as site_build
@@ -375,7 +376,8 @@ def test_pages_show_the_changes_the_nightly_kept(fakes: types.ModuleType, tmp_pa
     registry, history = fake_history(fakes, tmp_path, [10, 11])
     kept = pd.DataFrame([dict(
         tracker="noisy", dataset="fake/S1", metric="correct_pct", kind="accuracy", before=90.0, after=70.0,
-        change=-20.0, low=-25.0, high=-15.0, verdict="regression", cause="sigma_px 1.0 -> 9.0", effects=10.0, flag="",
+        change=-20.0, low=-25.0, high=-15.0, verdict="regression", cause="sigma_px 1.0 -> 9.0", effects=10.0,
+        note="frames with an estimate 300 -> 212",
     )])
     history.record_changes(2, kept)
     site = tmp_path / "site"
@@ -383,5 +385,24 @@ def test_pages_show_the_changes_the_nightly_kept(fakes: types.ModuleType, tmp_pa
     for page in (site / "index.html", site / "runs" / "2.html"):
         regressions = section(page, "Regressions", "Improvements")
         assert "sigma_px 1.0 -&gt; 9.0" in regressions and "correct_pct -20.0 on fake/S1" in regressions
+        assert "frames with an estimate 300 -&gt; 212" in regressions
     runs = section(site / "runs.html", "<tbody>", "</tr>")
     assert re.findall(r'<td class="num[^"]*">(\d+|–)</td>', runs)[3:] == ["1", "0"]
+
+
+def test_run_pages_show_the_boards_the_nightly_kept(
+    fakes: types.ModuleType, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    registry, history = fake_history(fakes, tmp_path, [10, 11])
+    build_site(history, tmp_path / "site", registry.modalities, workers=1)
+    worked_out = (tmp_path / "site" / "index.html").read_text()
+    assert "Each metric's mean over the seeds' summaries" in (tmp_path / "site" / "runs" / "1.html").read_text()
+    cells = history.cells([2])
+    frames = pd.concat([history.frames(int(cell)).assign(cell_id=int(cell)) for cell in cells["id"]])
+    kept = {modality: board.assign(correct_pct=12.3456)
+            for modality, board in leaderboards(cells, frames, registry.modalities).items()}
+    monkeypatch.setattr(History, "boards", lambda self, run_id: kept)
+    build_site(history, tmp_path / "again", registry.modalities, workers=1)
+    index, first = (tmp_path / "again" / "index.html").read_text(), (tmp_path / "again" / "runs" / "1.html").read_text()
+    assert ">12.3" not in worked_out and ">12.3" in index
+    assert ">12.3" in first and "Each metric's mean over the seeds' summaries" not in first
