@@ -29,3 +29,13 @@ def printable(text: object) -> str:
 def one_line(text: object) -> str:
     """``text`` on one line, printable: runs of whitespace, newlines included, become one space (:func:`printable`)."""
     return printable(" ".join(str(text).split()))
+
+
+def shortened(text: str, width: int) -> str:
+    """``text`` cut to ``width`` characters, an ellipsis marking the cut."""
+    return text if len(text) <= width else text[: max(width - 1, 0)] + "\u2026"
+
+
+def counted(count: int, noun: str) -> str:
+    """``count`` and ``noun``, plural unless one: ``1 tracker``, ``3 datasets``."""
+    return f"{count} {noun}{'' if count == 1 else 's'}"

@@ -459,7 +459,7 @@ class History:
             text = connection.execute(
                 sa.select(_run_changes.c.changes).where(_run_changes.c.run_id == int(run_id))
             ).scalar_one_or_none()
-        return None if text is None else _load_table(text)
+        return None if text is None else self._kept_table(text, f"the changes of run {run_id}")
 
     @_reports_database_errors
     def boards(self, run_id: int) -> dict[str, pd.DataFrame] | None:
@@ -467,7 +467,14 @@ class History:
         query = sa.select(_run_boards.c.modality, _run_boards.c.board).where(_run_boards.c.run_id == int(run_id))
         with self._engine.connect() as connection:
             rows = connection.execute(query.order_by(_run_boards.c.modality)).all()
-        return {str(modality): _load_table(text) for modality, text in rows} or None
+        return {str(modality): self._kept_table(text, f"the {modality} board of run {run_id}") for modality, text in rows} or None
+
+    def _kept_table(self, text: str, what: str) -> pd.DataFrame:
+        """A table kept by :func:`_dump_table`; a :class:`DataError` naming it and the database if it is unreadable."""
+        try:
+            return _load_table(text)
+        except (KeyError, TypeError, ValueError) as exc:
+            raise DataError(f"history database {self.location}: {what} cannot be read ({type(exc).__name__}: {exc})") from None
 
     @_reports_database_errors
     def runs(self) -> pd.DataFrame:

@@ -27,11 +27,11 @@ from benchmark.history.machine import LoadMeter, describe_machine, git_commit, m
 from benchmark.history.regressions import Thresholds, confirm_speed, find_changes, group_changes
 from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
-from benchmark.report.display import alignment, display_table
+from benchmark.report.summary import terminal_width
 from benchmark.results import summarise
 from benchmark.site import build_site
 from benchmark.store import DATABASE_NAME, ResultStore
-from benchmark.text import one_line
+from benchmark.text import counted, one_line, shortened
 
 if TYPE_CHECKING:
     from benchmark.harness import RunSummary
@@ -246,37 +246,36 @@ def record_nightly(
         )
 
 
-def describe_changes(changes: pd.DataFrame, title: str, metrics: Metrics = CORE, file: Path | None = None) -> str:
+def describe_changes(
+    changes: pd.DataFrame, title: str, metrics: Metrics = CORE, file: Path | None = None, width: int | None = None
+) -> str:
     """The changes of :func:`~benchmark.history.regressions.find_changes` for a terminal: accuracy and speed apart,
-    one row per tracker and cause (:func:`~benchmark.history.regressions.group_changes`), the largest first.
+    one entry per tracker and cause (:func:`~benchmark.history.regressions.group_changes`), the largest first.
 
-    ``file``, where given, is named as the place that holds every change.
+    Each entry is its verdict, tracker and largest change on one line, then
+    its cause, what it touched and its note, each line cut to ``width`` (the terminal's by
+    default); ``file``, where given, is named as the place that holds every
+    change.
     """
     if changes.empty:
         return f"{title}: no change beyond the thresholds."
+    width = width or terminal_width()
     groups = group_changes(changes, metrics)
     where = f"; every change in {file}" if file is not None else ""
-    parts = [f"{title}: {len(changes)} changes, {len(groups)} by tracker and cause{where}"]
+    lines = [f"{title}: {len(changes)} changes, {len(groups)} by tracker and cause{where}"]
     for kind, of_kind in groups.groupby("kind", sort=False):
         verdicts = of_kind["verdict"].value_counts()
         counts = ", ".join(f"{verdicts[v]} {v}{'s' if verdicts[v] > 1 else ''}" for v in verdicts.index)
-        shown = pd.DataFrame(
-            {
-                "verdict": of_kind["verdict"],
-                "tracker": of_kind["tracker"],
-                "cause": [one_line(cause) or "(none found)" for cause in of_kind["cause"]],
-                "largest change": of_kind["headline"],
-                "datasets": [len(d) for d in of_kind["datasets"]],
-                "metrics": [_first(m) for m in of_kind["metrics"]],
-                "note": [_note(rows) for rows in of_kind["rows"]],
-            }
-        )
-        shown = shown.drop(columns=[c for c in ("note",) if (shown[c] == "").all()])
-        table = display_table(shown).to_markdown(
-            index=False, tablefmt="simple", disable_numparse=True, colalign=alignment(shown)
-        )
-        parts.append(f"{kind.capitalize()}: {counts}\n\n{table}")
-    return "\n\n".join(parts) + "\n"
+        lines += ["", f"{str(kind).capitalize()}: {counts}"]
+        for group in of_kind.itertuples():
+            touched = f"{counted(len(group.datasets), 'dataset')}, {counted(len(group.metrics), 'metric')}"
+            entry = [f"  {group.verdict:<12} {one_line(group.tracker)}  {group.headline}",
+                     f"  {'':<12} cause: {one_line(group.cause) or '(none found)'}",
+                     f"  {'':<12} {counted(group.count, 'change')} on {touched}: {_first(group.metrics)}"]
+            if note := _note(group.rows):
+                entry.append(f"  {'':<12} note: {one_line(note)}")
+            lines += [shortened(line, width) for line in entry]
+    return "\n".join(lines) + "\n"
 
 
 def _first(names: list[str], shown: int = 3) -> str:

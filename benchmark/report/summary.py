@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 from benchmark.leaderboard import ALL_DATASETS, failed_cells, is_pooled
 from benchmark.metrics import CORE, Metric, Metrics, error_columns_of
 from benchmark.report.display import format_value
-from benchmark.text import one_line, printable
+from benchmark.text import counted, one_line, printable, shortened
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -57,14 +57,6 @@ def summary_metrics(board: pd.DataFrame, modality: str, metrics: Metrics = CORE)
         if (metric.headline or metric.kind == "speed") and metric.name in board.columns
     ]
     return sorted(shown, key=lambda metric: 0 if metric.ranks else 1 if metric.kind == "speed" else 2)
-
-
-def _shorten(text: str, width: int) -> str:
-    return text if len(text) <= width else text[: max(width - 1, 0)] + "…"
-
-
-def _counted(count: int, noun: str) -> str:
-    return f"{count} {noun}{'' if count == 1 else 's'}"
 
 
 def _fitting(widths: Sequence[int], first: int, width: int) -> int:
@@ -108,15 +100,15 @@ def board_summary(board: pd.DataFrame, modality: str, width: int, metrics: Metri
         kept = _fitting(widths, min(longest, MIN_NAME_WIDTH), width)
     name_width = max(1, min(longest, width - sum(len(GAP) + w for w in widths[:kept])))
     lines = [
-        _shorten(f"{modality}: {_counted(len(names), 'tracker')} over {_counted(datasets, 'dataset')}", width),
+        shortened(f"{modality}: {counted(len(names), 'tracker')} over {counted(datasets, 'dataset')}", width),
         "tracker".ljust(name_width)
         + "".join(GAP + title.rjust(w) for (title, _), w in zip(columns[:kept], widths[:kept])),
     ]
     for i, name in enumerate(names):
         row = "".join(GAP + values[i].rjust(w) for (_, values), w in zip(columns[:kept], widths[:kept]))
-        lines.append((_shorten(name, name_width).ljust(name_width) + row).rstrip())
+        lines.append((shortened(name, name_width).ljust(name_width) + row).rstrip())
     if kept < len(columns):
-        lines.append(_shorten(f"(too narrow for {', '.join(title for title, _ in columns[kept:])})", width))
+        lines.append(shortened(f"(too narrow for {', '.join(title for title, _ in columns[kept:])})", width))
     return lines
 
 
@@ -147,7 +139,7 @@ def summary_text(
     if not boards:
         blocks.append("No results.")
     if problems:
-        blocks.append("\n".join(["Problems", *(_shorten(f"- {one_line(problem)}", width) for problem in problems)]))
+        blocks.append("\n".join(["Problems", *(shortened(f"- {one_line(problem)}", width) for problem in problems)]))
     if files:
         named = [f"  {printable(path)}" for path in files]
         blocks.append("\n".join(["Full boards (trackbench leaderboard prints them):", *named]))

@@ -151,3 +151,21 @@ def test_nightlies_with_nothing_changed_stay_green_while_another_process_loads_b
     assert "regression" in slower.stdout and "cpu_fps" in slower.stdout and "held" in slower.stdout
     assert (tmp_path / "out" / REPEAT_FOLDER / "results.sqlite").is_file()
     assert reported.exit_code == 0 and "regression" in reported.stdout and "held" in reported.stdout, reported.output
+
+
+def test_changes_are_described_one_entry_per_tracker_and_cause_within_the_width() -> None:
+    from benchmark.history.nightly import describe_changes
+
+    rows = [
+        dict(tracker="hough", dataset=f"camera/S{i}", metric=metric, kind="accuracy", before=90.0, after=80.0,
+             change=-10.0, verdict="regression", cause="vote_fraction 0.25 -> 0.5", effects=5.0 - i,
+             note="frames with an estimate 300 -> 212" if metric.startswith("rmse") else "")
+        for i in range(1, 4) for metric in ("correct_pct", "rmse_d_px")
+    ]
+    text = describe_changes(pd.DataFrame(rows), "Run 1 -> 2", width=60)
+    lines = text.splitlines()
+    assert lines[0] == "Run 1 -> 2: 6 changes, 1 by tracker and cause"
+    assert all(len(line) <= 60 for line in lines)
+    assert sum(line.startswith("  regression") for line in lines) == 1 and "correct_pct -10.0 on camera/S1" in text
+    assert "cause: vote_fraction 0.25 -> 0.5" in text and "6 changes on 3 datasets, 2 metrics" in text
+    assert "note: frames with an estimate 300 -> 212 (+2)" in text
