@@ -294,18 +294,28 @@ RATES: tuple[Metric, ...] = tuple(
 )
 """The detection rates, percentages of scored frames summing to 100 (seeds/004, section VI-C, Table V)."""
 
-SPEED = Metric(
-    name="cpu_fps",
-    better="higher",
-    kind="speed",
-    columns=("step_ms",),
-    sums=functools.partial(_time_sums, "step_ms"),
-    value=_frames_per_second,
-    digits=0,
-    minimum_effect=Effect(0.10, relative=True),
-    description="frames processed per second of CPU time of the thread running the tracker's step "
-    "(seeds/000, section 5.2.5)",
-    interval=False,
+
+def _speed(name: str, column: str, description: str, **flags: bool) -> Metric:
+    """Frames processed per second of the step times in a frame table's ``column``; no interval over seeds."""
+    return Metric(
+        name=name,
+        better="higher",
+        kind="speed",
+        columns=(column,),
+        sums=functools.partial(_time_sums, column),
+        value=_frames_per_second,
+        digits=0,
+        minimum_effect=Effect(0.10, relative=True),
+        description=description,
+        interval=False,
+        **flags,
+    )
+
+
+SPEED = _speed(
+    "cpu_fps",
+    "step_ms",
+    "frames processed per second of CPU time of the thread running the tracker's step (seeds/000, section 5.2.5)",
     headline=True,
 )
 """Frames processed per second of the CPU time of ``step``'s thread: the tracker's own work.
@@ -314,18 +324,11 @@ It measures the machine's CPU too, so it has no interval over seeds and is
 compared on the same machine only.
 """
 
-WALL_SPEED = Metric(
-    name="wall_fps",
-    better="higher",
-    kind="speed",
-    columns=("wall_ms",),
-    sums=functools.partial(_time_sums, "wall_ms"),
-    value=_frames_per_second,
-    digits=0,
-    minimum_effect=Effect(0.10, relative=True),
-    description="frames processed per second of wall-clock time of the tracker's step, waits for a core "
-    "held by other processes included; shown, not judged",
-    interval=False,
+WALL_SPEED = _speed(
+    "wall_fps",
+    "wall_ms",
+    "frames processed per second of wall-clock time of the tracker's step, waits for a core held by other "
+    "processes included; shown, not judged",
     judged=False,
 )
 """Frames processed per second of the wall time of ``step``; not judged for regressions.
