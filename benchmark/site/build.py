@@ -4,7 +4,7 @@
 
     index.html             the latest run: its changes grouped by cause, one full board per modality
     runs.html              every run: when, commit, machine, load, cells, regressions
-    runs/<id>.html         one run: its changes against the runs before it, its boards from the cells' summaries
+    runs/<id>.html         one run: its changes against the runs before it, its boards as the nightly kept them
     compare.html           any two runs side by side, picked in the browser
     trackers/<name>.html   a tracker's headline metrics over the runs (interactive), its cells, changed parameters
     cells/<id>.html        one cell of a run that keeps its details: frames (interactive), pictures, parameters
