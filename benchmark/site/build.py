@@ -230,7 +230,8 @@ def _write(night: Night, out: Path, shown: Path | None, report: Callable[[int, i
         else:
             to_draw.append(page)
     last.sort(key=lambda page: LAST.index(page.kind))
-    workers = min(workers, os.cpu_count() or 1)
+    # Workers are forked so that they share the loaded history; where there is no fork, pages are drawn here.
+    workers = min(workers, os.cpu_count() or 1) if "fork" in multiprocessing.get_all_start_methods() else 1
     if any(page.kind == "tracker" for page in to_draw):
         night.changes  # found once here, not in each worker
     _night = night
