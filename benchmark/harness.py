@@ -60,7 +60,7 @@ from benchmark.frame_cache import CachedSequence, FrameCache
 from benchmark.leaderboard import leaderboards
 from benchmark.metrics import CORE, SPEED, Metrics
 from benchmark.modality import Modality
-from benchmark.progress import Progress, SilentProgress
+from benchmark.progress import Meter, Progress, SilentProgress
 from benchmark.report import write_condition_board, write_leaderboards
 from benchmark.report.display import NO_TRUTH
 from benchmark.text import one_line, printable
@@ -227,20 +227,23 @@ def record_conditions(store: ResultStore, cells: Iterable[Cell], log: Log) -> No
     A sequence that fails to tell its conditions costs only them: the
     failure is logged, naming the sequence, and the run goes on.  A
     sequence whose conditions the store holds already is not asked again
-    (a camera scene renders frames to measure its contrast).
+    (a camera scene renders frames to measure its contrast).  The sequences
+    asked are counted as they go (:class:`benchmark.progress.Meter`).
     """
     cells = list(cells)
     known = store.conditions(cell.identity.key for cell in cells)
+    asked = {cell.identity.key: cell for cell in cells if cell.identity.key not in known}
     found: dict[str, dict[str, Any]] = {}
-    for cell in cells:
-        key = cell.identity.key
-        if key in found or key in known:
-            continue
-        try:
-            found[key] = dict(cell.sequence.conditions())
-        except Exception as exc:  # noqa: BLE001 - a sequence's own failure must not stop the run
-            found[key] = {}
-            log(f"{cell.identity.name}: its conditions could not be measured ({type(exc).__name__}: {exc})")
+    if not asked:
+        return
+    with Meter("sequences' conditions", len(asked)) as meter:
+        for key, cell in asked.items():
+            try:
+                found[key] = dict(cell.sequence.conditions())
+            except Exception as exc:  # noqa: BLE001 - a sequence's own failure must not stop the run
+                found[key] = {}
+                log(f"{cell.identity.name}: its conditions could not be measured ({type(exc).__name__}: {exc})")
+            meter.advance()
     store.add_conditions({key: conditions for key, conditions in found.items() if conditions})
 
 

@@ -256,6 +256,7 @@ def _fit_once(
         else:
             log(f"training: {what}: reusing {path}")
             return stored
+    log(f"training: {what}: fitting")
     started = time.perf_counter()
     try:
         model = run(fit_model, (entry, training.sequences, training.key, training.seed), timeout_s)

@@ -13,7 +13,7 @@ import pytest
 
 from benchmark import harness
 from benchmark.errors import DataError
-from benchmark.harness import describe_result, publish, run_benchmark
+from benchmark.harness import describe_result, publish, record_conditions, run_benchmark
 from benchmark.progress import Meter, TerminalProgress
 from benchmark.registry import Registry
 from benchmark.runner import run_cell
@@ -217,3 +217,19 @@ def test_a_cell_on_frames_without_truth_is_described_as_such(registry: Registry,
     cell = fakes.make_cell(registry.trackers["blind"], Unlabelled("video", 3))
     line = describe_result(run_cell(cell))
     assert line.startswith("blind  video  seed 0  ok  no truth  ") and "(3 frames," in line
+
+
+def test_the_sequences_whose_conditions_are_measured_are_counted(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    class Sequence:
+        def __init__(self, key: str) -> None:
+            self.identity = types.SimpleNamespace(key=key, name=key)
+            self.sequence = types.SimpleNamespace(conditions=lambda: {"contrast": 1.0})
+
+    with ResultStore(tmp_path / "results.sqlite") as store:
+        record_conditions(store, [Sequence("a"), Sequence("b"), Sequence("a")], lambda line: None)  # type: ignore[list-item]
+        assert set(store.conditions(["a", "b"])) == {"a", "b"}
+        record_conditions(store, [Sequence("a")], lambda line: None)  # type: ignore[list-item]
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("sequences' conditions 2/2")
