@@ -18,7 +18,9 @@ def test_a_busy_loop_is_interrupted_when_it_has_used_its_cpu_time() -> None:
     with pytest.raises(CheckTimeout, match="within 0.2 s of CPU time"), time_limit(0.2):
         while True:
             pass
-    assert time.process_time() - started >= 0.18  # the timer counts in the kernel's ticks
+    # Not at once, but after CPU time was used.  The interval timer is charged by the kernel's sampling ticks, which
+    # on a loaded machine can fall short of the precise process time by tens of milliseconds: half the limit is sure.
+    assert time.process_time() - started >= 0.1
 
 
 def test_waiting_for_the_processor_or_a_while_is_not_held_against_a_check() -> None:
