@@ -35,7 +35,7 @@ class Particles(Tracker):
 
     def step(self, frame: Frame) -> Any:
         self.particles = self.particles + self.rng.normal(0.0, 1.0, self.particles.shape) * np.array([1.5, 0.01, 0.3, 0.005])
-        raw = self.rng.random(self.count) ** 4
+        raw = 0.5 + self.rng.random(self.count)
         self.weights = raw / raw.sum()
         estimate = CableState.from_array(self.weights @ self.particles)
         type(self).estimates.append(estimate)
