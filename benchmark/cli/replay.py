@@ -40,9 +40,17 @@ def default_page(tracker: str, dataset: str, seed: int) -> Path:
 
 @click.command("replay")
 @click.option("--tracker", required=True, metavar="NAME", help="The tracker to replay.")
-@click.option("--dataset", required=True, metavar="NAME|PATH", help="A registered sequence (suite/name) or a sequence file.")
+@click.option(
+    "--dataset", required=True, metavar="NAME|PATH", help="A registered sequence (suite/name) or a sequence file."
+)
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True, help="The cell's seed.")
-@click.option("--frames", "frame_range", type=FrameRangeParam(), default=None, help="Frames A to B-1 only (the tracker still starts at frame 0).")
+@click.option(
+    "--frames",
+    "frame_range",
+    type=FrameRangeParam(),
+    default=None,
+    help="Frames A to B-1 only (the tracker still starts at frame 0).",
+)
 @click.option(
     "--init",
     type=click.Choice(["truth", "none"]),
@@ -88,7 +96,8 @@ def replay_command(
     entries = select_trackers(registry, [tracker])
     view = view_of(entries[0].modality)
     sequences = select_sequences(registry, (), (dataset,))
-    (cell,) = plan_training(registry, make_cells(entries, sequences, [seed], init, registry.modalities))  # type: ignore[arg-type]
+    cells = make_cells(entries, sequences, [seed], init, registry.modalities)  # type: ignore[arg-type]
+    (cell,) = plan_training(registry, cells)
     cell = dataclasses.replace(cell, sequence=FrameCache(cache).wrap(cell.sequence))
     with Meter("frames") as meter:
         recording = record_cell(cell, frame_range or FrameRange(), report=meter, view=view)

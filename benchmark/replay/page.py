@@ -159,9 +159,8 @@ def _script_json(data: Any) -> str:
 def replay_html(recording: Recording) -> str:
     """The page of ``recording`` as one HTML document."""
     title = f"{recording.tracker} on {recording.dataset}, seed {recording.seed}"
-    return _templates.get_template("replay.html").render(
-        title=title, data=Markup(_script_json(page_data(recording))), colours=OUTCOME_COLOURS
-    )
+    data = Markup(_script_json(page_data(recording)))
+    return _templates.get_template("replay.html").render(title=title, data=data, colours=OUTCOME_COLOURS)
 
 
 def write_replay(recording: Recording, path: Path) -> Path:

@@ -243,7 +243,8 @@ def belief_of(tracker: Any, limit: int = MAX_PARTICLES) -> Belief | None:
         mean, covariance = tracker.mean, tracker.covariance
         if mean is None or covariance is None:
             return None
-        return Belief("gaussian", mean=np.array(mean, dtype=float), variance=np.diag(np.asarray(covariance, dtype=float)).copy())
+        variance = np.diag(np.asarray(covariance, dtype=float)).copy()
+        return Belief("gaussian", mean=np.array(mean, dtype=float), variance=variance)
     return None
 
 

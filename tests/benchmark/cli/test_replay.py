@@ -37,7 +37,9 @@ def frames_of(path: Path) -> list[int]:
 
 
 def test_replay_writes_the_page_of_the_frames_asked_for(replay, tmp_path: Path) -> None:
-    result = replay("--tracker", "fake-particles", "--dataset", "fake/S1", "--seed", "2", "--frames", "2:5", "--out", "r.html")
+    result = replay(
+        "--tracker", "fake-particles", "--dataset", "fake/S1", "--seed", "2", "--frames", "2:5", "--out", "r.html"
+    )
     assert result.exit_code == 0, result.output
     assert frames_of(tmp_path / "r.html") == [2, 3, 4]
     assert "wrote r.html: 3 frames" in result.output

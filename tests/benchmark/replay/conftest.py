@@ -1,4 +1,4 @@
-"""Fake filter trackers for the replay tests: a particle filter and a Gaussian one, both drawing from the cell's generator."""
+"""Fake filter trackers for the replay tests: a particle filter and a Gaussian one, drawing from the cell's generator."""
 
 from __future__ import annotations
 
@@ -34,7 +34,8 @@ class Particles(Tracker):
         self.weights = np.full(self.count, 1.0 / self.count)
 
     def step(self, frame: Frame) -> Any:
-        self.particles = self.particles + self.rng.normal(0.0, 1.0, self.particles.shape) * np.array([1.5, 0.01, 0.3, 0.005])
+        jitter = self.rng.normal(0.0, 1.0, self.particles.shape) * np.array([1.5, 0.01, 0.3, 0.005])
+        self.particles = self.particles + jitter
         raw = 0.5 + self.rng.random(self.count)
         self.weights = raw / raw.sum()
         estimate = CableState.from_array(self.weights @ self.particles)
