@@ -19,6 +19,7 @@
     compare       what changed between two runs of the history
     report        rebuild the site from the history without running anything
     check         the conformance checks of benchmark.testing on installed trackers
+    replay        one cell frame by frame as a self-contained page: truth, estimate, belief (seeds/000, 4.7)
     new-tracker   write the skeleton of a tracker plugin package (pyproject, tracker, one-line test)
 
 Each built-in command is a module of this package (``run``, ``boards``,
@@ -74,6 +75,7 @@ from benchmark.cli.history import EXIT_REGRESSION, EXIT_SPEED_REGRESSION, compar
 from benchmark.cli.listing import list_datasets, list_trackers
 from benchmark.cli.make_dataset import make_dataset
 from benchmark.cli.new_tracker import new_tracker_command
+from benchmark.cli.replay import replay_command
 from benchmark.cli.run import run
 from benchmark.cli.session import EXIT_FAILED, EXIT_INTERRUPTED, ReportedError, Session
 from benchmark.errors import TrackbenchError
@@ -93,6 +95,7 @@ BUILT_IN_COMMANDS = (
     compare,
     report_command,
     check_command,
+    replay_command,
     new_tracker_command,
 )
 """The commands of this package; plugins add theirs through ``trackbench_register_commands``."""

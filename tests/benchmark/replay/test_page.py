@@ -1,0 +1,80 @@
+"""The replay page: self-contained, its data what the recording holds, within the size budget."""
+
+from __future__ import annotations
+
+import base64
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from benchmark.registry import Registry
+from benchmark.replay.page import LEVELS, NOT_FINITE, page_data, replay_html, write_replay
+from benchmark.replay.record import Recording, record_cell
+
+from ..conftest import FakeSequence, make_cell
+
+BUDGET_BYTES_PER_FRAME = 5_000_000 / 300
+"""At most 5 MB for 300 camera frames."""
+
+
+@pytest.fixture
+def recording(registry: Registry) -> Recording:
+    return record_cell(make_cell(registry.trackers["fake-particles"], FakeSequence("fake/S1", 5)))
+
+
+def embedded(html: str) -> dict:
+    found = re.search(r'<script type="application/json" id="replay-data">(.*?)</script>', html, re.S)
+    assert found is not None
+    return json.loads(found.group(1))
+
+
+def test_the_page_is_self_contained(recording: Recording) -> None:
+    html = replay_html(recording)
+    assert not re.search(r"https?://", html)
+    assert not re.search(r"<(script|link|img)[^>]+(src|href)=", html)
+    data = embedded(html)
+    assert [frame["index"] for frame in data["frames"]] == [0, 1, 2, 3, 4]
+    assert all(frame["image"].startswith("data:image/jpeg;base64,/9j/") for frame in data["frames"])
+
+
+def test_the_data_cannot_close_its_script_element(recording: Recording) -> None:
+    recording.ended = "ValueError: </script><script>alert(1)</script> (frame 3)"
+    html = replay_html(recording)
+    assert html.count("</script>") == 2  # the data's element and the player's
+    assert embedded(html)["ended"] == recording.ended
+
+
+def test_packed_particles_decode_to_the_recorded_ones_within_a_level(recording: Recording) -> None:
+    data = page_data(recording)
+    frame, kept = data["frames"][2], recording.frames[2].belief
+    levels = np.frombuffer(base64.b64decode(frame["belief"]["particles"]), dtype="<u2").reshape(frame["belief"]["count"], 4)
+    assert not np.any(levels == NOT_FINITE)
+    ranges = np.array(data["ranges"])
+    decoded = ranges[:, 0] + levels / LEVELS * (ranges[:, 1] - ranges[:, 0])
+    assert np.all(np.abs(decoded - kept.particles) <= (ranges[:, 1] - ranges[:, 0]) / LEVELS)
+    weights = np.frombuffer(base64.b64decode(frame["belief"]["weights"]), dtype="<u2")
+    assert weights.max() == LEVELS and np.allclose(weights / LEVELS, kept.weights / kept.weights.max(), atol=1 / LEVELS)
+
+
+NON_IMAGE_BYTES_PER_FRAME = 3_500
+"""What a frame may cost beside its JPEG: 200 particles, their weights, the states, overlays and numbers.
+
+With it, 5 MB / 300 frames leaves 13.1 KB of base64 (9.8 KB of JPEG) per frame: camera/S1's 320 x 240
+frames take 8.7 KB on average at quality 70 (``trackbench replay --tracker condensation --dataset camera/S1``).
+"""
+
+
+def test_a_frame_costs_little_beside_its_picture(registry: Registry, tmp_path: Path) -> None:
+    """The cost of a frame is measured as the difference between pages of 6 and 3 frames, the player's code cancelled."""
+    entry = registry.trackers["fake-particles"]
+    whole = record_cell(make_cell(entry, FakeSequence("fake/S1", 6)))
+    part = Recording(**{**whole.__dict__, "frames": whole.frames[:3]})
+    sizes = [write_replay(r, tmp_path / f"{i}.html").stat().st_size for i, r in enumerate((part, whole))]
+    assert all(frame.belief.particles.shape[0] == 200 for frame in whole.frames)
+    jpeg = sum(4 * -(-len(frame.picture.jpeg) // 3) for frame in whole.frames[3:])
+    per_frame = (sizes[1] - sizes[0] - jpeg) / 3
+    assert 0 < per_frame < NON_IMAGE_BYTES_PER_FRAME
+    assert sizes[0] - 3 * per_frame < 40_000  # the player itself
