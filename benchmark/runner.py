@@ -65,7 +65,7 @@ import zlib
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any, Literal, Protocol
 
 import numpy as np
 
@@ -234,7 +234,21 @@ def _picture(draw: Drawer, frame: Frame, estimate: Any, outcome: Outcome) -> Pic
     return drawn.result
 
 
-def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
+class StepObserver(Protocol):
+    """Called after each frame is stepped, timed and scored, outside the step's timing.
+
+    An observer may read the tracker (its belief, its window), never change
+    it, so a cell observed gives the estimates of a cell run without one.
+    What it raises ends the cell as the tracker's faults do, in the phase
+    ``observing frame k``.
+    """
+
+    def __call__(self, tracker: Tracker, frame: Frame, estimate: Any, score: FrameScore) -> None: ...
+
+
+def run_cell(
+    cell: Cell, timeout_s: float | None = None, *, observer: StepObserver | None = None, until: int | None = None
+) -> CellResult:
     """Run one cell and score every frame; never raises for the cell's own faults.
 
     Parameters
@@ -246,6 +260,11 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
         cell stops with status ``"timeout"`` and keeps the frames so far.
         A ``step`` or a read that never returns cannot be stopped here;
         :func:`benchmark.executors.run_cells` kills the worker running it.
+    observer : StepObserver, optional
+        Called after every frame with the tracker, the frame, the estimate
+        and its score (:mod:`benchmark.replay` records a cell this way).
+    until : int, optional
+        Stop before frame ``until``, as if the sequence ended there.
 
     Returns
     -------
@@ -266,7 +285,7 @@ def run_cell(cell: Cell, timeout_s: float | None = None) -> CellResult:
     processes started) is undone when it ends (:func:`benchmark.workers.cell_isolation`).
     """
     with cell_isolation():
-        return _run_cell(cell, timeout_s)
+        return _run_cell(cell, timeout_s, observer, until)
 
 
 @dataclass
@@ -279,12 +298,12 @@ class _Progress:
     previous: Outcome | None = None
 
 
-def _run_cell(cell: Cell, timeout_s: float | None) -> CellResult:
+def _run_cell(cell: Cell, timeout_s: float | None, observer: StepObserver | None, until: int | None) -> CellResult:
     """:func:`run_cell`'s work."""
     started = time.perf_counter()
     deadline = math.inf if timeout_s is None else started + timeout_s
     progress = _Progress()
-    ended = Call.of(lambda: _play(cell, timeout_s, deadline, progress), "before frame 0")
+    ended = Call.of(lambda: _play(cell, timeout_s, deadline, progress, observer, until), "before frame 0")
     return cell_result(
         cell,
         ended.status,
@@ -297,7 +316,14 @@ def _run_cell(cell: Cell, timeout_s: float | None) -> CellResult:
     )
 
 
-def _play(cell: Cell, timeout_s: float | None, deadline: float, progress: _Progress) -> None:
+def _play(
+    cell: Cell,
+    timeout_s: float | None,
+    deadline: float,
+    progress: _Progress,
+    observer: StepObserver | None,
+    until: int | None,
+) -> None:
     """Create the tracker, reset it and step it over the frames, each phase a :class:`~benchmark.faults.Call`.
 
     Raises
@@ -336,7 +362,13 @@ def _play(cell: Cell, timeout_s: float | None, deadline: float, progress: _Progr
     init = frame.truth if cell.init == "truth" else None
     Call.of(lambda: tracker.reset(info, rng, init=init), "reset, frame 0", 0).value()
     while True:
-        Call.of(lambda: _step(cell, tracker, frame, info, progress), f"frame {frame.index}", frame.index).value()
+        index = frame.index
+        estimate = Call.of(lambda: _step(cell, tracker, frame, info, progress), f"frame {index}", index).value()
+        if observer is not None:
+            score = progress.scores[-1]
+            Call.of(lambda: observer(tracker, frame, estimate, score), f"observing frame {index}", index).value()
+        if until is not None and frame.index + 1 >= until:
+            return
         following = reading(frame.index + 1)
         if following is None:
             return
@@ -352,8 +384,8 @@ def _fresh_tracker(cell: Cell) -> Tracker:
     return cell.tracker.create()
 
 
-def _step(cell: Cell, tracker: Tracker, frame: Frame, info: SequenceInfo, progress: _Progress) -> None:
-    """Step ``tracker`` over ``frame``, score its estimate, and draw the frame if it starts a run of failures.
+def _step(cell: Cell, tracker: Tracker, frame: Frame, info: SequenceInfo, progress: _Progress) -> Any:
+    """Step ``tracker`` over ``frame``, score its estimate, draw the frame if it starts a run of failures; the estimate.
 
     The step is timed twice: by the CPU time of this thread
     (:func:`time.thread_time`), which is the tracker's work because the
@@ -379,3 +411,4 @@ def _step(cell: Cell, tracker: Tracker, frame: Frame, info: SequenceInfo, progre
         if picture is not None:
             progress.pictures.append(picture)
     progress.previous = outcome
+    return estimate

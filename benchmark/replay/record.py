@@ -1,18 +1,16 @@
 """Recording a cell for its replay: the runner's play, frame by frame, with what the page shows kept.
 
-:func:`record_cell` plays one :class:`~benchmark.runner.Cell` as
-:func:`benchmark.runner.run_cell` does: the global generators seeded and a
-fresh tracker created (:func:`~benchmark.runner.seed_global_generators`),
-``reset`` on frame 0 with the cell's generator
-(:func:`~benchmark.runner.cell_rng`) and the first truth, then ``step`` on
-every frame, timed by the thread's CPU time and scored by the modality's
-scorer.  Frames before the range asked for are stepped and not kept, so a
-range replays what the runner saw.  After each kept step (outside the
-timing) it takes the tracker's belief, if it exposes one through the
+:func:`record_cell` plays one :class:`~benchmark.runner.Cell` with
+:func:`benchmark.runner.run_cell` itself, stopped after the range's last
+frame, and watches it through the runner's
+:class:`~benchmark.runner.StepObserver`.  Frames before the range asked
+for are stepped and not kept, so a range replays what the runner saw.
+After each kept step (outside the timing) the observer takes the step's
+score and CPU time, the tracker's belief, if it exposes one through the
 protocols of :mod:`benchmark.testing.beliefs`, and the frame's picture and
 overlays from the modality's view (:mod:`benchmark.replay.views`).  Taking
-them only reads the tracker: it draws nothing from the tracker's generator,
-so the estimates are the runner's, bit for bit.
+them only reads the tracker: it draws nothing from the tracker's
+generator, so the estimates are the runner's, bit for bit.
 
 A particle belief is cut to at most :data:`MAX_PARTICLES` particles by a
 deterministic systematic subsample (:func:`systematic_subsample`), the
@@ -24,17 +22,17 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from benchmark.errors import TrackbenchError
-from benchmark.faults import safe_text
 from benchmark.model import Frame
 from benchmark.replay.views import Picture, ReplayView, Segment, view_of
-from benchmark.runner import Cell, cell_rng, seed_global_generators
+from benchmark.results import FrameScore
+from benchmark.runner import Cell, run_cell
 from benchmark.testing.beliefs import GaussianBelief, ParticleBelief
 
 MAX_PARTICLES = 200
@@ -254,7 +252,7 @@ def record_cell(
     report: Callable[[int, int], None] | None = None,
     view: ReplayView | None = None,
 ) -> Recording:
-    """Play ``cell`` as the runner does and record the frames of ``frames``.
+    """Play ``cell`` with the runner and record the frames of ``frames``.
 
     Parameters
     ----------
@@ -271,7 +269,7 @@ def record_cell(
     -------
     Recording
         The kept frames; a tracker that raises, or returns what is not an
-        estimate, ends the recording there, with the reason in ``ended``.
+        estimate, ends the recording there, with the runner's message in ``ended``.
 
     Raises
     ------
@@ -282,63 +280,50 @@ def record_cell(
     """
     view = view or view_of(cell.modality.name)
     info = cell.sequence.info
-    recording = Recording(cell.tracker.name, cell.dataset, cell.modality.name, cell.seed, tuple(view.dimensions))
     if frames.first >= info.n_frames:
         raise FrameRangeError(f"frame range {frames}: {info.name} has {info.n_frames} frames")
     stop = info.n_frames if frames.stop is None else min(frames.stop, info.n_frames)
-    seed_global_generators(cell.seed, cell.tracker.name, cell.identity)
-    tracker = cell.tracker.create()
-    if cell.training is not None:
-        tracker.use_model(cell.training.load())  # type: ignore[attr-defined]
-    stream: Iterator[Frame] = iter(cell.sequence.frames())
-    first = next(stream)
-    cell.modality.check_frame(first, f"sequence {info.name!r}, frame {first.index}")
-    rng = cell_rng(cell.seed, cell.tracker.name, cell.identity)
-    tracker.reset(info, rng, init=first.truth if cell.init == "truth" else None)
-    frame: Frame | None = first
-    while frame is not None and frame.index < stop:
-        try:
-            kept = _step(cell, tracker, frame, info, view, recording, frame.index >= frames.first)
-        except Exception as exc:  # the tracker's fault ends the recording, as it ends the runner's cell
-            recording.ended = f"{type(exc).__name__}: {safe_text(str, exc)} (frame {frame.index})"
-            break
-        if kept is not None:
-            recording.frames.append(kept)
-        if report is not None:
-            report(frame.index + 1, stop)
-        frame = next(stream, None)
-        if frame is not None:
-            cell.modality.check_frame(frame, f"sequence {info.name!r}, frame {frame.index}")
+    recording = Recording(cell.tracker.name, cell.dataset, cell.modality.name, cell.seed, tuple(view.dimensions))
+    recorder = _Recorder(cell, view, frames.first, stop, recording, report)
+    result = run_cell(cell, observer=recorder, until=stop)
+    if result.status != "ok":
+        recording.ended = result.message
     return recording
 
 
-def _step(
-    cell: Cell, tracker: Any, frame: Frame, info: Any, view: ReplayView, recording: Recording, keep: bool
-) -> FrameRecord | None:
-    """Step, time and score one frame as :func:`benchmark.runner._step` does; capture it if ``keep``."""
-    modality = cell.modality
-    cpu_tick = time.thread_time()
-    estimate = tracker.step(frame)
-    step_s = time.thread_time() - cpu_tick
-    modality.check_estimate(estimate)
-    outcome, errors = modality.scorer.score(estimate, frame.truth, info)
-    if not keep:
-        return None
-    tick = time.perf_counter()
-    picture = view.picture(frame)
-    kept = FrameRecord(
-        index=int(frame.index),
-        outcome="unscored" if outcome is None else str(outcome),
-        errors=dict(zip(modality.scorer.error_columns, (float(e) for e in errors))),
-        step_s=step_s,
-        truth=view.state(frame.truth),
-        estimate=view.state(estimate),
-        truth_lines=view.overlay(frame.truth, frame, picture),
-        estimate_lines=view.overlay(estimate, frame, picture),
-        belief=belief_of(tracker),
-        picture=picture,
-        estimate_value=estimate,
-    )
-    recording.capture_s += time.perf_counter() - tick
-    recording.step_s += step_s
-    return kept
+@dataclass
+class _Recorder:
+    """The runner's observer that keeps what the page shows of the frames from ``first`` on."""
+
+    cell: Cell
+    view: ReplayView
+    first: int
+    stop: int
+    recording: Recording
+    report: Callable[[int, int], None] | None
+
+    def __call__(self, tracker: Any, frame: Frame, estimate: Any, score: FrameScore) -> None:
+        if frame.index >= self.first:
+            tick = time.perf_counter()
+            self.recording.frames.append(self._kept(tracker, frame, estimate, score))
+            self.recording.capture_s += time.perf_counter() - tick
+            self.recording.step_s += score.step_s
+        if self.report is not None:
+            self.report(frame.index + 1, self.stop)
+
+    def _kept(self, tracker: Any, frame: Frame, estimate: Any, score: FrameScore) -> FrameRecord:
+        view = self.view
+        picture = view.picture(frame)
+        return FrameRecord(
+            index=int(frame.index),
+            outcome="unscored" if score.outcome is None else str(score.outcome),
+            errors={name: float(error) for name, error in score.errors.items()},
+            step_s=score.step_s,
+            truth=view.state(frame.truth),
+            estimate=view.state(estimate),
+            truth_lines=view.overlay(frame.truth, frame, picture),
+            estimate_lines=view.overlay(estimate, frame, picture),
+            belief=belief_of(tracker),
+            picture=picture,
+            estimate_value=estimate,
+        )

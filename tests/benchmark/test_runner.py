@@ -130,6 +130,35 @@ def test_same_seed_replays_bit_for_bit_and_other_seeds_differ(make_cell: MakeCel
     assert not without_timing(first).equals(without_timing(other))
 
 
+def test_an_observer_sees_every_scored_frame_and_changes_nothing(make_cell: MakeCell) -> None:
+    seen: list[tuple[int, Any, Any]] = []
+
+    def observe(tracker: Any, frame: Frame, estimate: Any, score: Any) -> None:
+        assert score.index == frame.index
+        seen.append((frame.index, estimate, score))
+
+    plain = run_cell(make_cell("noisy", seed=3))
+    observed = run_cell(make_cell("noisy", seed=3), observer=observe)
+    pd.testing.assert_frame_equal(without_timing(plain), without_timing(observed))
+    assert [index for index, _, _ in seen] == list(range(10))
+    assert tuple(score for _, _, score in seen) == observed.scores
+
+
+def test_until_stops_before_its_frame_and_an_observer_that_raises_ends_the_cell(make_cell: MakeCell) -> None:
+    cut = run_cell(make_cell("noisy", seed=3), until=4)
+    whole = run_cell(make_cell("noisy", seed=3))
+    assert cut.status == "ok" and [s.index for s in cut.scores] == [0, 1, 2, 3]
+    pd.testing.assert_frame_equal(without_timing(cut), without_timing(whole).iloc[:4])
+
+    def observe(tracker: Any, frame: Frame, estimate: Any, score: Any) -> None:
+        if frame.index == 2:
+            raise OSError("disk full")
+
+    failed = run_cell(make_cell("noisy", seed=3), observer=observe)
+    assert failed.status == "error" and len(failed.scores) == 3
+    assert failed.message == "OSError: disk full (observing frame 2)"
+
+
 def test_cell_generators_are_independent_per_seed_tracker_and_dataset_fingerprint() -> None:
     def identity(fingerprint: str, name: str = "x") -> DatasetIdentity:
         return DatasetIdentity(name, "camera", "here", digest(fingerprint))
