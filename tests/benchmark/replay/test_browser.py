@@ -53,7 +53,7 @@ def test_the_replay_plays_jumps_and_draws(chromium: sync_api.Browser, registry: 
     expected = len(recording.frames[0].truth_lines) + len(recording.frames[0].estimate_lines)
     assert int(frame["overlays"]) == expected > 0
     zoom = 480 / 64
-    u1, v1, u2, v2 = recording.frames[0].truth_lines[0]
+    u1, v1, u2, v2 = recording.frames[0].truth_lines[0].points
     red, green, blue, _ = pixel(page, "frame", (u1 + u2) / 2 * zoom, (v1 + v2) / 2 * zoom)
     assert max(red, green) > 150 > blue  # a border lies where the truth's first chord is (the estimate's may cover it)
     assert painted(page, "frame", 27, 158, 27) > 100  # the truth's borders in green
