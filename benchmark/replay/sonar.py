@@ -1,4 +1,4 @@
-"""The sonar modality's replay view: the ping's swath profile, the pipe's truth and estimate, the particles across track.
+"""The sonar modality's replay view: the ping's swath profile, the pipe's truth and estimate, the particles.
 
 A ping (seeds/003, section 2) is drawn in the swath plane as
 :func:`benchmark.modalities.sonar.draw.draw_sonar_frame` draws it,

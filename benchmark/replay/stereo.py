@@ -25,7 +25,7 @@ import numpy as np
 
 from benchmark.drawing import DATA_BGR, Colour, Viewport
 from benchmark.errors import DataError
-from benchmark.modalities.stereo.draw import MIN_SPAN_M, draw_boat, measured_position
+from benchmark.modalities.stereo.draw import draw_boat, map_around, measured_position
 from benchmark.modalities.stereo.model import ChaseNavigation, StereoTruth, TargetEstimate
 from benchmark.model import Frame
 from benchmark.replay.jpeg import encode_jpeg, shrunk_to_width
@@ -69,27 +69,21 @@ class StereoView:
         measured = measured_position(frame)
         shown = [p for p in (truth.target.position_m if truth else None, chase[0] if chase else None, measured) if p]
         width, height = MAP_SIZE
-        view = Viewport.around(
-            [east for _, east in shown],
-            [north for north, _ in shown],
-            width,
-            height,
-            min_span=MIN_SPAN_M,
-            y_up=True,
-            equal_scale=True,
-        )
+        view = map_around(shown, width, height)
         sea = view.blank(SEA_BGR)
         _draw_grid(sea, view)
         if chase is not None:
             draw_boat(sea, view, chase[0], chase[1], DATA_BGR)
         image = sea if pair is None else np.vstack([pair, sea])
         plane = PlaneMap.of(view, (0, 0 if pair is None else pair.shape[0]))
-        marks = () if measured is None else (Mark.cross(*plane.point(measured[1], measured[0]), CROSS_PX, "measurement"),)
+        marks = []
+        if measured is not None:
+            marks.append(Mark.cross(*plane.point(measured[1], measured[0]), CROSS_PX, "measurement"))
         jpeg = encode_jpeg(image, f"frame {frame.index}")
-        return Picture(jpeg, int(image.shape[1]), int(image.shape[0]), plane=plane, marks=marks)
+        return Picture(jpeg, int(image.shape[1]), int(image.shape[0]), plane=plane, marks=tuple(marks))
 
     def state(self, value: Any) -> tuple[float, ...] | None:
-        """A :class:`StereoTruth`'s target or a :class:`TargetEstimate` as ``(X, Y, X_dot, Y_dot)``; None for other values."""
+        """A :class:`StereoTruth`'s target or a :class:`TargetEstimate` as ``(X, Y, X_dot, Y_dot)``; else None."""
         target = value.target if isinstance(value, StereoTruth) else value
         if not isinstance(target, TargetEstimate):
             return None
@@ -146,7 +140,10 @@ def _pair(frame: Frame) -> np.ndarray | None:
             raise DataError(f"frame {frame.index}: an image of the pair is a {image.dtype} array of {image.shape}")
         sides.append(shrunk_to_width(image, PAIR_WIDTH))
     height = sides[0].shape[0]
-    sides = [side if side.shape[:2] == (height, PAIR_WIDTH) else cv2.resize(side, (PAIR_WIDTH, height)) for side in sides]
+    sides = [
+        side if side.shape[:2] == (height, PAIR_WIDTH) else cv2.resize(side, (PAIR_WIDTH, height))
+        for side in sides
+    ]
     return np.hstack(sides)
 
 

@@ -115,7 +115,8 @@ class PlaneMap:
         dv = (viewport.height - 1) / (viewport.bottom - viewport.top)
         u0 = offset[0] + 0.5 - viewport.left * du
         v0 = offset[1] + 0.5 - viewport.top * dv
-        box = (float(offset[0]), float(offset[1]), float(offset[0] + viewport.width), float(offset[1] + viewport.height))
+        u, v = float(offset[0]), float(offset[1])
+        box = (u, v, u + viewport.width, v + viewport.height)
         return cls(u0, du, v0, dv, box)
 
     def point(self, x: float, y: float) -> tuple[float, float]:
@@ -124,7 +125,9 @@ class PlaneMap:
         u, v = self.u0 + self.du * x, self.v0 + self.dv * y
         return min(max(u, u_low), u_high), min(max(v, v_low), v_high)
 
-    def ellipse(self, centre: tuple[float, float], covariance: np.ndarray, sigmas: float = 2.0, role: Role | None = None) -> Mark:
+    def ellipse(
+        self, centre: tuple[float, float], covariance: np.ndarray, sigmas: float = 2.0, role: Role | None = None
+    ) -> Mark:
         """The ``sigmas``-sigma ellipse of a Gaussian of the plane, ``covariance`` ``(2, 2)`` in ``(x, y)``.
 
         The covariance maps to the canvas as ``J C J^T`` with ``J = diag(du, dv)``;

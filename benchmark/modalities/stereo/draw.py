@@ -70,15 +70,7 @@ def draw_stereo_frame(frame: Frame, estimate: TargetEstimate | None) -> np.ndarr
     shown = list(known)
     if estimate is not None:
         shown.append(_within(estimate.position_m, known[0], REACH_M) if known else estimate.position_m)
-    view = Viewport.around(
-        [east for _, east in shown],
-        [north for north, _ in shown],
-        PICTURE_SIZE,
-        PICTURE_SIZE,
-        min_span=MIN_SPAN_M,
-        y_up=True,
-        equal_scale=True,
-    )
+    view = map_around(shown, PICTURE_SIZE, PICTURE_SIZE)
     picture = view.blank()
     if truth is not None:
         draw_boat(picture, view, truth.chase_position_m, truth.chase_heading, DATA_BGR)
@@ -91,6 +83,19 @@ def draw_stereo_frame(frame: Frame, estimate: TargetEstimate | None) -> np.ndarr
         heading = estimate.heading if estimate.speed_mps > 0 else None
         draw_boat(picture, view, estimate.position_m, heading, ESTIMATE_BGR)
     return picture
+
+
+def map_around(positions: list[tuple[float, float]], width: int, height: int) -> Viewport:
+    """The map of the North-East ``positions`` (north up, one scale, at least :data:`MIN_SPAN_M` across)."""
+    return Viewport.around(
+        [east for _, east in positions],
+        [north for north, _ in positions],
+        width,
+        height,
+        min_span=MIN_SPAN_M,
+        y_up=True,
+        equal_scale=True,
+    )
 
 
 def measured_position(frame: Frame) -> tuple[float, float] | None:

@@ -117,7 +117,8 @@ def test_the_sonar_and_stereo_replays_draw_their_marks(
     for role in SEEN[name]:
         assert painted(page, "frame", *COLOURS[role]) > 5, role
     assert painted(page, "belief", 31, 78, 158) > 20  # particles or the Gaussian's mean
-    shown = "Array.from(document.querySelectorAll('.legend [data-role]')).filter((s) => !s.hidden).map((s) => s.dataset.role)"
+    shown = "Array.from(document.querySelectorAll('.legend [data-role]')).filter((s) => !s.hidden)"
+    shown += ".map((s) => s.dataset.role)"
     roles = {role for frame in page_data(recording)["frames"] for role, _, _ in frame["marks"]}
     assert set(page.evaluate(shown)) == {"measurement", "particle", "covariance"} & roles
     save_for_readme(page, f"replay-{recording.tracker}-{name}.png", tmp_path)

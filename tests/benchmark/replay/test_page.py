@@ -94,7 +94,9 @@ ROLES = {
 
 
 @pytest.mark.parametrize("name", sorted(REAL_CELLS))
-def test_a_first_party_filter_s_page_holds_finite_marks_of_its_roles(real_recordings: dict[str, Recording], name: str) -> None:
+def test_a_first_party_filter_s_page_holds_finite_marks_of_its_roles(
+    real_recordings: dict[str, Recording], name: str
+) -> None:
     html = replay_html(real_recordings[name])
     text = re.search(r'id="replay-data">(.*?)</script>', html, re.S).group(1)
     data = json.loads(text, parse_constant=lambda constant: pytest.fail(f"{constant} in the page's data"))

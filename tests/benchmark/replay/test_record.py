@@ -59,7 +59,10 @@ def test_recording_a_first_party_filter_gives_the_runner_s_estimates_bit_for_bit
     plugin_registry: Registry, real_recordings: dict[str, Recording], name: str
 ) -> None:
     by_runner: list[object] = []
-    result = run_cell(real_cell(plugin_registry, name), observer=lambda tracker, frame, estimate, score: by_runner.append(estimate), until=REAL_FRAMES)
+    def keep(tracker: object, frame: object, estimate: object, score: object) -> None:
+        by_runner.append(estimate)
+
+    result = run_cell(real_cell(plugin_registry, name), observer=keep, until=REAL_FRAMES)
     assert result.status == "ok" and len(by_runner) == REAL_FRAMES
     recording = real_recordings[name]
     assert [bits(frame.estimate_value) for frame in recording.frames] == [bits(estimate) for estimate in by_runner]

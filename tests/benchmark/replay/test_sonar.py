@@ -8,9 +8,9 @@ import cv2
 import numpy as np
 import pytest
 
-from benchmark.model import Frame
 from benchmark.modalities.sonar.draw import PIPE_RADIUS_PX
 from benchmark.modalities.sonar.model import PipeEstimate, SonarTruth, Swath
+from benchmark.model import Frame
 from benchmark.replay.record import Belief, Recording
 from benchmark.replay.sonar import PICTURE_SIZE, SEABED_BGR, TICK_LENGTH_PX, SonarView
 
@@ -61,7 +61,8 @@ def test_the_pipe_is_a_circle_at_its_axis_and_an_estimate_a_line_at_its_across_t
 def test_particles_are_ticks_at_their_positions_as_long_as_their_weight_relative_to_the_heaviest() -> None:
     frame = ping()
     picture = VIEW.picture(frame)
-    belief = Belief("particles", particles=np.array([[-5.0], [0.0], [math.nan], [5.0]]), weights=np.array([0.1, 0.4, 0.3, 0.2]))
+    particles = np.array([[-5.0], [0.0], [math.nan], [5.0]])
+    belief = Belief("particles", particles=particles, weights=np.array([0.1, 0.4, 0.3, 0.2]))
     (ticks,) = VIEW.belief_marks(belief, picture)
     assert (ticks.shape, ticks.role) == ("ticks", "particle")
     v, length, *rest = ticks.points
@@ -79,4 +80,5 @@ def test_a_recorded_sonar_filter_draws_its_pipe_estimate_and_particles(real_reco
         assert frame.belief is not None and frame.belief.particles.shape[1] == 1
         (ticks,) = VIEW.belief_marks(frame.belief, frame.picture)
         assert len(ticks.points) == 2 + 2 * frame.belief.particles.shape[0]
-        assert [m.shape for m in frame.truth_lines] == ["ellipse"] and [m.shape for m in frame.estimate_lines] == ["segment"]
+        assert [m.shape for m in frame.truth_lines] == ["ellipse"]
+        assert [m.shape for m in frame.estimate_lines] == ["segment"]

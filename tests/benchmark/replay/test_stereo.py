@@ -2,15 +2,17 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import cv2
 import numpy as np
 import pytest
 
-from benchmark.model import Frame
+from benchmark.errors import DataError
 from benchmark.modalities.stereo.geometry import to_north_east
 from benchmark.modalities.stereo.model import ChaseNavigation, StereoMeasurement, StereoTruth, TargetEstimate
+from benchmark.model import Frame
 from benchmark.replay.record import Belief, Recording
 from benchmark.replay.stereo import BOAT_RADIUS_PX, HEADING_PX, MAP_SIZE, PAIR_WIDTH, StereoView, grid_step
 
@@ -84,10 +86,10 @@ def test_the_covariance_ellipse_is_the_two_sigma_ellipse_of_the_position_block()
     assert abs(math.cos(angle)) < 1e-9
     correlated = covariance.copy()
     correlated[0, 1] = correlated[1, 0] = 1.5  # north and east grow together: the long axis leans north-east
-    (leaning,) = VIEW.belief_marks(Belief("gaussian", mean=belief.mean, variance=belief.variance, covariance=correlated), picture)
+    (leaning,) = VIEW.belief_marks(dataclasses.replace(belief, covariance=correlated), picture)
     lean = leaning.points[4]
     assert math.cos(lean) * math.sin(lean) < 0  # right and up on the canvas (v grows down)
-    assert VIEW.belief_marks(Belief("gaussian", mean=belief.mean, variance=belief.variance), picture) == []
+    assert VIEW.belief_marks(dataclasses.replace(belief, covariance=None), picture) == []
 
 
 @pytest.mark.parametrize(("span", "step"), [(30.0, 5.0), (10.0, 2.0), (100.0, 20.0), (6.0, 1.0), (700.0, 200.0)])
@@ -96,7 +98,9 @@ def test_the_grid_spacing_is_one_two_or_five_times_a_power_of_ten(span: float, s
 
 
 @pytest.mark.parametrize("name", ["stereo", "stereo-images"])
-def test_a_recorded_stereo_filter_keeps_its_covariance_and_draws_its_ellipse(real_recordings: dict[str, Recording], name: str) -> None:
+def test_a_recorded_stereo_filter_keeps_its_covariance_and_draws_its_ellipse(
+    real_recordings: dict[str, Recording], name: str
+) -> None:
     recording = real_recordings[name]
     assert recording.dimensions == ("north_m", "east_m", "north_mps", "east_mps") and recording.ended == ""
     for frame in recording.frames:
@@ -106,3 +110,9 @@ def test_a_recorded_stereo_filter_keeps_its_covariance_and_draws_its_ellipse(rea
         (ellipse,) = VIEW.belief_marks(belief, frame.picture)
         assert ellipse.finite and ellipse.role == "covariance"
         assert frame.picture.height == MAP_SIZE[1] + (180 if name == "stereo-images" else 0)
+
+
+def test_an_image_pair_that_is_not_of_bgr_bytes_is_refused_naming_the_frame() -> None:
+    pair = (np.zeros((24, 32, 3), np.float32), np.zeros((24, 32, 3), np.float32))
+    with pytest.raises(DataError, match=r"frame 3: an image of the pair is a float32 array of \(24, 32, 3\)"):
+        VIEW.picture(frame_of(pair))
