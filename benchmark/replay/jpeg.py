@@ -19,9 +19,12 @@ def encode_jpeg(image: np.ndarray, what: str) -> bytes:
     DataError
         When OpenCV cannot encode it, naming ``what`` (the frame) and the image's shape.
     """
-    ok, encoded = cv2.imencode(".jpg", image, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])
+    try:
+        ok, encoded = cv2.imencode(".jpg", image, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])
+    except cv2.error:
+        ok = False
     if not ok:
-        raise DataError(f"{what}: its image of shape {image.shape} cannot be encoded as JPEG")
+        raise DataError(f"{what}: its image, a {image.dtype} array of shape {image.shape}, cannot be encoded as JPEG")
     return encoded.tobytes()
 
 
