@@ -82,7 +82,10 @@ def replay_command(
     drawn on it, the outcome strip, the tracker's belief where it exposes
     one (particles per state dimension, or a Gaussian's mean and 2-sigma
     band), the numbers and the step time: the Cable Tracking GUI of
-    seeds/000, section 4.7.  Camera sequences only so far.
+    seeds/000, section 4.7.  Camera frames show the image and the cable's
+    borders; sonar pings the swath profile, the pipe and the particles
+    across track; stereo frames a map with the target, the measurement and
+    the estimate's 2-sigma ellipse, under the image pair where there is one.
     """
     from benchmark.files import make_folder
     from benchmark.frame_cache import FrameCache
@@ -105,7 +108,7 @@ def replay_command(
         click.echo(f"Warning: the tracker stopped the recording: {recording.ended}", err=True)
     path = out or default_page(entries[0].name, cell.dataset, seed)
     make_folder(path.parent)
-    write_replay(recording, path)
+    write_replay(recording, path, view)
     size = path.stat().st_size
     click.echo(
         f"wrote {path}: {len(recording.frames)} frames, {size / 1e6:.2f} MB; "

@@ -1,7 +1,7 @@
 """The camera modality's replay view: the image as a JPEG, the cable state ``(d, alpha, w, beta)``, its two borders.
 
 The image is downscaled to at most :data:`MAX_WIDTH` px wide and encoded
-at :data:`JPEG_QUALITY`; a state's overlay is the chord of each of its two
+at :data:`~benchmark.replay.jpeg.JPEG_QUALITY`; a state's overlay is the chord of each of its two
 border lines through the image (:func:`~benchmark.modalities.camera.geometry.cable_borders`,
 :func:`~benchmark.modalities.camera.draw.chord_ends`), the lines the
 detection rule compares (seeds/004, section VI-C; ``conventions.md``
@@ -15,18 +15,15 @@ from typing import Any
 import cv2
 import numpy as np
 
-from benchmark.errors import DataError
 from benchmark.modalities.camera.draw import chord_ends
 from benchmark.modalities.camera.geometry import cable_borders, model_to_pixel
 from benchmark.modalities.camera.model import CableState, CameraTruth
 from benchmark.model import Frame
-from benchmark.replay.views import Picture, Segment
+from benchmark.replay.jpeg import encode_jpeg, shrunk_to_width
+from benchmark.replay.views import Mark, Picture
 
 MAX_WIDTH = 480
 """Widest picture of a frame, px; wider images are downscaled."""
-
-JPEG_QUALITY = 70
-"""OpenCV's JPEG quality (0-100) of the pictures."""
 
 
 class CameraView:
@@ -36,18 +33,12 @@ class CameraView:
     """The cable state of seeds/000, section 4.2, Table 4.1, in :meth:`CableState.as_array` order."""
 
     def picture(self, frame: Frame) -> Picture:
-        """The frame's image, at most :data:`MAX_WIDTH` px wide, as a JPEG of quality :data:`JPEG_QUALITY`."""
+        """The frame's image, at most :data:`MAX_WIDTH` px wide, as a JPEG."""
         image = np.asarray(frame.observation)
         if image.ndim == 3 and image.shape[2] == 4:
             image = cv2.cvtColor(image, cv2.COLOR_BGRA2BGR)
-        height, width = image.shape[:2]
-        if width > MAX_WIDTH:
-            size = (MAX_WIDTH, max(1, round(height * MAX_WIDTH / width)))
-            image = cv2.resize(image, size, interpolation=cv2.INTER_AREA)
-        ok, encoded = cv2.imencode(".jpg", image, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])
-        if not ok:
-            raise DataError(f"frame {frame.index}: its image of shape {image.shape} cannot be encoded as JPEG")
-        return Picture(encoded.tobytes(), int(image.shape[1]), int(image.shape[0]))
+        image = shrunk_to_width(image, MAX_WIDTH)
+        return Picture(encode_jpeg(image, f"frame {frame.index}"), int(image.shape[1]), int(image.shape[0]))
 
     def state(self, value: Any) -> tuple[float, ...] | None:
         """A :class:`CameraTruth`'s cable or a :class:`CableState` as ``(d, alpha, w, beta)``; None if unknown."""
@@ -56,7 +47,7 @@ class CameraView:
             return None
         return tuple(float(v) for v in cable.as_array())
 
-    def overlay(self, value: Any, frame: Frame, picture: Picture) -> list[Segment]:
+    def overlay(self, value: Any, frame: Frame, picture: Picture) -> list[Mark]:
         """The chords of the cable's two borders, in the picture's canvas coordinates (pixel edges at integers)."""
         state = self.state(value)
         if state is None:
@@ -68,11 +59,16 @@ class CameraView:
         except ValueError:  # a finite state whose border points overflow
             return []
         scale_u, scale_v = picture.width / size[0], picture.height / size[1]
-        segments: list[Segment] = []
+        segments: list[Mark] = []
         for line in borders:
             chord = chord_ends(line, size)
             if chord is None:
                 continue
             (u1, v1), (u2, v2) = (model_to_pixel(x, y, size) for x, y in chord)
-            segments.append(((u1 + 0.5) * scale_u, (v1 + 0.5) * scale_v, (u2 + 0.5) * scale_u, (v2 + 0.5) * scale_v))
+            ends = ((u1 + 0.5) * scale_u, (v1 + 0.5) * scale_v, (u2 + 0.5) * scale_u, (v2 + 0.5) * scale_v)
+            segments.append(Mark.segment(ends))
         return segments
+
+    def belief_marks(self, belief: Any, picture: Picture) -> list[Mark]:
+        """None: the belief panel shows a camera tracker's belief, the picture only its states."""
+        return []

@@ -7,7 +7,10 @@ thesis's Cable Tracking GUI, seeds/000, section 4.7) has play, pause,
 step back and forward, a speed, a frame slider and the outcome strip
 (coloured as the site's :data:`~benchmark.site.figures.OUTCOME_COLOURS`;
 a click jumps to the frame).  The frame is drawn on a canvas with the
-truth's overlay in green and the estimate's in red; beside it the belief
+marks its modality's view (:mod:`benchmark.replay.views`) gives it, each
+drawn by one routine in its role's colour: the truth's in green, the
+estimate's in red, the frame's measurement in amber, particles in blue and
+an estimate's covariance as a dashed red ellipse; beside it the belief
 panel: for a particle belief, per state dimension, each particle a
 horizontal line whose length is its weight at its value, with truth and
 estimate marked (Figs. 4.11 and 4.14); for a Gaussian belief, the mean and
@@ -29,6 +32,7 @@ from markupsafe import Markup
 
 from benchmark.files import write_text_atomically
 from benchmark.replay.record import Belief, FrameRecord, Recording
+from benchmark.replay.views import Mark, ReplayView, view_of
 from benchmark.site.figures import OUTCOME_COLOURS
 
 SIGNIFICANT_DIGITS = 5
@@ -116,7 +120,22 @@ def _belief(belief: Belief | None, ranges: list[tuple[float, float]]) -> dict[st
     return {"kind": "gaussian", "mean": _numbers(belief.mean), "variance": _numbers(belief.variance)}
 
 
-def _frame(frame: FrameRecord, ranges: list[tuple[float, float]]) -> dict[str, Any]:
+def frame_marks(frame: FrameRecord, view: ReplayView) -> list[tuple[str, Mark]]:
+    """The marks of ``frame`` with their roles, in the order the page draws them (later on top).
+
+    The belief's marks first, then the frame's own (its measurement), the
+    truth's and last the estimate's; marks with a number that is not finite
+    are left out.
+    """
+    belief = [] if frame.belief is None else view.belief_marks(frame.belief, frame.picture)
+    roled = [(mark.role or "", mark) for mark in (*belief, *frame.picture.marks)]
+    roled += [(mark.role or "truth", mark) for mark in frame.truth_lines]
+    roled += [(mark.role or "estimate", mark) for mark in frame.estimate_lines]
+    return [(role, mark) for role, mark in roled if mark.finite]
+
+
+def _frame(frame: FrameRecord, ranges: list[tuple[float, float]], view: ReplayView) -> dict[str, Any]:
+    plane = frame.picture.plane
     return {
         "index": frame.index,
         "outcome": frame.outcome,
@@ -124,8 +143,8 @@ def _frame(frame: FrameRecord, ranges: list[tuple[float, float]]) -> dict[str, A
         "step_s": _number(frame.step_s),
         "truth": None if frame.truth is None else _numbers(frame.truth),
         "estimate": None if frame.estimate is None else _numbers(frame.estimate),
-        "truth_lines": _numbers(frame.truth_lines),
-        "estimate_lines": _numbers(frame.estimate_lines),
+        "marks": [[role, mark.shape, _numbers(mark.points)] for role, mark in frame_marks(frame, view)],
+        "clip": None if plane is None else _numbers(plane.box),
         "belief": _belief(frame.belief, ranges),
         "image": "data:image/jpeg;base64," + base64.b64encode(frame.picture.jpeg).decode("ascii"),
         "width": frame.picture.width,
@@ -133,8 +152,9 @@ def _frame(frame: FrameRecord, ranges: list[tuple[float, float]]) -> dict[str, A
     }
 
 
-def page_data(recording: Recording) -> dict[str, Any]:
-    """The recording as the JSON the page's player reads."""
+def page_data(recording: Recording, view: ReplayView | None = None) -> dict[str, Any]:
+    """The recording as the JSON the page's player reads; ``view`` by default its modality's."""
+    view = view or view_of(recording.modality)
     ranges = dimension_ranges(recording)
     return {
         "tracker": recording.tracker,
@@ -146,7 +166,7 @@ def page_data(recording: Recording) -> dict[str, Any]:
         "ranges": ranges,
         "levels": LEVELS,
         "colours": OUTCOME_COLOURS,
-        "frames": [_frame(frame, ranges) for frame in recording.frames],
+        "frames": [_frame(frame, ranges, view) for frame in recording.frames],
     }
 
 
@@ -156,13 +176,13 @@ def _script_json(data: Any) -> str:
     return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
 
 
-def replay_html(recording: Recording) -> str:
-    """The page of ``recording`` as one HTML document."""
+def replay_html(recording: Recording, view: ReplayView | None = None) -> str:
+    """The page of ``recording`` as one HTML document; ``view`` by default its modality's."""
     title = f"{recording.tracker} on {recording.dataset}, seed {recording.seed}"
-    data = Markup(_script_json(page_data(recording)))
+    data = Markup(_script_json(page_data(recording, view)))
     return _templates.get_template("replay.html").render(title=title, data=data, colours=OUTCOME_COLOURS)
 
 
-def write_replay(recording: Recording, path: Path) -> Path:
-    """Write the page of ``recording`` to ``path`` (atomically) and return it."""
-    return write_text_atomically(path, replay_html(recording), "replay page")
+def write_replay(recording: Recording, path: Path, view: ReplayView | None = None) -> Path:
+    """Write the page of ``recording`` to ``path`` (atomically) and return it; ``view`` by default its modality's."""
+    return write_text_atomically(path, replay_html(recording, view), "replay page")

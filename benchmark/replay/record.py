@@ -95,6 +95,9 @@ class Belief:
         The (subsampled) particle set, ``(n, D)`` and ``(n,)`` summing to one.
     mean, variance : numpy.ndarray or None
         The Gaussian's mean and the diagonal of its covariance, ``(D,)``.
+    covariance : numpy.ndarray or None
+        The Gaussian's covariance, ``(D, D)``, of which a view draws the
+        block of the dimensions its picture shows as an ellipse.
     """
 
     kind: str
@@ -102,6 +105,7 @@ class Belief:
     weights: np.ndarray | None = None
     mean: np.ndarray | None = None
     variance: np.ndarray | None = None
+    covariance: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -241,8 +245,8 @@ def belief_of(tracker: Any, limit: int = MAX_PARTICLES) -> Belief | None:
         mean, covariance = tracker.mean, tracker.covariance
         if mean is None or covariance is None:
             return None
-        variance = np.diag(np.asarray(covariance, dtype=float)).copy()
-        return Belief("gaussian", mean=np.array(mean, dtype=float), variance=variance)
+        matrix = np.array(covariance, dtype=float)
+        return Belief("gaussian", mean=np.array(mean, dtype=float), variance=np.diag(matrix).copy(), covariance=matrix)
     return None
 
 

@@ -61,7 +61,7 @@ def draw_stereo_frame(frame: Frame, estimate: TargetEstimate | None) -> np.ndarr
     clockwise from north).
     """
     truth = frame.truth if isinstance(frame.truth, StereoTruth) else None
-    measured = _measured_position(frame)
+    measured = measured_position(frame)
     known: list[tuple[float, float]] = []
     if truth is not None:
         known += [truth.target.position_m, truth.chase_position_m]
@@ -70,30 +70,35 @@ def draw_stereo_frame(frame: Frame, estimate: TargetEstimate | None) -> np.ndarr
     shown = list(known)
     if estimate is not None:
         shown.append(_within(estimate.position_m, known[0], REACH_M) if known else estimate.position_m)
-    view = Viewport.around(
-        [east for _, east in shown],
-        [north for north, _ in shown],
-        PICTURE_SIZE,
-        PICTURE_SIZE,
-        min_span=MIN_SPAN_M,
-        y_up=True,
-        equal_scale=True,
-    )
+    view = map_around(shown, PICTURE_SIZE, PICTURE_SIZE)
     picture = view.blank()
     if truth is not None:
-        _draw_boat(picture, view, truth.chase_position_m, truth.chase_heading, DATA_BGR)
+        draw_boat(picture, view, truth.chase_position_m, truth.chase_heading, DATA_BGR)
     if measured is not None:
         cv2.drawMarker(picture, view.pixel(measured[1], measured[0]), MEASUREMENT_BGR, cv2.MARKER_CROSS, 9)
     if truth is not None:
         target = truth.target
-        _draw_boat(picture, view, target.position_m, target.heading if target.speed_mps > 0 else None, TRUTH_BGR)
+        draw_boat(picture, view, target.position_m, target.heading if target.speed_mps > 0 else None, TRUTH_BGR)
     if estimate is not None:
         heading = estimate.heading if estimate.speed_mps > 0 else None
-        _draw_boat(picture, view, estimate.position_m, heading, ESTIMATE_BGR)
+        draw_boat(picture, view, estimate.position_m, heading, ESTIMATE_BGR)
     return picture
 
 
-def _measured_position(frame: Frame) -> tuple[float, float] | None:
+def map_around(positions: list[tuple[float, float]], width: int, height: int) -> Viewport:
+    """The map of the North-East ``positions`` (north up, one scale, at least :data:`MIN_SPAN_M` across)."""
+    return Viewport.around(
+        [east for _, east in positions],
+        [north for north, _ in positions],
+        width,
+        height,
+        min_span=MIN_SPAN_M,
+        y_up=True,
+        equal_scale=True,
+    )
+
+
+def measured_position(frame: Frame) -> tuple[float, float] | None:
     """North-East position of the target by the frame's measurement and navigation, if it has both."""
     if not (isinstance(frame.observation, StereoMeasurement) and isinstance(frame.navigation, ChaseNavigation)):
         return None
@@ -110,7 +115,7 @@ def _within(point: tuple[float, float], centre: tuple[float, float], reach: floa
     )
 
 
-def _draw_boat(
+def draw_boat(
     picture: np.ndarray, view: Viewport, position_m: tuple[float, float], heading: float | None, colour: Colour
 ) -> None:
     """A circle at a North-East position and, given a heading (clockwise from north), a line along it."""

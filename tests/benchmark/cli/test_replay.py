@@ -10,8 +10,10 @@ import pytest
 from click.testing import CliRunner, Result
 
 import benchmark.plugins
+import benchmark.replay.views
 from benchmark.cli import main
 from benchmark.registry import Registry
+from benchmark.replay.camera import CameraView
 
 from ..conftest import ALL_TRACKERS, make_registry
 from ..replay.conftest import Gaussian, Particles
@@ -66,11 +68,19 @@ def test_a_tracker_that_raises_is_replayed_up_to_its_fault(replay, tmp_path: Pat
         (("--tracker", "perfect", "--dataset", "fake/S1", "--frames", "5:2"), "frame range '5:2'"),
         (("--tracker", "perfect", "--dataset", "fake/S1", "--frames", "x"), "frame range 'x'"),
         (("--tracker", "perfect", "--dataset", "fake/S1", "--frames", "20:30"), "fake/S1 has 10 frames"),
-        (("--tracker", "sonar-only", "--dataset", "fake/S1"), "replay cannot show sonar frames yet"),
+        (("--tracker", "sonar-only", "--dataset", "fake/S1"), "no selected tracker reads the modality"),
     ],
 )
 def test_replay_refuses_bad_inputs_with_a_clear_error(replay, args: tuple[str, ...], message: str) -> None:
     result = replay(*args)
     assert result.exit_code == 2
     assert "Error:" in result.output and message in result.output
+    assert "Traceback" not in result.output
+
+
+def test_replay_refuses_a_modality_without_a_view(replay, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(benchmark.replay.views, "_views", lambda: {"camera": CameraView()})
+    result = replay("--tracker", "sonar-only", "--dataset", "fake/S1")
+    assert result.exit_code == 2
+    assert "Error: replay cannot show sonar frames yet (it shows: camera)" in result.output
     assert "Traceback" not in result.output

@@ -1,4 +1,10 @@
-"""Fake filter trackers for the replay tests: a particle filter and a Gaussian one, drawing from the cell's generator."""
+"""Fake filter trackers for the replay tests, and recordings of the first-party sonar and stereo filters.
+
+The fakes are a particle filter and a Gaussian one, drawing from the
+cell's generator.  ``real_recordings`` records :data:`REAL_FRAMES` frames
+of each cell of :data:`REAL_CELLS`: the sonar particle filter on a sonar
+sequence, the stereo EKF on a stereo sequence and on a stereo-images one.
+"""
 
 from __future__ import annotations
 
@@ -9,7 +15,10 @@ import pytest
 
 from benchmark.modalities.camera.model import CableState
 from benchmark.model import Frame, SequenceInfo
+from benchmark.plugins import load_registry
 from benchmark.registry import Registry
+from benchmark.replay.record import FrameRange, Recording, record_cell
+from benchmark.runner import Cell
 from benchmark.tracker import Tracker
 
 from ..conftest import ALL_TRACKERS, make_registry
@@ -65,3 +74,32 @@ class Gaussian(Tracker):
 def registry() -> Registry:
     """The fake registry with the two filters beside the harness's fakes."""
     return make_registry((*ALL_TRACKERS, Particles, Gaussian))
+
+
+REAL_CELLS = {
+    "sonar": ("sonar_pf", "sonar/concrete"),
+    "stereo": ("stereo_ekf", "stereo/case1-medium"),
+    "stereo-images": ("stereo_ekf", "stereo-images/case1-medium"),
+}
+"""Name: tracker and sequence of a recording of a first-party filter."""
+
+REAL_FRAMES = 4
+
+
+@pytest.fixture(scope="session")
+def plugin_registry() -> Registry:
+    """Every plugin's trackers and suites."""
+    return load_registry()
+
+
+def real_cell(registry: Registry, name: str, seed: int = 0) -> Cell:
+    """The cell of :data:`REAL_CELLS` ``name``, started from the truth."""
+    tracker, dataset = REAL_CELLS[name]
+    entry = registry.trackers[tracker]
+    return Cell(entry, registry.sequence(dataset), seed, "truth", modality=registry.modalities[entry.modality])
+
+
+@pytest.fixture(scope="session")
+def real_recordings(plugin_registry: Registry) -> dict[str, Recording]:
+    """The first :data:`REAL_FRAMES` frames of each cell of :data:`REAL_CELLS`, recorded."""
+    return {name: record_cell(real_cell(plugin_registry, name), FrameRange(0, REAL_FRAMES)) for name in REAL_CELLS}

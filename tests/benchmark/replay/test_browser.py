@@ -1,8 +1,11 @@
 """The replay page in Chromium from ``file://``: it plays, the strip jumps, overlays and belief are drawn, no errors.
 
+The camera page is played with the fake filters; the sonar and stereo
+pages of the first-party filters are opened and their marks checked.
+
 Needs Python playwright and a Chromium at ``/usr/bin/chromium`` (skipped
 without them).  ``TRACKBENCH_SCREENSHOTS=folder`` keeps the screenshot
-(``replay.png``) there.
+(``replay-*.png``) there.
 """
 
 from __future__ import annotations
@@ -12,11 +15,14 @@ from pathlib import Path
 import pytest
 
 from benchmark.registry import Registry
-from benchmark.replay.page import write_replay
+from benchmark.replay.page import page_data, write_replay
 from benchmark.replay.record import record_cell
+
+from benchmark.replay.record import Recording
 
 from ..conftest import FakeSequence, make_cell
 from ..site.test_browser import Browser, save_for_readme
+from .conftest import REAL_CELLS, REAL_FRAMES
 
 sync_api = pytest.importorskip("playwright.sync_api", reason="the browser tests need Python playwright")
 
@@ -53,7 +59,7 @@ def test_the_replay_plays_jumps_and_draws(chromium: sync_api.Browser, registry: 
     expected = len(recording.frames[0].truth_lines) + len(recording.frames[0].estimate_lines)
     assert int(frame["overlays"]) == expected > 0
     zoom = 480 / 64
-    u1, v1, u2, v2 = recording.frames[0].truth_lines[0]
+    u1, v1, u2, v2 = recording.frames[0].truth_lines[0].points
     red, green, blue, _ = pixel(page, "frame", (u1 + u2) / 2 * zoom, (v1 + v2) / 2 * zoom)
     assert max(red, green) > 150 > blue  # a border lies where the truth's first chord is (the estimate's may cover it)
     assert painted(page, "frame", 27, 158, 27) > 100  # the truth's borders in green
@@ -72,4 +78,48 @@ def test_the_replay_plays_jumps_and_draws(chromium: sync_api.Browser, registry: 
     page.click("#previous")
     assert page.evaluate("document.body.dataset.frame") == str(target - 1)
     save_for_readme(page, f"replay-{tracker}.png", tmp_path)
+    assert browser.problems == []
+
+
+COLOURS = {
+    "truth": (27, 158, 27),
+    "estimate": (214, 39, 40),
+    "measurement": (224, 142, 0),
+    "particle": (31, 78, 158),
+}
+"""The colours of the roles, as the page draws them."""
+
+SEEN = {
+    "sonar": ("truth", "estimate", "particle"),
+    "stereo": ("estimate", "measurement"),
+    "stereo-images": ("estimate",),
+}
+"""The roles whose colour shows on the last frame's picture (a truth under its estimate may be hidden)."""
+
+
+@pytest.mark.parametrize("name", sorted(REAL_CELLS))
+def test_the_sonar_and_stereo_replays_draw_their_marks(
+    chromium: sync_api.Browser, real_recordings: dict[str, Recording], tmp_path: Path, name: str
+) -> None:
+    recording = real_recordings[name]
+    path = write_replay(recording, tmp_path / "replay.html")
+    browser = Browser(chromium.new_page(viewport={"width": 1200, "height": 900}))
+    page = browser.open(path)
+    last = REAL_FRAMES - 1
+    page.wait_for_function("document.getElementById('frame').dataset.frame === '0'")
+    for _ in range(last):
+        page.click("#next")
+    page.wait_for_function(f"document.getElementById('frame').dataset.frame === '{last}'")
+    marks = page.evaluate(f"JSON.parse(document.getElementById('replay-data').textContent).frames[{last}].marks.length")
+    assert int(page.evaluate("document.getElementById('frame').dataset.overlays")) == marks > 0
+    width, height = page.evaluate("[document.getElementById('frame').width, document.getElementById('frame').height]")
+    assert (width, height) == (recording.frames[last].picture.width, recording.frames[last].picture.height)
+    for role in SEEN[name]:
+        assert painted(page, "frame", *COLOURS[role]) > 5, role
+    assert painted(page, "belief", 31, 78, 158) > 20  # particles or the Gaussian's mean
+    shown = "Array.from(document.querySelectorAll('.legend [data-role]')).filter((s) => !s.hidden)"
+    shown += ".map((s) => s.dataset.role)"
+    roles = {role for frame in page_data(recording)["frames"] for role, _, _ in frame["marks"]}
+    assert set(page.evaluate(shown)) == {"measurement", "particle", "covariance"} & roles
+    save_for_readme(page, f"replay-{recording.tracker}-{name}.png", tmp_path)
     assert browser.problems == []

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import base64
+import dataclasses
 import json
+import math
 import re
 from pathlib import Path
 
@@ -13,8 +15,11 @@ import pytest
 from benchmark.registry import Registry
 from benchmark.replay.page import LEVELS, NOT_FINITE, page_data, replay_html, write_replay
 from benchmark.replay.record import Recording, record_cell
+from benchmark.replay.stereo import MAP_SIZE
+from benchmark.replay.views import Mark
 
 from ..conftest import FakeSequence, make_cell
+from .conftest import REAL_CELLS
 
 BUDGET_BYTES_PER_FRAME = 5_000_000 / 300
 """At most 5 MB for 300 camera frames."""
@@ -78,3 +83,35 @@ def test_a_frame_costs_little_beside_its_picture(registry: Registry, tmp_path: P
     per_frame = (sizes[1] - sizes[0] - jpeg) / 3
     assert 0 < per_frame < NON_IMAGE_BYTES_PER_FRAME
     assert sizes[0] - 3 * per_frame < 40_000  # the player itself
+
+
+ROLES = {
+    "sonar": {"truth", "estimate", "particle"},
+    "stereo": {"truth", "estimate", "measurement", "covariance"},
+    "stereo-images": {"truth", "estimate", "covariance"},
+}
+"""The roles of the marks each first-party filter's page draws."""
+
+
+@pytest.mark.parametrize("name", sorted(REAL_CELLS))
+def test_a_first_party_filter_s_page_holds_finite_marks_of_its_roles(
+    real_recordings: dict[str, Recording], name: str
+) -> None:
+    html = replay_html(real_recordings[name])
+    text = re.search(r'id="replay-data">(.*?)</script>', html, re.S).group(1)
+    data = json.loads(text, parse_constant=lambda constant: pytest.fail(f"{constant} in the page's data"))
+    for frame in data["frames"]:
+        assert {role for role, _, _ in frame["marks"]} == ROLES[name]
+        assert all(isinstance(p, (int, float)) and math.isfinite(p) for _, _, points in frame["marks"] for p in points)
+        plane_top = 0 if name == "sonar" else frame["height"] - MAP_SIZE[1]  # the map is below the image pair
+        assert frame["clip"] == [0, plane_top, frame["width"], frame["height"]]
+        assert frame["belief"] is not None
+
+
+def test_marks_with_numbers_that_are_not_finite_are_left_out(real_recordings: dict[str, Recording]) -> None:
+    recording = real_recordings["stereo"]
+    first = recording.frames[0]
+    broken = dataclasses.replace(first, estimate_lines=[Mark.circle(math.nan, 3.0, 5.0), *first.estimate_lines[1:]])
+    data = page_data(Recording(**{**recording.__dict__, "frames": [broken]}))
+    estimates = [points for role, _, points in data["frames"][0]["marks"] if role == "estimate"]
+    assert len(estimates) == len(first.estimate_lines) - 1 and all(None not in points for points in estimates)

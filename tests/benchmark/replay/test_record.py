@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -11,11 +12,18 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from benchmark.registry import Registry
-from benchmark.replay.record import MAX_PARTICLES, FrameRange, FrameRangeError, record_cell, systematic_subsample
+from benchmark.replay.record import (
+    MAX_PARTICLES,
+    FrameRange,
+    FrameRangeError,
+    Recording,
+    record_cell,
+    systematic_subsample,
+)
 from benchmark.runner import run_cell
 
 from ..conftest import FakeSequence, make_cell
-from .conftest import Particles
+from .conftest import REAL_CELLS, REAL_FRAMES, Particles, real_cell
 
 
 def same(a: float, b: float) -> bool:
@@ -41,6 +49,27 @@ def test_recording_gives_the_runner_s_estimates_bit_for_bit(registry: Registry, 
     assert record_cell(other).frames[0].estimate != recording.frames[0].estimate  # the seed matters: the test can fail
 
 
+def bits(estimate: object) -> bytes | None:
+    """An estimate dataclass's numbers as bytes: equal only when every float is equal bit for bit."""
+    return None if estimate is None else np.array(dataclasses.astuple(estimate), dtype=float).tobytes()
+
+
+@pytest.mark.parametrize("name", sorted(REAL_CELLS))
+def test_recording_a_first_party_filter_gives_the_runner_s_estimates_bit_for_bit(
+    plugin_registry: Registry, real_recordings: dict[str, Recording], name: str
+) -> None:
+    by_runner: list[object] = []
+    def keep(tracker: object, frame: object, estimate: object, score: object) -> None:
+        by_runner.append(estimate)
+
+    result = run_cell(real_cell(plugin_registry, name), observer=keep, until=REAL_FRAMES)
+    assert result.status == "ok" and len(by_runner) == REAL_FRAMES
+    recording = real_recordings[name]
+    assert [bits(frame.estimate_value) for frame in recording.frames] == [bits(estimate) for estimate in by_runner]
+    assert [frame.outcome for frame in recording.frames] == [str(score.outcome) for score in result.scores]
+    assert all(bits(estimate) is not None for estimate in by_runner)
+
+
 def test_a_frame_range_keeps_its_frames_and_the_estimates_of_the_whole_run(registry: Registry) -> None:
     cell = make_cell(registry.trackers["fake-particles"], FakeSequence("fake/S1", 8), 1)
     whole = record_cell(cell)
@@ -60,6 +89,7 @@ def test_beliefs_are_recorded_as_the_protocols_expose_them(registry: Registry) -
     assert frame.estimate is None and frame.estimate_lines == [] and frame.truth_lines
     assert frame.belief is not None and frame.belief.kind == "gaussian"
     assert np.allclose(frame.belief.variance, np.array([4.0, 0.01, 1.0]) * 1.1**3)
+    assert np.array_equal(frame.belief.covariance, np.diag(frame.belief.variance))
     assert record_cell(make_cell(registry.trackers["perfect"], FakeSequence("fake/S1", 2))).frames[0].belief is None
 
 
