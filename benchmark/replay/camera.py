@@ -10,7 +10,7 @@ sections 1 and 3).
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import cv2
 import numpy as np
@@ -20,10 +20,16 @@ from benchmark.modalities.camera.geometry import cable_borders, model_to_pixel
 from benchmark.modalities.camera.model import CableState, CameraTruth
 from benchmark.model import Frame
 from benchmark.replay.jpeg import encode_jpeg, shrunk_to_width
-from benchmark.replay.views import Mark, Picture
+from benchmark.replay.views import Mark, Picture, Segment
+
+if TYPE_CHECKING:
+    from benchmark.replay.record import Belief
 
 MAX_WIDTH = 480
 """Widest picture of a frame, px; wider images are downscaled."""
+
+PARTICLE_LINES = 24
+"""Particles of a belief whose borders are drawn on the frame (seeds/000, section 4.7 draws them beside it)."""
 
 
 class CameraView:
@@ -37,8 +43,10 @@ class CameraView:
         image = np.asarray(frame.observation)
         if image.ndim == 3 and image.shape[2] == 4:
             image = cv2.cvtColor(image, cv2.COLOR_BGRA2BGR)
+        source_size = (int(image.shape[1]), int(image.shape[0]))
         image = shrunk_to_width(image, MAX_WIDTH)
-        return Picture(encode_jpeg(image, f"frame {frame.index}"), int(image.shape[1]), int(image.shape[0]))
+        jpeg = encode_jpeg(image, f"frame {frame.index}")
+        return Picture(jpeg, int(image.shape[1]), int(image.shape[0]), source_size=source_size)
 
     def state(self, value: Any) -> tuple[float, ...] | None:
         """A :class:`CameraTruth`'s cable or a :class:`CableState` as ``(d, alpha, w, beta)``; None if unknown."""
@@ -52,23 +60,45 @@ class CameraView:
         state = self.state(value)
         if state is None:
             return []
-        image = np.asarray(frame.observation)
-        size = (int(image.shape[1]), int(image.shape[0]))
-        try:
-            borders = cable_borders(CableState(*state))
-        except ValueError:  # a finite state whose border points overflow
-            return []
-        scale_u, scale_v = picture.width / size[0], picture.height / size[1]
-        segments: list[Mark] = []
-        for line in borders:
-            chord = chord_ends(line, size)
-            if chord is None:
-                continue
-            (u1, v1), (u2, v2) = (model_to_pixel(x, y, size) for x, y in chord)
-            ends = ((u1 + 0.5) * scale_u, (v1 + 0.5) * scale_v, (u2 + 0.5) * scale_u, (v2 + 0.5) * scale_v)
-            segments.append(Mark.segment(ends))
-        return segments
+        return [Mark.segment(chord) for chord in _border_chords(state, picture)]
 
-    def belief_marks(self, belief: Any, picture: Picture) -> list[Mark]:
-        """None: the belief panel shows a camera tracker's belief, the picture only its states."""
+    def belief_marks(self, belief: Belief, picture: Picture) -> list[Mark]:
+        """The borders of :data:`PARTICLE_LINES` particles of a particle belief, each as opaque as it is heavy.
+
+        The particles are a systematic subsample of the belief
+        (:func:`~benchmark.replay.record.systematic_subsample`), so each
+        stands for an equal share of its weight: a belief split between the
+        cable and an edge beside it shows as two bundles of lines, in
+        proportion.
+        """
+        if belief.particles is None or belief.weights is None or belief.particles.shape[1] < 4:
+            return []
+        from benchmark.replay.record import systematic_subsample
+
+        particles, weights = systematic_subsample(belief.particles[:, :4], belief.weights, PARTICLE_LINES)
+        heaviest = float(weights.max())
+        strokes: list[float] = []
+        for state, weight in zip(particles, weights):
+            if not np.all(np.isfinite(state)):
+                continue
+            for u1, v1, u2, v2 in _border_chords(tuple(float(v) for v in state), picture):
+                strokes += [round(weight / heaviest, 2), round(u1, 1), round(v1, 1), round(u2, 1), round(v2, 1)]
+        return [Mark("strokes", tuple(strokes), "particle")] if strokes else []
+
+
+def _border_chords(state: tuple[float, ...], picture: Picture) -> list[Segment]:
+    """The chords of the two borders of ``state`` in the image ``picture`` shows, scaled to it; none that overflow."""
+    size = picture.source_size or (picture.width, picture.height)
+    try:
+        borders = cable_borders(CableState(*state[:4]))
+    except ValueError:  # a finite state whose border points overflow
         return []
+    scale_u, scale_v = picture.width / size[0], picture.height / size[1]
+    chords: list[Segment] = []
+    for line in borders:
+        chord = chord_ends(line, size)
+        if chord is None:
+            continue
+        (u1, v1), (u2, v2) = (model_to_pixel(x, y, size) for x, y in chord)
+        chords.append(((u1 + 0.5) * scale_u, (v1 + 0.5) * scale_v, (u2 + 0.5) * scale_u, (v2 + 0.5) * scale_v))
+    return chords

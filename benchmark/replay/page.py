@@ -129,8 +129,8 @@ def frame_marks(frame: FrameRecord, view: ReplayView) -> list[tuple[str, Mark]]:
     """
     belief = [] if frame.belief is None else view.belief_marks(frame.belief, frame.picture)
     roled = [(mark.role or "", mark) for mark in (*belief, *frame.picture.marks)]
-    roled += [(mark.role or "truth", mark) for mark in frame.truth_lines]
-    roled += [(mark.role or "estimate", mark) for mark in frame.estimate_lines]
+    roled += [(mark.role or "truth", mark) for mark in frame.truth_marks]
+    roled += [(mark.role or "estimate", mark) for mark in frame.estimate_marks]
     return [(role, mark) for role, mark in roled if mark.finite]
 
 

@@ -30,7 +30,7 @@ import numpy as np
 
 from benchmark.errors import TrackbenchError
 from benchmark.model import Frame
-from benchmark.replay.views import Picture, ReplayView, Segment, view_of
+from benchmark.replay.views import Mark, Picture, ReplayView, view_of
 from benchmark.results import FrameScore
 from benchmark.runner import Cell, run_cell
 from benchmark.testing.beliefs import GaussianBelief, ParticleBelief
@@ -124,7 +124,7 @@ class FrameRecord:
         CPU time of the tracker's ``step``, s.
     truth, estimate : tuple of float or None
         The states, in the view's dimensions.
-    truth_lines, estimate_lines : list of Segment
+    truth_marks, estimate_marks : list of Mark
         Their overlays on the picture.
     belief : Belief or None
         The tracker's belief after the step, where it exposes one.
@@ -140,8 +140,8 @@ class FrameRecord:
     step_s: float
     truth: tuple[float, ...] | None
     estimate: tuple[float, ...] | None
-    truth_lines: list[Segment]
-    estimate_lines: list[Segment]
+    truth_marks: list[Mark]
+    estimate_marks: list[Mark]
     belief: Belief | None
     picture: Picture
     estimate_value: Any = field(repr=False, compare=False, default=None)
@@ -325,8 +325,8 @@ class _Recorder:
             step_s=score.step_s,
             truth=view.state(frame.truth),
             estimate=view.state(estimate),
-            truth_lines=view.overlay(frame.truth, frame, picture),
-            estimate_lines=view.overlay(estimate, frame, picture),
+            truth_marks=view.overlay(frame.truth, frame, picture),
+            estimate_marks=view.overlay(estimate, frame, picture),
             belief=belief_of(tracker),
             picture=picture,
             estimate_value=estimate,

@@ -33,7 +33,7 @@ if TYPE_CHECKING:
 Segment = tuple[float, float, float, float]
 """A line segment ``(u1, v1, u2, v2)`` in the pixels of a frame's picture."""
 
-Shape = Literal["segment", "ellipse", "cross", "ticks"]
+Shape = Literal["segment", "ellipse", "cross", "ticks", "strokes"]
 """How a mark's points are drawn; see :class:`Mark`."""
 
 Role = Literal["truth", "estimate", "measurement", "particle", "covariance"]
@@ -57,6 +57,8 @@ class Mark:
         ``"ticks"``: ``(v, length, u_1, w_1, u_2, w_2, ...)``, one vertical
         tick per ``(u_k, w_k)`` from row ``v`` over ``length * w_k`` px
         (down for a positive length), ``w_k`` in ``[0, 1]`` also its opacity.
+        ``"strokes"``: ``(w_1, u1_1, v1_1, u2_1, v2_1, w_2, ...)``, one line
+        per five numbers, ``w_k`` in ``[0, 1]`` its opacity.
     points : tuple of float
         The shape's numbers.
     role : Role or None
@@ -160,6 +162,8 @@ class Picture:
         Where the plane the picture draws (if it draws one) lands on it.
     marks : tuple of Mark
         What the frame itself shows beside its picture: its measurement.
+    source_size : tuple of int or None
+        ``(W, H)`` of the image the picture shows, where it is one (it may be scaled down).
     """
 
     jpeg: bytes
@@ -167,6 +171,7 @@ class Picture:
     height: int
     plane: PlaneMap | None = None
     marks: tuple[Mark, ...] = ()
+    source_size: tuple[int, int] | None = None
 
 
 class ReplayView(Protocol):

@@ -56,10 +56,11 @@ def test_the_replay_plays_jumps_and_draws(chromium: sync_api.Browser, registry: 
     page = browser.open(path)
     page.wait_for_function("document.getElementById('frame').dataset.frame === '0'")
     frame = page.evaluate("document.getElementById('frame').dataset")
-    expected = len(recording.frames[0].truth_lines) + len(recording.frames[0].estimate_lines)
-    assert int(frame["overlays"]) == expected > 0
+    marks = page_data(recording)["frames"][0]["marks"]
+    assert int(frame["overlays"]) == len(marks) >= 4  # two borders each of truth and estimate, and any particles'
+    assert (tracker == "fake-particles") == any(role == "particle" for role, _, _ in marks)
     zoom = 480 / 64
-    u1, v1, u2, v2 = recording.frames[0].truth_lines[0].points
+    u1, v1, u2, v2 = recording.frames[0].truth_marks[0].points
     red, green, blue, _ = pixel(page, "frame", (u1 + u2) / 2 * zoom, (v1 + v2) / 2 * zoom)
     assert max(red, green) > 150 > blue  # a border lies where the truth's first chord is (the estimate's may cover it)
     assert painted(page, "frame", 27, 158, 27) > 100  # the truth's borders in green
@@ -78,6 +79,24 @@ def test_the_replay_plays_jumps_and_draws(chromium: sync_api.Browser, registry: 
     page.click("#previous")
     assert page.evaluate("document.body.dataset.frame") == str(target - 1)
     save_for_readme(page, f"replay-{tracker}.png", tmp_path)
+    assert browser.problems == []
+
+
+def test_an_address_opens_a_frame_with_the_belief_zoomed_to_it(
+    chromium: sync_api.Browser, registry: Registry, tmp_path: Path
+) -> None:
+    recording = record_cell(make_cell(registry.trackers["fake-particles"], FakeSequence("fake/S1", FRAMES)))
+    path = write_replay(recording, tmp_path / "replay.html")
+    browser = Browser(chromium.new_page(viewport={"width": 1200, "height": 800}))
+    page = browser.open(path)
+    whole = page.evaluate("document.getElementById('belief').toDataURL()")
+    page.goto(path.as_uri() + "#frame=6&zoom")
+    page.reload()
+    page.wait_for_function("document.getElementById('belief').dataset.frame === '6'")
+    assert page.is_checked("#zoom") and page.input_value("#slider") == "6"
+    zoomed = page.evaluate("document.getElementById('belief').toDataURL()")
+    page.uncheck("#zoom")
+    assert page.evaluate("document.getElementById('belief').toDataURL()") != zoomed != whole
     assert browser.problems == []
 
 

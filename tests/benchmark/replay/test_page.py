@@ -64,11 +64,13 @@ def test_packed_particles_decode_to_the_recorded_ones_within_a_level(recording: 
     assert weights.max() == LEVELS and np.allclose(weights / LEVELS, kept.weights / kept.weights.max(), atol=1 / LEVELS)
 
 
-NON_IMAGE_BYTES_PER_FRAME = 3_500
-"""What a frame may cost beside its JPEG: 200 particles, their weights, the states, overlays and numbers.
+NON_IMAGE_BYTES_PER_FRAME = 4_800
+"""What a frame may cost beside its JPEG: 200 particles, their weights, the states, overlays, the borders of 24
+particles drawn on the picture, and numbers.
 
-With it, 5 MB / 300 frames leaves 13.1 KB of base64 (9.8 KB of JPEG) per frame: camera/S1's 320 x 240
-frames take 8.7 KB on average at quality 70 (``trackbench replay --tracker condensation --dataset camera/S1``).
+With it and the player's 40 KB, 5 MB / 300 frames leaves 11.7 KB of base64 (8.8 KB of JPEG) per frame:
+camera/S1's 320 x 240 frames take 8.7 KB on average at quality 70, and its whole page of
+``trackbench replay --tracker condensation --dataset camera/S1`` comes to 4.42 MB per 300 frames.
 """
 
 
@@ -111,7 +113,7 @@ def test_a_first_party_filter_s_page_holds_finite_marks_of_its_roles(
 def test_marks_with_numbers_that_are_not_finite_are_left_out(real_recordings: dict[str, Recording]) -> None:
     recording = real_recordings["stereo"]
     first = recording.frames[0]
-    broken = dataclasses.replace(first, estimate_lines=[Mark.circle(math.nan, 3.0, 5.0), *first.estimate_lines[1:]])
+    broken = dataclasses.replace(first, estimate_marks=[Mark.circle(math.nan, 3.0, 5.0), *first.estimate_marks[1:]])
     data = page_data(Recording(**{**recording.__dict__, "frames": [broken]}))
     estimates = [points for role, _, points in data["frames"][0]["marks"] if role == "estimate"]
-    assert len(estimates) == len(first.estimate_lines) - 1 and all(None not in points for points in estimates)
+    assert len(estimates) == len(first.estimate_marks) - 1 and all(None not in points for points in estimates)

@@ -86,7 +86,7 @@ def test_beliefs_are_recorded_as_the_protocols_expose_them(registry: Registry) -
     assert math.isclose(belief.weights.sum(), 1.0, rel_tol=1e-12)
     gaussian = record_cell(make_cell(registry.trackers["fake-gaussian"], FakeSequence("fake/S1", 4)))
     frame = gaussian.frames[2]
-    assert frame.estimate is None and frame.estimate_lines == [] and frame.truth_lines
+    assert frame.estimate is None and frame.estimate_marks == [] and frame.truth_marks
     assert frame.belief is not None and frame.belief.kind == "gaussian"
     assert np.allclose(frame.belief.variance, np.array([4.0, 0.01, 1.0]) * 1.1**3)
     assert np.array_equal(frame.belief.covariance, np.diag(frame.belief.variance))

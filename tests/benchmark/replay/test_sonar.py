@@ -80,5 +80,5 @@ def test_a_recorded_sonar_filter_draws_its_pipe_estimate_and_particles(real_reco
         assert frame.belief is not None and frame.belief.particles.shape[1] == 1
         (ticks,) = VIEW.belief_marks(frame.belief, frame.picture)
         assert len(ticks.points) == 2 + 2 * frame.belief.particles.shape[0]
-        assert [m.shape for m in frame.truth_lines] == ["ellipse"]
-        assert [m.shape for m in frame.estimate_lines] == ["segment"]
+        assert [m.shape for m in frame.truth_marks] == ["ellipse"]
+        assert [m.shape for m in frame.estimate_marks] == ["segment"]

@@ -29,7 +29,7 @@ def flat_frames(flat_scene_data):
 
 
 @pytest.mark.parametrize("index", range(6))
-def test_silhouette_agrees_with_the_truth_lines(flat_frames, index: int) -> None:
+def test_silhouette_agrees_with_the_truth_marks(flat_frames, index: int) -> None:
     frame = flat_frames[index]
     image, state = frame.observation, frame.truth.cable
     assert state.w > 10 and abs(state.alpha) < math.radians(40)
