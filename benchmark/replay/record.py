@@ -158,7 +158,8 @@ class Recording:
     seed : int
         The cell's seed.
     dimensions : tuple of str
-        Names of the state's components.
+        Names of the state's components: the view's, and the further columns a tracker's belief names
+        (``belief_dimensions``, e.g. velocities).
     frames : list of FrameRecord
         The kept frames, in order.
     ended : str
@@ -307,6 +308,9 @@ class _Recorder:
     report: Callable[[int, int], None] | None
 
     def __call__(self, tracker: Any, frame: Frame, estimate: Any, score: FrameScore) -> None:
+        names = tuple(getattr(tracker, "belief_dimensions", ()))
+        if len(names) > len(self.recording.dimensions) and names[: len(self.view.dimensions)] == self.view.dimensions:
+            self.recording.dimensions = names
         if frame.index >= self.first:
             tick = time.perf_counter()
             self.recording.frames.append(self._kept(tracker, frame, estimate, score))

@@ -100,6 +100,10 @@ class ParticleBelief(Protocol):
         The states of the particles, shape ``(N, D)``; None while there is no belief.
     weights : numpy.ndarray or None
         Their weights, shape ``(N,)``: finite, non-negative, summing to one.
+
+    A tracker whose particles carry more than its modality's state (its
+    velocities, say) may name every column in a tuple ``belief_dimensions``;
+    ``trackbench replay`` then shows them all.
     """
 
     @property

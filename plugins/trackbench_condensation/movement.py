@@ -32,6 +32,9 @@ from benchmark.filters import LinearDriftDiffusion
 D, ALPHA, W, BETA, V_D, V_ALPHA, V_W, V_BETA = range(8)
 """Column of each state variable in a particle array."""
 
+COLUMN_NAMES = ("d_px", "alpha_rad", "w_px", "beta_rad", "v_d_px", "v_alpha_rad", "v_w_px", "v_beta_rad")
+"""The names of the columns, in that order; the velocities are per frame."""
+
 DRIFTS = {D: V_D, ALPHA: V_ALPHA, W: V_W, BETA: V_BETA}
 """Which velocity drifts which variable."""
 

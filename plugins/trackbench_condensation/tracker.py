@@ -81,7 +81,7 @@ from benchmark.model import Frame, SequenceInfo
 from benchmark.tracker import Tracker
 from trackbench_condensation.detect import LineScan, LocalAscent, propose
 from trackbench_condensation.lost import LostCable
-from trackbench_condensation.movement import diffusion_std, movement_model
+from trackbench_condensation.movement import COLUMN_NAMES, diffusion_std, movement_model
 from trackbench_condensation.observation import BorderObservation, as_grey_image
 from trackbench_condensation.params import CondensationParams
 from trackbench_condensation.prior import InitLimits, particles_at, uniform_particles
@@ -204,6 +204,11 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
     def dims(self) -> int:
         """Dimension of a particle: 6, or 8 with ``width_skew_velocities``."""
         return 8 if self.params.width_skew_velocities else 6
+
+    @property
+    def belief_dimensions(self) -> tuple[str, ...]:
+        """Names of the particles' columns: the cable state and its velocities (seeds/000, section 4.4)."""
+        return COLUMN_NAMES[: self.dims]
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: CameraTruth | None = None) -> None:
         """Draw the initial particle set.

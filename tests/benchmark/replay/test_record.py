@@ -11,6 +11,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
+from benchmark.modalities.camera.scenes.scene import CameraScene
 from benchmark.registry import Registry
 from benchmark.replay.record import (
     MAX_PARTICLES,
@@ -141,3 +142,14 @@ def test_the_subsample_leaves_the_generator_and_the_set_alone() -> None:
     assert kept.shape == (MAX_PARTICLES, 3) or kept.shape[0] < MAX_PARTICLES
     assert rng.bit_generator.state == state
     assert np.array_equal(particles, copies[0]) and np.array_equal(weights, copies[1])
+
+
+def test_the_further_columns_of_a_belief_are_named_as_its_tracker_names_them(
+    plugin_registry: Registry, registry: Registry
+) -> None:
+    scene = CameraScene.from_dict({"name": "camera/demo", "n_frames": 2, "frame_size": [96, 72], "focal_px": 114.0})
+    recording = record_cell(make_cell(plugin_registry.trackers["condensation"], scene))
+    assert recording.dimensions == ("d_px", "alpha_rad", "w_px", "beta_rad", "v_d_px", "v_alpha_rad")
+    assert all(frame.belief.particles.shape[1] == 6 for frame in recording.frames)
+    plain = record_cell(make_cell(registry.trackers["fake-particles"], FakeSequence("fake/S1", 2)))
+    assert plain.dimensions == ("d_px", "alpha_rad", "w_px", "beta_rad")
