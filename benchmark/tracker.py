@@ -155,6 +155,21 @@ class ScoresStates(Protocol):
 
 
 @runtime_checkable
+class Searches(Protocol):
+    """A tracker that searches only part of each frame: a window or region of interest around its prediction.
+
+    ``search_region`` is the part its latest ``step`` searched, None where it
+    searched the whole frame.  Its type is the modality's: for a camera, the
+    border lines (:class:`benchmark.modalities.camera.geometry.Line`, model
+    coordinates) that bound the searched bands, two a band.  ``trackbench
+    replay`` draws it on the frame.
+    """
+
+    @property
+    def search_region(self) -> Any: ...
+
+
+@runtime_checkable
 class Learns(Protocol):
     """A tracker that learns from labelled sequences before it runs.
 

@@ -10,13 +10,14 @@ sections 1 and 3).
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 import cv2
 import numpy as np
 
 from benchmark.modalities.camera.draw import chord_ends
-from benchmark.modalities.camera.geometry import cable_borders, model_to_pixel
+from benchmark.modalities.camera.geometry import Line, cable_borders, model_to_pixel
 from benchmark.modalities.camera.model import CableState, CameraTruth
 from benchmark.model import Frame
 from benchmark.replay.jpeg import encode_jpeg, shrunk_to_width
@@ -85,6 +86,13 @@ class CameraView:
                 strokes += [round(weight / heaviest, 2), round(u1, 1), round(v1, 1), round(u2, 1), round(v2, 1)]
         return [Mark("strokes", tuple(strokes), "particle")] if strokes else []
 
+    def region_marks(self, region: Any, picture: Picture) -> list[Mark]:
+        """The chords of the lines that bound the searched bands (model-coordinate :class:`Line` s), dashed."""
+        if not isinstance(region, tuple | list) or not all(isinstance(line, Line) for line in region):
+            return []
+        size = picture.source_size or (picture.width, picture.height)
+        return [Mark.segment(chord, "window") for chord in _chords(region, size, picture)]
+
 
 def _border_chords(state: tuple[float, ...], picture: Picture) -> list[Segment]:
     """The chords of the two borders of ``state`` in the image ``picture`` shows, scaled to it; none that overflow."""
@@ -93,9 +101,14 @@ def _border_chords(state: tuple[float, ...], picture: Picture) -> list[Segment]:
         borders = cable_borders(CableState(*state[:4]))
     except ValueError:  # a finite state whose border points overflow
         return []
+    return _chords(borders, size, picture)
+
+
+def _chords(lines: Iterable[Line], size: tuple[int, int], picture: Picture) -> list[Segment]:
+    """The chords through a ``size`` image of model-coordinate ``lines``, scaled to ``picture``."""
     scale_u, scale_v = picture.width / size[0], picture.height / size[1]
     chords: list[Segment] = []
-    for line in borders:
+    for line in lines:
         chord = chord_ends(line, size)
         if chord is None:
             continue

@@ -123,12 +123,13 @@ def _belief(belief: Belief | None, ranges: list[tuple[float, float]]) -> dict[st
 def frame_marks(frame: FrameRecord, view: ReplayView) -> list[tuple[str, Mark]]:
     """The marks of ``frame`` with their roles, in the order the page draws them (later on top).
 
-    The belief's marks first, then the frame's own (its measurement), the
-    truth's and last the estimate's; marks with a number that is not finite
-    are left out.
+    The searched region's marks first, then the belief's, the frame's own
+    (its measurement), the truth's and last the estimate's; marks with a
+    number that is not finite are left out.
     """
+    region = [] if frame.region is None else view.region_marks(frame.region, frame.picture)
     belief = [] if frame.belief is None else view.belief_marks(frame.belief, frame.picture)
-    roled = [(mark.role or "", mark) for mark in (*belief, *frame.picture.marks)]
+    roled = [(mark.role or "", mark) for mark in (*region, *belief, *frame.picture.marks)]
     roled += [(mark.role or "truth", mark) for mark in frame.truth_marks]
     roled += [(mark.role or "estimate", mark) for mark in frame.estimate_marks]
     return [(role, mark) for role, mark in roled if mark.finite]

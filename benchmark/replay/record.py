@@ -34,6 +34,7 @@ from benchmark.replay.views import Mark, Picture, ReplayView, view_of
 from benchmark.results import FrameScore
 from benchmark.runner import Cell, run_cell
 from benchmark.testing.beliefs import GaussianBelief, ParticleBelief
+from benchmark.tracker import Searches
 
 MAX_PARTICLES = 200
 """Most particles a recorded frame keeps of a particle belief."""
@@ -132,6 +133,9 @@ class FrameRecord:
         The frame as a JPEG.
     estimate_value : object
         The estimate the tracker returned, as it returned it.
+    region : object
+        The part of the frame the tracker searched, where it says
+        (:class:`~benchmark.tracker.Searches`); None: all of it, or unknown.
     """
 
     index: int
@@ -145,6 +149,7 @@ class FrameRecord:
     belief: Belief | None
     picture: Picture
     estimate_value: Any = field(repr=False, compare=False, default=None)
+    region: Any = field(repr=False, compare=False, default=None)
 
 
 @dataclass
@@ -334,4 +339,5 @@ class _Recorder:
             belief=belief_of(tracker),
             picture=picture,
             estimate_value=estimate,
+            region=tracker.search_region if isinstance(tracker, Searches) else None,
         )

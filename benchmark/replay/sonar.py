@@ -130,3 +130,7 @@ def _label_axes(image: np.ndarray, view: Viewport) -> None:
     )
     for text, at in texts:
         cv2.putText(image, text, at, font, scale, LABEL_BGR, 1, cv2.LINE_AA)
+
+    def region_marks(self, region: Any, picture: Picture) -> list[Mark]:
+        """None: no first-party sonar tracker declares a search region yet."""
+        return []

@@ -167,3 +167,7 @@ def _draw_grid(image: np.ndarray, view: Viewport) -> None:
     font, scale = cv2.FONT_HERSHEY_SIMPLEX, 0.4
     cv2.putText(image, f"grid {step:g} m", (4, 13), font, scale, LABEL_BGR, 1, cv2.LINE_AA)
     cv2.putText(image, "N ^", (view.width - 30, 13), font, scale, LABEL_BGR, 1, cv2.LINE_AA)
+
+    def region_marks(self, region: Any, picture: Picture) -> list[Mark]:
+        """None: no first-party stereo tracker declares a search region yet."""
+        return []

@@ -36,7 +36,7 @@ Segment = tuple[float, float, float, float]
 Shape = Literal["segment", "ellipse", "cross", "ticks", "strokes"]
 """How a mark's points are drawn; see :class:`Mark`."""
 
-Role = Literal["truth", "estimate", "measurement", "particle", "covariance"]
+Role = Literal["truth", "estimate", "measurement", "particle", "covariance", "window"]
 """What a mark shows; the page gives each role its colour (truth green, estimate red)."""
 
 MAX_RADIUS_PX = 1e5
@@ -191,6 +191,10 @@ class ReplayView(Protocol):
 
     def belief_marks(self, belief: Belief, picture: Picture) -> list[Mark]:
         """The marks that draw a tracker's belief on ``picture`` (particles, a covariance); empty if it draws none."""
+
+    def region_marks(self, region: Any, picture: Picture) -> list[Mark]:
+        """The marks (role ``"window"``) that draw the part of the frame a tracker searched
+        (:class:`~benchmark.tracker.Searches`); empty if the view draws none."""
 
 
 class NoViewError(TrackbenchError):

@@ -68,6 +68,7 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
     def __init__(self, params: HoughParams | None = None) -> None:
         super().__init__(params)
         self._window: SearchWindow | None = None
+        self._searched: SearchWindow | None = None
         self._init_borders: tuple[Line, Line] | None = None
         self._sizes: FrameSizes | None = None
         self._misses = 0
@@ -87,12 +88,18 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
             cable, when known, centre the first search window.
         """
         self._window = None
+        self._searched = None
         self._misses = 0
         self._init_borders = None
         if self.params.use_init and init is not None and init.cable.is_known:
             self._init_borders = cable_borders(init.cable)
             if info.frame_size is not None:
                 self._start_window(self._sizes_for(info.frame_size))
+
+    @property
+    def search_region(self) -> tuple[Line, ...] | None:
+        """The lines bounding the window the latest step searched (:class:`~benchmark.tracker.Searches`); None: all of it."""
+        return None if self._searched is None else self._searched.bounds()
 
     def _sizes_for(self, size: ImageSize) -> FrameSizes:
         if self._sizes is None or self._sizes.size != size:
@@ -138,7 +145,7 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
         self._start_window(sizes)
         response = log_response(image, p.log_sigma)
         edges = zero_crossings(response, p.log_sigma, EDGE_THRESHOLDS[p.edge_rule](response, p.log_sigma, p))
-        window = self._window
+        window = self._searched = self._window
         lines = hough_lines(
             edges,
             sizes.rho_step,

@@ -51,6 +51,10 @@ class SearchWindow:
         """The window around two border lines in model coordinates (e.g. an initial state)."""
         return cls((normal_form(borders[0]), normal_form(borders[1])), r_half, phi_half)
 
+    def bounds(self) -> tuple[Line, ...]:
+        """The lines ``r -+ r_half`` at each border's angle: the two bands the window admits at that angle."""
+        return tuple(Line.from_normal(r + side * self.r_half, phi) for r, phi in self.borders for side in (-1, 1))
+
     def theta_intervals(self) -> list[tuple[float, float]]:
         """OpenCV ``theta`` intervals covering both borders' angle ranges.
 

@@ -42,6 +42,7 @@ import numpy as np
 from benchmark.filters.kalman import Gaussian, GaussianBeliefView
 from benchmark.filters.kalman import compile_kernels as compile_filter_kernels
 from benchmark.lazy import lazy_module
+from benchmark.modalities.camera.geometry import Line
 from benchmark.modalities.camera.io.video import grey_frame
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import SequenceInfo
@@ -93,6 +94,8 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
         p = self.params
         self.filter = CableKalman(p.process_var, p.measurement_var)
         self.prediction: Prediction | None = None
+        self.search_region: tuple[Line, ...] | None = None
+        """The two lines bounding the region of interest the latest step searched (:class:`~benchmark.tracker.Searches`)."""
         self._misses = 0
         self._started = False
         self._pending: CableState | None = None
@@ -128,6 +131,7 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
         lines.compile_kernels()
         self.filter.forget()
         self.prediction = None
+        self.search_region = None
         self._misses = 0
         self._started = False
         self._pending = init.cable if self.params.use_init and init is not None and init.cable.is_known else None
@@ -174,12 +178,15 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
             self.filter.predict()
         self._started = True
         belief = self.filter.belief
+        self.search_region = None
         if belief is None:
             self.prediction = None
         else:
-            roi, _ = region_of_interest(belief, (width, height), p.roi_margin_px, p.roi_sigmas)
+            roi, half_width = region_of_interest(belief, (width, height), p.roi_margin_px, p.roi_sigmas)
             alpha = float(np.clip(belief.mean[1], -1.4, 1.4))
             self.prediction = detector.Prediction(roi, alpha, float(belief.mean[2]))
+            d, roi_alpha = float(belief.mean[0]), float(belief.mean[1])
+            self.search_region = tuple(Line.from_normal(d + side * half_width, roi_alpha) for side in (-1, 1))
         pair = self._first_in_gate(detector.detect_pairs(image, p, self.prediction), p.gate_sigmas)
         if pair is None:
             self._misses += 1

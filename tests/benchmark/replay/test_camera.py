@@ -5,10 +5,16 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from benchmark.modalities.camera.geometry import Line
 from benchmark.modalities.camera.model import CableState
+from benchmark.modalities.camera.scenes.scene import CameraScene
+from benchmark.registry import Registry
 from benchmark.replay.camera import PARTICLE_LINES, CameraView
-from benchmark.replay.record import Belief
+from benchmark.replay.page import page_data
+from benchmark.replay.record import Belief, record_cell
 from benchmark.replay.views import Picture
+
+from ..conftest import make_cell
 
 VIEW = CameraView()
 
@@ -61,3 +67,23 @@ def test_no_belief_or_not_a_particle_set_draws_nothing() -> None:
     assert VIEW.belief_marks(gaussian, picture()) == []
     nan = Belief("particles", particles=np.full((3, 4), np.nan), weights=np.full(3, 1 / 3))
     assert VIEW.belief_marks(nan, picture()) == []
+
+
+def test_the_searched_region_is_drawn_as_its_bounding_lines() -> None:
+    region = (Line.from_normal(-30.0, 0.0), Line.from_normal(30.0, 0.0))
+    shown = picture()
+    marks = VIEW.region_marks(region, shown)
+    assert [mark.role for mark in marks] == ["window", "window"]
+    assert sorted(column_at_middle(mark.points, shown) for mark in marks) == pytest.approx([65.0, 95.0])
+    assert VIEW.region_marks(None, shown) == [] and VIEW.region_marks(("not a line",), shown) == []
+
+
+@pytest.mark.parametrize(("tracker", "lines"), [("hough", 4), ("segmentation", 2)])
+def test_a_tracker_that_searches_part_of_the_frame_shows_it(plugin_registry: Registry, tracker: str, lines: int) -> None:
+    scene = CameraScene.from_dict({"name": "camera/demo", "n_frames": 3})
+    recording = record_cell(make_cell(plugin_registry.trackers[tracker], scene))
+    assert recording.ended == ""
+    last = recording.frames[-1]
+    assert isinstance(last.region, tuple) and len(last.region) == lines
+    roles = [role for role, _, _ in page_data(recording)["frames"][-1]["marks"]]
+    assert roles.count("window") == lines
