@@ -28,14 +28,14 @@ from benchmark.training import learns
 
 
 def chosen_subjects(bounds: SpeedBounds, names: Iterable[str]) -> list[str]:
-    """The subjects named (all, in declared order, when none is), checked against the declared ones.
+    """The subjects named, in the order named, or all in alphabetical order (not the plugins' load order), checked.
 
     Raises
     ------
     SelectionError
         For a name no plugin declared a speed bound for, listing those it did.
     """
-    known = bounds.subjects
+    known = sorted(bounds.subjects, key=str.casefold)
     wanted = list(dict.fromkeys(names)) or known
     unknown = [name for name in wanted if name not in known]
     if unknown:

@@ -29,8 +29,8 @@ GOALS = {"condensation": FpsAtLeast(3000), "condensation-thesis": FpsAtLeast(400
 class LikelihoodKernel:
     """Eq. (4.11) on ``N`` predicted particles of the tracker's own, each frame."""
 
-    def __init__(self, params: Any) -> None:
-        self.tracker = CondensationTracker(params)
+    def __init__(self, context: BoundContext) -> None:
+        self.tracker = CondensationTracker(context.params)
         self.states = np.empty((0, 4))
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
@@ -42,12 +42,8 @@ class LikelihoodKernel:
         return self.tracker.observation.likelihood(self.states, as_grey_image(frame.observation))
 
 
-def likelihood_kernel(context: BoundContext) -> LikelihoodKernel:
-    return LikelihoodKernel(context.params)
-
-
 @hookimpl
 def trackbench_register_speed_bounds(registry: SpeedBounds) -> None:
     """Each condensation tracker against its likelihood kernel on the same particles."""
     for name, goal in GOALS.items():
-        registry.add_bound(SpeedBound(name, "its likelihood kernel, same particles", likelihood_kernel, DATASET, goal))
+        registry.add_bound(SpeedBound(name, "its likelihood kernel, same particles", LikelihoodKernel, DATASET, goal))

@@ -34,8 +34,8 @@ GOALS = {"foresti_lines": RatioAtMost(1.2), "foresti_ekf": RatioAtMost(1.4)}
 class OpenCVLines:
     """``GaussianBlur`` + ``Canny`` + ``HoughLines`` at the tracker's thresholds, per frame."""
 
-    def __init__(self, params: Any) -> None:
-        self.params = params
+    def __init__(self, context: BoundContext) -> None:
+        self.params = context.params
         self.thresholds: PerFrame[tuple[float, float]] = PerFrame(self._thresholds)
 
     def _thresholds(self, frame: Frame) -> tuple[float, float]:
@@ -57,13 +57,9 @@ class OpenCVLines:
         return cv2.HoughLines(edges, p.rho_step_px, math.radians(p.alpha_step_deg), int(votes))
 
 
-def opencv_lines(context: BoundContext) -> OpenCVLines:
-    return OpenCVLines(context.params)
-
-
 @hookimpl
 def trackbench_register_speed_bounds(registry: SpeedBounds) -> None:
     """Both Foresti trackers against OpenCV's GaussianBlur, Canny and HoughLines at their thresholds."""
     for name, goal in GOALS.items():
         bound = "OpenCV GaussianBlur + Canny + HoughLines, its thresholds"
-        registry.add_bound(SpeedBound(name, bound, opencv_lines, DATASET, goal))
+        registry.add_bound(SpeedBound(name, bound, OpenCVLines, DATASET, goal))

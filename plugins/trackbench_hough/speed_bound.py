@@ -24,6 +24,7 @@ from benchmark import hookimpl
 from benchmark.model import Frame, SequenceInfo
 from benchmark.speed.bounds import BoundContext, PerFrame, RatioAtMost, SpeedBound, SpeedBounds
 from trackbench_hough.edges import log_response, zero_crossings
+from trackbench_hough.sizes import FrameSizes
 from trackbench_hough.thresholds import EDGE_THRESHOLDS
 from trackbench_hough.tracker import HoughTracker
 
@@ -37,8 +38,8 @@ HoughInput = tuple[np.ndarray, list[tuple[float, float]], float, float, int]
 class OpenCVInWindow:
     """``GaussianBlur`` + ``Laplacian`` and ``HoughLinesWithAccumulator`` in the tracker's window, per frame."""
 
-    def __init__(self, params: Any) -> None:
-        self.params = params
+    def __init__(self, context: BoundContext) -> None:
+        params = self.params = context.params
         self.shadow = HoughTracker(params)
         self.inputs: PerFrame[HoughInput] = PerFrame(self._shadow_step)
 
@@ -46,9 +47,8 @@ class OpenCVInWindow:
         p = self.params
         image = np.asarray(frame.observation)
         height, width = image.shape
-        sizes = self.shadow._sizes_for((width, height))
-        self.shadow._start_window(sizes)
-        window = self.shadow._window
+        sizes = FrameSizes.for_frame(p, (width, height))
+        window = getattr(self.shadow, "_window", None)  # the window this frame is searched in; None: everywhere
         intervals = window.theta_intervals() if window is not None else [(0.0, math.pi)]
         response = log_response(image, p.log_sigma)
         edges = zero_crossings(response, p.log_sigma, EDGE_THRESHOLDS[p.edge_rule](response, p.log_sigma, p))
@@ -73,12 +73,8 @@ class OpenCVInWindow:
         return found
 
 
-def opencv_in_window(context: BoundContext) -> OpenCVInWindow:
-    return OpenCVInWindow(context.params)
-
-
 @hookimpl
 def trackbench_register_speed_bounds(registry: SpeedBounds) -> None:
     """hough against OpenCV's LoG and HoughLines in its window."""
     bound = "OpenCV alone: LoG + HoughLines in its window"
-    registry.add_bound(SpeedBound("hough", bound, opencv_in_window, DATASET, RatioAtMost(1.2)))
+    registry.add_bound(SpeedBound("hough", bound, OpenCVInWindow, DATASET, RatioAtMost(1.2)))

@@ -40,8 +40,8 @@ Planes = tuple[np.ndarray, np.ndarray, tuple[Any, ...], int]
 class HistogramAndLookup:
     """``calcHist`` (grey x gradient) and ``LUT`` over every pyramid cell, per frame."""
 
-    def __init__(self, params: Any) -> None:
-        self.params = params
+    def __init__(self, context: BoundContext) -> None:
+        self.params = context.params
         self.planes: PerFrame[Planes] = PerFrame(self._planes)
 
     def _planes(self, frame: Frame) -> Planes:
@@ -66,12 +66,8 @@ class HistogramAndLookup:
         return counted
 
 
-def histogram_and_lookup(context: BoundContext) -> HistogramAndLookup:
-    return HistogramAndLookup(context.params)
-
-
 @hookimpl
 def trackbench_register_speed_bounds(registry: SpeedBounds) -> None:
     """segmentation against OpenCV's calcHist and LUT over its pyramid cells."""
     bound = "OpenCV calcHist + LUT over its pyramid cells"
-    registry.add_bound(SpeedBound("segmentation", bound, histogram_and_lookup, DATASET, RatioAtMost(1.5)))
+    registry.add_bound(SpeedBound("segmentation", bound, HistogramAndLookup, DATASET, RatioAtMost(1.5)))

@@ -32,7 +32,7 @@ from benchmark import hookimpl
 from benchmark.filters.kalman import Gaussian, predict, update
 from benchmark.modalities.stereo.model import ChaseNavigation
 from benchmark.model import Frame, SequenceInfo
-from benchmark.speed.bounds import BoundContext, BoundUnavailable, SpeedBound, SpeedBounds, TimesFaster
+from benchmark.speed.bounds import BoundContext, BoundUnavailable, PerFrame, SpeedBound, SpeedBounds, TimesFaster
 from trackbench_stereo_ekf.measurement import observation_jacobian, observe
 from trackbench_stereo_ekf.motion import control_vector, process_noise, transition_matrix
 from trackbench_stereo_ekf.tracker import StereoEkfParams
@@ -57,7 +57,7 @@ class FilterSteps:
         self.sigma_a = float(params.sigma_a_mps2)
         self.acceleration = float(params.control_acceleration_mps2)
         self.noise = np.diag(np.square(MEASUREMENT_STD_M))
-        self.steps: dict[int, Step] = {}
+        self.of: PerFrame[Step] = PerFrame(self._step)
         self.start = np.zeros(4)
 
     def reset(self, info: SequenceInfo, init: Any) -> None:
@@ -68,15 +68,13 @@ class FilterSteps:
         self.process = process_noise(self.interval, self.sigma_a)
         self.start = _truth_state(init)
 
-    def of(self, frame: Frame) -> Step:
-        step = self.steps.get(frame.index)
-        if step is None:
-            truth = frame.truth
-            navigation = ChaseNavigation(tuple(truth.chase_position_m), float(truth.chase_heading))
-            state = _truth_state(truth)
-            H = observation_jacobian(navigation)
-            step = self.steps[frame.index] = (observe(state, navigation), lambda x, nav=navigation: observe(x, nav), H, H @ state)
-        return step
+    @staticmethod
+    def _step(frame: Frame) -> Step:
+        truth = frame.truth
+        navigation = ChaseNavigation(tuple(truth.chase_position_m), float(truth.chase_heading))
+        state = _truth_state(truth)
+        H = observation_jacobian(navigation)
+        return observe(state, navigation), lambda x: observe(x, navigation), H, H @ state
 
 
 def _truth_state(truth: Any) -> np.ndarray:
@@ -89,7 +87,7 @@ class OursExtended:
 
     linear = False
 
-    def __init__(self) -> None:
+    def __init__(self, context: BoundContext) -> None:
         self.model = FilterSteps()
         self.belief: Gaussian | None = None
 
@@ -117,7 +115,7 @@ class OursLinear(OursExtended):
 class FilterPyExtended:
     """FilterPy's ``ExtendedKalmanFilter`` on the same model and measurements."""
 
-    def __init__(self) -> None:
+    def __init__(self, context: BoundContext) -> None:
         try:
             from filterpy.kalman import ExtendedKalmanFilter
         except ImportError as exc:
@@ -147,8 +145,8 @@ class FilterPyExtended:
 class FilterPyLinear(FilterPyExtended):
     """FilterPy's ``KalmanFilter`` on the same model and measurements."""
 
-    def __init__(self) -> None:
-        super().__init__()
+    def __init__(self, context: BoundContext) -> None:
+        super().__init__(context)
         from filterpy.kalman import KalmanFilter
 
         self.make = lambda: KalmanFilter(dim_x=4, dim_z=2, dim_u=1)
@@ -160,13 +158,6 @@ class FilterPyLinear(FilterPyExtended):
         return self.filter.x
 
 
-def _made(kind: type) -> Callable[[BoundContext], Any]:
-    def make(context: BoundContext) -> Any:
-        return kind()
-
-    return make
-
-
 @hookimpl
 def trackbench_register_speed_bounds(registry: SpeedBounds) -> None:
     """The Kalman core's predict + update against FilterPy's EKF (goal) and KF (for information)."""
@@ -174,12 +165,12 @@ def trackbench_register_speed_bounds(registry: SpeedBounds) -> None:
         SpeedBound(
             "EKF predict+update",
             "FilterPy ExtendedKalmanFilter",
-            _made(FilterPyExtended),
+            FilterPyExtended,
             DATASET,
             TimesFaster(10),
-            ours=_made(OursExtended),
+            ours=OursExtended,
         )
     )
     registry.add_bound(
-        SpeedBound("KF predict+update", "FilterPy KalmanFilter", _made(FilterPyLinear), DATASET, ours=_made(OursLinear))
+        SpeedBound("KF predict+update", "FilterPy KalmanFilter", FilterPyLinear, DATASET, ours=OursLinear)
     )

@@ -43,12 +43,12 @@ def test_the_table_has_a_row_per_bound_and_is_written_as_csv_and_markdown(speed,
     with open(tmp_path / "t.csv", newline="") as handle:
         rows = list(csv.DictReader(handle))
     assert [(row["subject"], row["bound"]) for row in rows] == [
+        ("core step", "the same work"),
         ("fast", "the same work"),
         ("fast", "a peer not installed"),
         ("slow", "the same work"),
-        ("core step", "the same work"),
     ]
-    fast, _, slow, _ = rows
+    _, fast, _, slow = rows
     assert float(slow["ratio"]) > float(fast["ratio"])
     assert (fast["frames"], fast["rounds"], fast["met"], slow["met"]) == ("3", "2", "True", "False")
     markdown = (tmp_path / "t.md").read_text()
@@ -66,7 +66,7 @@ def test_the_table_fits_a_narrow_terminal(speed) -> None:  # type: ignore[no-unt
 def test_an_unknown_tracker_is_an_error_naming_it(speed) -> None:  # type: ignore[no-untyped-def]
     result = speed("--tracker", "fast", "--tracker", "nope")
     assert result.exit_code == 2
-    assert "Error: no speed bound is declared for 'nope'; subjects with a bound: fast, slow, core step" in result.output
+    assert "Error: no speed bound is declared for 'nope'; subjects with a bound: core step, fast, slow" in result.output
 
 
 def test_out_must_be_csv_or_markdown(speed, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]

@@ -48,9 +48,9 @@ def test_a_bad_declaration_is_an_error_naming_the_plugin(added: tuple[object, ..
 
 def test_unknown_subjects_are_refused_listing_those_with_a_bound() -> None:
     bounds = bounds_of()
-    assert chosen_subjects(bounds, []) == ["fast", "slow", "core step"]
+    assert chosen_subjects(bounds, []) == ["core step", "fast", "slow"]
     assert chosen_subjects(bounds, ["slow", "fast", "slow"]) == ["slow", "fast"]
-    with pytest.raises(SelectionError, match="no speed bound is declared for 'nope'; subjects with a bound: fast, slow"):
+    with pytest.raises(SelectionError, match="no speed bound is declared for 'nope'; subjects with a bound: core step, fast, slow"):
         chosen_subjects(bounds, ["fast", "nope"])
 
 
