@@ -18,7 +18,7 @@ from pathlib import Path
 from benchmark.files import make_folder
 from benchmark.report.summary import GAP, terminal_width
 from benchmark.speed.measure import Row
-from benchmark.text import printable, shortened
+from benchmark.text import counted, printable, shortened
 
 HEADERS = ("subject", "bound or peer", "ours ms", "ours fps", "bound ms", "ratio", "spread", "goal", "met")
 """The columns of the printed and markdown tables."""
@@ -106,7 +106,7 @@ def markdown_table(rows: Sequence[Row]) -> str:
         *("| " + " | ".join(value.translate(escape) for value in cells(row)) + " |" for row in rows),
     ]
     measured = sorted({(row.dataset, row.frames, row.rounds) for row in rows})
-    notes = "; ".join(f"{dataset}: {frames} frames x {rounds} rounds" for dataset, frames, rounds in measured)
+    notes = "; ".join(f"{dataset}: {counted(frames, 'frame')} x {counted(rounds, 'round')}" for dataset, frames, rounds in measured)
     lines += [
         "",
         "Thread CPU time, one native thread, alternating rounds; ms and fps are medians over rounds, ratio the "
