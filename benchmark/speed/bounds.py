@@ -38,7 +38,9 @@ from benchmark.model import Frame, SequenceInfo
 from benchmark.plugins import PluginGroup, load_plugins
 from benchmark.registry import Origin, PluginRecords
 
-SPEED_PLUGINS = PluginGroup("trackbench.speed", ("trackbench_register_speed_bounds",), "its speed bounds are unavailable")
+SPEED_PLUGINS = PluginGroup(
+    "trackbench.speed", ("trackbench_register_speed_bounds",), "its speed bounds are unavailable"
+)
 """The entry-point group of the plugins that declare speed bounds, and their one hook."""
 
 

@@ -94,7 +94,9 @@ def prepare_subject(registry: Registry, bounds: SpeedBounds, name: str, frames: 
     ours: WorkloadFactory
     if first.ours is None:
         if name not in registry.trackers:
-            raise SelectionError(f"speed bounds name tracker {name!r}, which is not registered (is its plugin disabled?)")
+            raise SelectionError(
+                f"speed bounds name tracker {name!r}, which is not registered (is its plugin disabled?)"
+            )
         entry = registry.trackers[name]
         model = _trained_model(registry, entry, sequence, frame_cache)
         context = BoundContext(entry.params, info, model)

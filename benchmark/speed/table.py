@@ -106,7 +106,9 @@ def markdown_table(rows: Sequence[Row]) -> str:
         *("| " + " | ".join(value.translate(escape) for value in cells(row)) + " |" for row in rows),
     ]
     measured = sorted({(row.dataset, row.frames, row.rounds) for row in rows})
-    notes = "; ".join(f"{dataset}: {counted(frames, 'frame')} x {counted(rounds, 'round')}" for dataset, frames, rounds in measured)
+    notes = "; ".join(
+        f"{dataset}: {counted(frames, 'frame')} x {counted(rounds, 'round')}" for dataset, frames, rounds in measured
+    )
     lines += [
         "",
         "Thread CPU time, one native thread, alternating rounds; ms and fps are medians over rounds, ratio the "

@@ -40,7 +40,7 @@ Planes = tuple[np.ndarray, np.ndarray, tuple[Any, ...], int, float]
 
 
 class HistogramAndLookup:
-    """``GaussianBlur``, ``Sobel`` and ``magnitude`` over the frame, ``calcHist`` and ``LUT`` over every pyramid cell."""
+    """``GaussianBlur``, ``Sobel`` and ``magnitude`` over the frame; ``calcHist`` and ``LUT`` over each pyramid cell."""
 
     def __init__(self, context: BoundContext) -> None:
         self.params = context.params
@@ -66,7 +66,8 @@ class HistogramAndLookup:
         counted = 0
         for cell in cells:
             cell_grey, cell_rows = grey[cell], rows[cell]
-            histogram = cv2.calcHist([cell_grey, cell_rows], [0, 1], None, [GREY_LEVELS, bins], [0, GREY_LEVELS, 0, bins])
+            ranges = [0, GREY_LEVELS, 0, bins]
+            histogram = cv2.calcHist([cell_grey, cell_rows], [0, 1], None, [GREY_LEVELS, bins], ranges)
             cv2.LUT(cell_grey, MOUNTAINS)
             counted += int(histogram.shape[0])
         return counted

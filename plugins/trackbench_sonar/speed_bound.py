@@ -103,7 +103,8 @@ class StoneSoupFilter:
         if not math.isfinite(across):
             self.state = prediction
             return prediction.mean
-        detection = Detection(np.array([[across]]), timestamp=self.time, measurement_model=self.updater.measurement_model)
+        model = self.updater.measurement_model
+        detection = Detection(np.array([[across]]), timestamp=self.time, measurement_model=model)
         self.state = self.updater.update(SingleHypothesis(prediction, detection))
         return self.state.mean
 
@@ -111,6 +112,8 @@ class StoneSoupFilter:
 @hookimpl
 def trackbench_register_speed_bounds(registry: SpeedBounds) -> None:
     """``sonar_pf`` against Stone Soup and its own scan; ``sonar_detector`` against the same scan."""
-    registry.add_bound(SpeedBound("sonar_pf", "Stone Soup 1-D particle filter, same N", StoneSoupFilter, DATASET, TimesFaster(2)))
-    registry.add_bound(SpeedBound("sonar_pf", "its profile + likelihood scan", scan_of("sonar_pf"), DATASET))
-    registry.add_bound(SpeedBound("sonar_detector", "its profile + likelihood scan", scan_of("sonar_detector"), DATASET, MsAtMost(0.6)))
+    scan = "its profile + likelihood scan"
+    peer = "Stone Soup 1-D particle filter, same N"
+    registry.add_bound(SpeedBound("sonar_pf", peer, StoneSoupFilter, DATASET, TimesFaster(2)))
+    registry.add_bound(SpeedBound("sonar_pf", scan, scan_of("sonar_pf"), DATASET))
+    registry.add_bound(SpeedBound("sonar_detector", scan, scan_of("sonar_detector"), DATASET, MsAtMost(0.6)))

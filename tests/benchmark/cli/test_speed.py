@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -17,8 +18,11 @@ from ..conftest import make_registry
 from ..speed.fakes import Fast, Slow, bounds_of
 
 
+Run = Callable[..., Result]
+
+
 @pytest.fixture
-def speed(monkeypatch: pytest.MonkeyPatch) -> object:
+def speed(monkeypatch: pytest.MonkeyPatch) -> Run:
     """Run ``trackbench speed`` on the fake registry and the fake plugin's bounds."""
 
     def load_registry(disable: tuple[str, ...] = (), strict: bool = False) -> Registry:
@@ -33,7 +37,7 @@ def speed(monkeypatch: pytest.MonkeyPatch) -> object:
     return run
 
 
-def test_the_table_has_a_row_per_bound_and_is_written_as_csv_and_markdown(speed, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+def test_the_table_has_a_row_per_bound_and_is_written_as_csv_and_markdown(speed: Run, tmp_path: Path) -> None:
     result = speed("--out", str(tmp_path / "t.csv"), "--out", str(tmp_path / "t.md"))
     assert result.exit_code == 0, result.output
     lines = result.stdout.splitlines()
@@ -56,19 +60,20 @@ def test_the_table_has_a_row_per_bound_and_is_written_as_csv_and_markdown(speed,
     assert "fake/S1: 3 frames x 2 rounds" in markdown
 
 
-def test_the_table_fits_a_narrow_terminal(speed) -> None:  # type: ignore[no-untyped-def]
-    result = CliRunner().invoke(main, ["speed", "--rounds", "1", "--frames", "2", "--tracker", "slow"], env={"COLUMNS": "60"})
+def test_the_table_fits_a_narrow_terminal(speed: Run) -> None:
+    arguments = ["speed", "--rounds", "1", "--frames", "2", "--tracker", "slow"]
+    result = CliRunner().invoke(main, arguments, env={"COLUMNS": "60"})
     assert result.exit_code == 0, result.output
     assert all(len(line) <= 60 for line in result.stdout.splitlines())
     assert "not met" in result.stdout and "too narrow for" in result.stdout
 
 
-def test_an_unknown_tracker_is_an_error_naming_it(speed) -> None:  # type: ignore[no-untyped-def]
+def test_an_unknown_tracker_is_an_error_naming_it(speed: Run) -> None:
     result = speed("--tracker", "fast", "--tracker", "nope")
     assert result.exit_code == 2
     assert "Error: no speed bound is declared for 'nope'; subjects with a bound: core step, fast, slow" in result.output
 
 
-def test_out_must_be_csv_or_markdown(speed, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+def test_out_must_be_csv_or_markdown(speed: Run, tmp_path: Path) -> None:
     result = speed("--out", str(tmp_path / "t.txt"))
     assert result.exit_code == 2 and "written as .csv or .md, not .txt" in result.output

@@ -50,7 +50,8 @@ def test_unknown_subjects_are_refused_listing_those_with_a_bound() -> None:
     bounds = bounds_of()
     assert chosen_subjects(bounds, []) == ["core step", "fast", "slow"]
     assert chosen_subjects(bounds, ["slow", "fast", "slow"]) == ["slow", "fast"]
-    with pytest.raises(SelectionError, match="no speed bound is declared for 'nope'; subjects with a bound: core step, fast, slow"):
+    listed = "no speed bound is declared for 'nope'; subjects with a bound: core step, fast, slow"
+    with pytest.raises(SelectionError, match=listed):
         chosen_subjects(bounds, ["fast", "nope"])
 
 
