@@ -5,26 +5,29 @@ core component a plugin declares with its own ``ours`` workload.  Its
 frames come from the dataset its bounds name, through the frame cache
 (:class:`benchmark.frame_cache.FrameCache`), so a sequence is rendered once
 for every command and run.  A tracker that learns is fitted in process on
-the training split its dataset's suite names, as a run would plan it
-(:func:`benchmark.selection.plan_training`).
+the training split its dataset's suite names, as a run would plan and fit
+it (:func:`benchmark.selection.plan_training`,
+:func:`benchmark.training.fit_model`), and the model is kept in the frame
+cache's folder for the next time.
 """
 
 from __future__ import annotations
 
-import zlib
+import dataclasses
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from benchmark.files import make_folder
 from benchmark.frame_cache import FrameCache
 from benchmark.registry import Registry, TrackerEntry
 from benchmark.selection import SelectionError, make_cells, plan_training, select_sequences
 from benchmark.speed.bounds import BoundContext, SpeedBounds, Workload, WorkloadFactory
 from benchmark.speed.measure import Subject, read_frames
 from benchmark.text import printable
-from benchmark.training import learns
+from benchmark.training import fit_model, learns
 
 
 def chosen_subjects(bounds: SpeedBounds, names: Iterable[str]) -> list[str]:
@@ -65,16 +68,32 @@ class TrackerWorkload:
         return self.tracker.step(frame)
 
 
+MODELS = "models"
+"""The folder of the frame cache that keeps the models ``trackbench speed`` fitted, by training key."""
+
+
 def _trained_model(registry: Registry, entry: TrackerEntry, sequence: Any, cache: FrameCache) -> Any:
-    """The model a run would give ``entry`` for ``sequence``, fitted here; None for a tracker that does not learn."""
+    """The model a run would give ``entry`` for ``sequence``; None for a tracker that does not learn.
+
+    It is fitted as a run fits it (:func:`benchmark.training.fit_model`:
+    the planned training set, the same seed) and kept in the frame cache's
+    :data:`MODELS` folder under its training key, which changes with the
+    tracker's code, parameters and training sequences.
+    """
     if not learns(entry):
         return None
     (cell,) = plan_training(registry, make_cells([entry], [sequence], [0], "truth", registry.modalities))
     training = cell.training
     if training is None or training.error:
-        raise SelectionError(f"cannot train {entry.name!r} for {sequence.identity.name}: {training and training.error}")
-    rng = np.random.default_rng([zlib.crc32(entry.name.encode()), training.seed])  # as benchmark.training.fit_model
-    return entry.create().fit([cache.wrap(seq) for seq in training.sequences], rng)  # type: ignore[attr-defined]
+        reason = training.error if training is not None else "no training planned"
+        raise SelectionError(f"cannot train {entry.name!r} for {sequence.identity.name}: {reason}")
+    path = make_folder(cache.folder / MODELS) / f"{training.key}.model"
+    if not path.is_file():
+        record = fit_model(entry, [cache.wrap(seq) for seq in training.sequences], training.key, training.seed)
+        partial = path.with_suffix(".tmp")
+        partial.write_bytes(record)
+        partial.replace(path)
+    return dataclasses.replace(training, model_path=path).load()
 
 
 def prepare_subject(registry: Registry, bounds: SpeedBounds, name: str, frames: int, cache: Path | None) -> Subject:

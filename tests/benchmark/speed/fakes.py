@@ -66,6 +66,20 @@ class Slow(Fast):
         return frame.truth.cable
 
 
+class Learner(Fast):
+    """Learns the mean grey level of its training frames; counts its fits (in this process)."""
+
+    name = "learner"
+    fits = 0
+
+    def fit(self, training: Any, rng: np.random.Generator) -> float:
+        type(self).fits += 1
+        return float(np.mean([np.mean(frame.observation) for sequence in training for frame in sequence.frames()]))
+
+    def use_model(self, model: float) -> None:
+        self.model = model
+
+
 class Bound:
     """The unavoidable work: once a frame."""
 
@@ -97,6 +111,15 @@ def trackbench_register_speed_bounds(registry: SpeedBounds) -> None:
 
 PLUGIN = types.SimpleNamespace(trackbench_register_speed_bounds=trackbench_register_speed_bounds)
 """A plugin object implementing the hook, as an entry point's module would."""
+
+
+@hookimpl
+def register_learner(registry: SpeedBounds) -> None:
+    registry.add_bound(SpeedBound("learner", "the same work", Bound, "learning/S1"))
+
+
+LEARNING_PLUGIN = types.SimpleNamespace(trackbench_register_speed_bounds=register_learner)
+"""A second plugin: the bound of the learning tracker, on a suite that has a training split."""
 
 
 def bounds_of(*plugins: object) -> SpeedBounds:
