@@ -170,7 +170,7 @@ def time_subject(subject: Subject, rounds: int, report: Report | None = None) ->
     for bound, workload, note in workloads:
         bound_times = next(timed) if workload is not None else []
         ratios = [a / b for a, b in zip(ours_times, bound_times) if b > 0]
-        low, ratio, high = quartiles(ratios) if ratios else (math.nan, math.nan, math.nan)
+        low, ratio, high = quartiles(ratios)
         bound_s = statistics.median(bound_times) if bound_times else math.nan
         goal = bound.goal
         met = None
