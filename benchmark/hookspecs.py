@@ -22,6 +22,10 @@ Commands of the command line come from a second entry-point group,
 ``trackbench.commands``, whose plugins implement
 :func:`trackbench_register_commands` only: ``trackbench --help`` lists them
 without importing every tracker and its dependencies.
+
+The speed bounds of ``trackbench speed`` come from a third group,
+``trackbench.speed``, whose plugins implement
+:func:`trackbench_register_speed_bounds` only.
 """
 
 from __future__ import annotations
@@ -33,6 +37,7 @@ import pluggy
 if TYPE_CHECKING:
     from benchmark.cli.discovery import CommandRegistry
     from benchmark.registry import Registry
+    from benchmark.speed.bounds import SpeedBounds
 
 PROJECT_NAME = "trackbench"
 
@@ -123,4 +128,25 @@ def trackbench_register_commands(registry: CommandRegistry) -> None:
     registry : CommandRegistry
         The commands of this session; a name already taken (by a built-in
         command or another plugin) is an error naming the plugin.
+    """
+
+
+@hookspec
+def trackbench_register_speed_bounds(registry: SpeedBounds) -> None:
+    """Declare what ``trackbench speed`` times a tracker (or a core component) against, and the goal.
+
+    Called only on the plugins of the entry-point group
+    ``trackbench.speed``, and only by ``trackbench speed``.  Call
+    :meth:`benchmark.speed.bounds.SpeedBounds.add_bound` with a
+    :class:`benchmark.speed.bounds.SpeedBound` per row: the subject (a
+    tracker's name, or a component with its own workload), a factory of the
+    bound's workload (an object with a tracker's ``reset`` and ``step`` doing
+    the unavoidable part of the tracker's work on the same frames), the
+    dataset whose frames are timed, and the goal (``RatioAtMost``,
+    ``TimesFaster``, ``FpsAtLeast``, ``MsAtMost``).
+
+    Parameters
+    ----------
+    registry : SpeedBounds
+        The bounds of this invocation; errors raised here name the plugin.
     """

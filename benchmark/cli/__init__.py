@@ -21,6 +21,7 @@
     check         the conformance checks of benchmark.testing on installed trackers
     replay        one cell frame by frame as a self-contained page: truth, estimate, belief (seeds/000, 4.7)
     new-tracker   write the skeleton of a tracker plugin package (pyproject, tracker, one-line test)
+    speed         each tracker against the bound its plugin declares, alternating rounds, the ratio table
 
 Each built-in command is a module of this package (``run``, ``boards``,
 ``history``, ...); ``diagnose``, ``pose-table`` and ``import`` are the camera
@@ -78,6 +79,7 @@ from benchmark.cli.new_tracker import new_tracker_command
 from benchmark.cli.replay import replay_command
 from benchmark.cli.run import run
 from benchmark.cli.session import EXIT_FAILED, EXIT_INTERRUPTED, ReportedError, Session
+from benchmark.cli.speed import speed_command
 from benchmark.errors import TrackbenchError
 from benchmark.text import one_line, printable
 
@@ -97,6 +99,7 @@ BUILT_IN_COMMANDS = (
     check_command,
     replay_command,
     new_tracker_command,
+    speed_command,
 )
 """The commands of this package; plugins add theirs through ``trackbench_register_commands``."""
 

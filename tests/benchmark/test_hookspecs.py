@@ -1,4 +1,4 @@
-"""Tests of benchmark.hookspecs: the register hooks, the commands hook, and the marker plugins use."""
+"""Tests of benchmark.hookspecs: the register hooks, the commands hook, the speed bounds hook, and the marker plugins use."""
 
 import pluggy
 
@@ -6,15 +6,17 @@ import benchmark
 from benchmark import hookspecs
 from benchmark.cli.discovery import COMMAND_PLUGINS
 from benchmark.plugins import REGISTER_HOOKS
+from benchmark.speed.bounds import SPEED_PLUGINS
 
 
 def test_the_register_hooks_are_specified_in_the_order_they_are_called():
     manager = pluggy.PluginManager(hookspecs.PROJECT_NAME)
     manager.add_hookspecs(hookspecs)
     specified = [name for name in dir(manager.hook) if name.startswith("trackbench_")]
-    assert sorted(specified) == sorted(REGISTER_HOOKS + COMMAND_PLUGINS.hooks)
+    assert sorted(specified) == sorted(REGISTER_HOOKS + COMMAND_PLUGINS.hooks + SPEED_PLUGINS.hooks)
     assert REGISTER_HOOKS[0] == "trackbench_register_modalities"
     assert COMMAND_PLUGINS.hooks == ("trackbench_register_commands",)
+    assert SPEED_PLUGINS.hooks == ("trackbench_register_speed_bounds",)
     for name in specified:
         assert getattr(manager.hook, name).spec.argnames == ("registry",)
 
