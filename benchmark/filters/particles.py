@@ -35,10 +35,11 @@ def normalise_weights(raw: np.ndarray) -> np.ndarray:
     weights = np.asarray(raw, dtype=float)
     if weights.ndim != 1 or weights.size == 0:
         raise ValueError(f"weights must be a non-empty 1-D array, got shape {weights.shape}")
-    if not np.all(np.isfinite(weights)) or np.any(weights < 0):
+    peak = weights.max()
+    # A NaN or +inf makes the largest weight not finite, a negative weight or -inf the smallest negative.
+    if not (np.isfinite(peak) and weights.min() >= 0):
         bad = int(np.flatnonzero(~np.isfinite(weights) | (weights < 0))[0])
         raise ValueError(f"weights must be finite and non-negative; weight {bad} is {weights[bad]}")
-    peak = weights.max()
     if peak == 0:
         return np.full(weights.size, 1.0 / weights.size)
     # Scaling by the largest weight first keeps the sum finite for huge weights.
@@ -82,18 +83,47 @@ class ParticleSet:
     def __post_init__(self) -> None:
         states = np.asarray(self.states, dtype=float)
         weights = np.asarray(self.weights, dtype=float)
-        if states.ndim != 2 or weights.shape != (states.shape[0],) or states.shape[0] == 0:
-            raise ValueError(f"states (N, D) and weights (N,) do not match: {states.shape} and {weights.shape}")
+        _check_shapes(states, weights)
         if not np.all(np.isfinite(weights)) or np.any(weights < 0):
             raise ValueError(f"particle weights must be finite and non-negative, got {weights}")
         object.__setattr__(self, "states", states)
         object.__setattr__(self, "weights", weights)
 
     @classmethod
+    def _valid(cls, states: np.ndarray, weights: np.ndarray) -> ParticleSet:
+        """A set of float arrays whose weights are known to be finite and non-negative: only the shapes are checked."""
+        _check_shapes(states, weights)
+        particles = object.__new__(cls)
+        object.__setattr__(particles, "states", states)
+        object.__setattr__(particles, "weights", weights)
+        return particles
+
+    @classmethod
     def equally_weighted(cls, states: np.ndarray) -> ParticleSet:
         """Particles with weights ``1/N`` (seeds/000, Fig. 4.10, step 1)."""
         states = np.asarray(states, dtype=float)
-        return cls(states, np.full(states.shape[0], 1.0 / states.shape[0]))
+        n = states.shape[0] if states.ndim == 2 else 0
+        return cls._valid(states, np.full(n, 1.0 / max(n, 1)))
+
+    def moved(self, states: np.ndarray) -> ParticleSet:
+        """The same weights on new states of the same shape: a drift and diffusion of every particle.
+
+        Raises
+        ------
+        ValueError
+            If ``states`` is not ``(N, D)`` for this set's ``N``.
+        """
+        return ParticleSet._valid(np.asarray(states, dtype=float), self.weights)
+
+    def reweighted(self, raw: np.ndarray) -> ParticleSet:
+        """The same states with the weights :func:`normalise_weights` makes of ``raw`` (seeds/000, eq. 4.12).
+
+        Raises
+        ------
+        ValueError
+            If ``raw`` is not ``(N,)``, or a weight is negative or not finite.
+        """
+        return ParticleSet._valid(self.states, normalise_weights(raw))
 
     @property
     def size(self) -> int:
@@ -152,6 +182,12 @@ class ParticleSet:
     def take(self, indices: np.ndarray) -> ParticleSet:
         """The particles at ``indices``, equally weighted: the result of resampling."""
         return ParticleSet.equally_weighted(self.states[np.asarray(indices)])
+
+
+def _check_shapes(states: np.ndarray, weights: np.ndarray) -> None:
+    """Raise ValueError unless ``states`` is ``(N, D)`` and ``weights`` ``(N,)`` with ``N >= 1``."""
+    if states.ndim != 2 or weights.shape != (states.shape[0],) or states.shape[0] == 0:
+        raise ValueError(f"states (N, D) and weights (N,) do not match: {states.shape} and {weights.shape}")
 
 
 class ParticleBeliefView:

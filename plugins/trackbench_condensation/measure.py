@@ -192,62 +192,6 @@ def _line_sum(
     return total
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
-def _half_taps(taps: np.ndarray) -> np.ndarray:
-    """The taps at the negative offsets, ``half[x] = taps[r - x]`` for ``x = 1 .. r`` (the rest follow by symmetry)."""
-    radius = (taps.shape[0] - 1) // 2
-    half = np.empty(radius + 1)
-    for x in range(1, radius + 1):
-        half[x] = taps[radius - x]
-    return half
-
-
-@numba.njit(cache=True, nogil=True, inline="always")
-def _border_sum(
-    image: np.ndarray,
-    flat: np.ndarray,
-    half: np.ndarray,
-    d: float,
-    nx: float,
-    ny: float,
-    w: float,
-    cb: float,
-    sb: float,
-    side: int,
-    spacing: float,
-    bilinear: bool,
-    bases: np.ndarray,
-) -> tuple[float, int]:
-    """Summed filter responses along one border of a particle and its number of sample points.
-
-    ``side`` is -1 for the left and +1 for the right border; ``(nx, ny)`` is
-    ``(cos alpha, sin alpha)`` and ``(cb, sb)`` is ``(cos beta, sin beta)``.
-    A border without sample points scores 0.
-    """
-    height, width = image.shape
-    radius = half.shape[0] - 1
-    lo = float(radius)
-    hi_u = width - 1.0 - radius
-    hi_v = height - 1.0 - radius
-    u0, v0, du, dv, mu, mv = _border(d, w, side, nx, ny, cb, sb, 0.5 * (width - 1), 0.5 * (height - 1))
-    k0, k1 = _sample_range(u0, v0, du, dv, lo, hi_u, hi_v, spacing)
-    if k1 < k0:
-        return 0.0, 0
-    if not bilinear:
-        total = _line_sum(flat, width, u0, v0, du, dv, mu, mv, k0, k1, spacing, lo, hi_u, hi_v, half, bases)
-        return total, k1 - k0 + 1
-    total = 0.0
-    for k in range(k0, k1 + 1):
-        s = k * spacing
-        u = min(max(u0 + s * du, lo), hi_u)
-        v = min(max(v0 + s * dv, lo), hi_v)
-        for x in range(1, radius + 1):
-            behind = _read(image, u - x * mu, v - x * mv, True)
-            ahead = _read(image, u + x * mu, v + x * mv, True)
-            total += half[x] * (behind - ahead)
-    return total, k1 - k0 + 1
-
-
 @numba.njit(cache=True, nogil=True)
 def border_scores(
     states: np.ndarray, image: np.ndarray, taps: np.ndarray, spacing: float, bilinear: bool
@@ -283,10 +227,18 @@ def border_scores(
     """
     n = states.shape[0]
     height, width = image.shape
+    radius = (taps.shape[0] - 1) // 2
+    cu = 0.5 * (width - 1)
+    cv = 0.5 * (height - 1)
+    lo = float(radius)
+    hi_u = width - 1.0 - radius
+    hi_v = height - 1.0 - radius
     scores = np.zeros((n, 2))
     counts = np.zeros((n, 2), dtype=np.int64)
     flat = image.ravel()
-    half = _half_taps(taps)
+    half = np.empty(radius + 1)
+    for x in range(1, radius + 1):
+        half[x] = taps[radius - x]
     bases = _bases(width, height, spacing)
     for i in range(n):
         if not _finite_state(states, i):
@@ -297,52 +249,27 @@ def border_scores(
         cb = math.cos(beta)
         sb = math.sin(beta)
         for column in range(2):
-            scores[i, column], counts[i, column] = _border_sum(
-                image, flat, half, d, nx, ny, w, cb, sb, 2 * column - 1, spacing, bilinear, bases
-            )
+            u0, v0, du, dv, mu, mv = _border(d, w, 2 * column - 1, nx, ny, cb, sb, cu, cv)
+            k0, k1 = _sample_range(u0, v0, du, dv, lo, hi_u, hi_v, spacing)
+            if k1 < k0:
+                continue
+            if bilinear:
+                total = 0.0
+                for k in range(k0, k1 + 1):
+                    s = k * spacing
+                    u = min(max(u0 + s * du, lo), hi_u)
+                    v = min(max(v0 + s * dv, lo), hi_v)
+                    for x in range(1, radius + 1):
+                        behind = _read(image, u - x * mu, v - x * mv, True)
+                        ahead = _read(image, u + x * mu, v + x * mv, True)
+                        total += half[x] * (behind - ahead)
+            else:
+                total = _line_sum(
+                    flat, width, u0, v0, du, dv, mu, mv, k0, k1, spacing, lo, hi_u, hi_v, half, bases
+                )
+            scores[i, column] = total
+            counts[i, column] = k1 - k0 + 1
     return scores, counts
-
-
-@numba.njit(cache=True, nogil=True, inline="always")
-def _centre_sum(
-    image: np.ndarray, d: float, alpha: float, w: float, beta: float, spacing: float, bilinear: bool
-) -> float:
-    """The summed centre-minus-flank contrast of one particle (:func:`centre_contrast`)."""
-    height, width = image.shape
-    cu = 0.5 * (width - 1)
-    cv = 0.5 * (height - 1)
-    hi_u = width - 1.0
-    hi_v = height - 1.0
-    nx = math.cos(alpha)
-    ny = math.sin(alpha)
-    # Centreline in pixels: foot point, direction t and normal n, y flipped.
-    u0 = d * nx + cu
-    v0 = cv - d * ny
-    du = -ny
-    dv = -nx
-    mu = nx
-    mv = -ny
-    slope = math.tan(beta)
-    k0, k1 = _sample_range(u0, v0, du, dv, 0.0, hi_u, hi_v, spacing)
-    total = 0.0
-    for k in range(k0, k1 + 1):
-        s = k * spacing
-        quarter = 0.25 * w - 0.5 * s * slope
-        if quarter < 1.0:
-            continue
-        u = u0 + s * du
-        v = v0 + s * dv
-        ua = u - quarter * mu
-        va = v - quarter * mv
-        ub = u + quarter * mu
-        vb = v + quarter * mv
-        if not (0.0 <= ua <= hi_u and 0.0 <= va <= hi_v and 0.0 <= ub <= hi_u and 0.0 <= vb <= hi_v):
-            continue
-        u = min(max(u, 0.0), hi_u)
-        v = min(max(v, 0.0), hi_v)
-        flanks = _read(image, ua, va, bilinear) + _read(image, ub, vb, bilinear)
-        total += _read(image, u, v, bilinear) - 0.5 * flanks
-    return total
 
 
 @numba.njit(cache=True, nogil=True)
@@ -382,10 +309,46 @@ def centre_contrast(states: np.ndarray, image: np.ndarray, spacing: float, bilin
     mostly brighter than the rest of the cable".
     """
     n = states.shape[0]
+    height, width = image.shape
+    cu = 0.5 * (width - 1)
+    cv = 0.5 * (height - 1)
+    hi_u = width - 1.0
+    hi_v = height - 1.0
     out = np.zeros(n)
     for i in range(n):
-        if _finite_state(states, i):
-            out[i] = _centre_sum(image, states[i, 0], states[i, 1], states[i, 2], states[i, 3], spacing, bilinear)
+        if not _finite_state(states, i):
+            continue
+        d, alpha, w, beta = states[i, 0], states[i, 1], states[i, 2], states[i, 3]
+        nx = math.cos(alpha)
+        ny = math.sin(alpha)
+        # Centreline in pixels: foot point, direction t and normal n, y flipped.
+        u0 = d * nx + cu
+        v0 = cv - d * ny
+        du = -ny
+        dv = -nx
+        mu = nx
+        mv = -ny
+        slope = math.tan(beta)
+        k0, k1 = _sample_range(u0, v0, du, dv, 0.0, hi_u, hi_v, spacing)
+        total = 0.0
+        for k in range(k0, k1 + 1):
+            s = k * spacing
+            quarter = 0.25 * w - 0.5 * s * slope
+            if quarter < 1.0:
+                continue
+            u = u0 + s * du
+            v = v0 + s * dv
+            ua = u - quarter * mu
+            va = v - quarter * mv
+            ub = u + quarter * mu
+            vb = v + quarter * mv
+            if not (0.0 <= ua <= hi_u and 0.0 <= va <= hi_v and 0.0 <= ub <= hi_u and 0.0 <= vb <= hi_v):
+                continue
+            u = min(max(u, 0.0), hi_u)
+            v = min(max(v, 0.0), hi_v)
+            flanks = _read(image, ua, va, bilinear) + _read(image, ub, vb, bilinear)
+            total += _read(image, u, v, bilinear) - 0.5 * flanks
+        out[i] = total
     return out
 
 
@@ -422,15 +385,30 @@ def line_scores(
     seeds/000, section 4.5 (the border count of one line).
     """
     height, width = image.shape
+    radius = (taps.shape[0] - 1) // 2
+    cu = 0.5 * (width - 1)
+    cv = 0.5 * (height - 1)
+    lo = float(radius)
+    hi_u = width - 1.0 - radius
+    hi_v = height - 1.0 - radius
     flat = image.ravel()
-    half = _half_taps(taps)
+    half = np.empty(radius + 1)
+    for x in range(1, radius + 1):
+        half[x] = taps[radius - x]
     bases = _bases(width, height, spacing)
     out = np.zeros((alphas.shape[0], lines.shape[0]))
     for a in range(alphas.shape[0]):
         nx = math.cos(alphas[a])
         ny = math.sin(alphas[a])
         for m in range(lines.shape[0]):
-            out[a, m], _ = _border_sum(image, flat, half, lines[m], nx, ny, 0.0, 1.0, 0.0, 1, spacing, False, bases)
+            u0, v0, du, dv, mu, mv = _border(lines[m], 0.0, 1, nx, ny, 1.0, 0.0, cu, cv)
+            k0, k1 = _sample_range(u0, v0, du, dv, lo, hi_u, hi_v, spacing)
+            total = 0.0
+            if k1 >= k0:
+                total = _line_sum(
+                    flat, width, u0, v0, du, dv, mu, mv, k0, k1, spacing, lo, hi_u, hi_v, half, bases
+                )
+            out[a, m] = total
     return out
 
 
@@ -546,43 +524,21 @@ def particle_weights(
     ----------
     seeds/000, eq. (4.11); section 6.1 (brighter centre).
     """
-    out = np.empty(states.shape[0])
-    _weights_into(out, states, image, _half_taps(taps), spacing, bilinear, epsilon, centre_weight, exponent)
-    return out
-
-
-@numba.njit(cache=True, nogil=True, inline="always")
-def _weights_into(
-    out: np.ndarray,
-    states: np.ndarray,
-    image: np.ndarray,
-    half: np.ndarray,
-    spacing: float,
-    bilinear: bool,
-    epsilon: float,
-    centre_weight: float,
-    exponent: float,
-) -> None:
-    """:func:`particle_weights` written into ``out``, from the taps' negative half (:func:`_half_taps`)."""
-    height, width = image.shape
-    flat = image.ravel()
-    bases = _bases(width, height, spacing)
-    for i in range(states.shape[0]):
-        left = right = centre = 0.0
-        if _finite_state(states, i):
-            d, alpha, w, beta = states[i, 0], states[i, 1], states[i, 2], states[i, 3]
-            nx = math.cos(alpha)
-            ny = math.sin(alpha)
-            cb = math.cos(beta)
-            sb = math.sin(beta)
-            left, _ = _border_sum(image, flat, half, d, nx, ny, w, cb, sb, -1, spacing, bilinear, bases)
-            right, _ = _border_sum(image, flat, half, d, nx, ny, w, cb, sb, 1, spacing, bilinear, bases)
-            if centre_weight > 0:
-                centre = _centre_sum(image, d, alpha, w, beta, spacing, bilinear)
+    n = states.shape[0]
+    scores, _ = border_scores(states, image, taps, spacing, bilinear)
+    if centre_weight > 0:
+        centre = centre_contrast(states, image, spacing, bilinear)
+    else:
+        centre = np.zeros(n)
+    out = np.empty(n)
+    for i in range(n):
+        left = scores[i, 0]
+        right = scores[i, 1]
         value = epsilon
         if states[i, 2] > 0 and ((left > 0 and right < 0) or (left < 0 and right > 0)):
-            value = max(abs(left - right) + centre_weight * max(centre, 0.0), epsilon)
+            value = max(abs(left - right) + centre_weight * max(centre[i], 0.0), epsilon)
         out[i] = value if exponent == 1.0 else value**exponent
+    return out
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
@@ -645,16 +601,13 @@ def compass_ascent(
     seeds/000, section 4.5, eq. (4.11).
     """
     count = states.shape[0]
-    half = _half_taps(taps)
     current = np.empty((count, 4))
     for i in range(count):
         for j in range(4):
             current[i, j] = _clip(states[i, j], low[j], high[j])
-    values = np.empty(count)
-    _weights_into(values, current, image, half, spacing, bilinear, epsilon, centre_weight, 1.0)
+    values = particle_weights(current, image, taps, spacing, bilinear, epsilon, centre_weight, 1.0)
     moves = np.concatenate((np.eye(4), -np.eye(4)))
     trial = np.empty((moves.shape[0], 4))
-    trial_values = np.empty(moves.shape[0])
     steps = np.empty(4)
     for i in range(count):
         steps[:] = first_steps
@@ -664,7 +617,7 @@ def compass_ascent(
             for m in range(moves.shape[0]):
                 for j in range(4):
                     trial[m, j] = _clip(current[i, j] + moves[m, j] * steps[j], low[j], high[j])
-            _weights_into(trial_values, trial, image, half, spacing, bilinear, epsilon, centre_weight, 1.0)
+            trial_values = particle_weights(trial, image, taps, spacing, bilinear, epsilon, centre_weight, 1.0)
             best = np.argmax(trial_values)
             if trial_values[best] > values[i]:
                 current[i] = trial[best]
