@@ -11,6 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from benchmark.lazy import lazy_module
+
+# The compiled loops load on first use, so that importing the filters does not import numba.
+_kernels = lazy_module("benchmark.filters.particle_kernels")
+
 
 def normalise_weights(raw: np.ndarray) -> np.ndarray:
     """Scale non-negative weights to sum to one.
@@ -32,19 +37,26 @@ def normalise_weights(raw: np.ndarray) -> np.ndarray:
     ValueError
         If a weight is negative or not finite, or the array is empty.
     """
+    weights = checked_weights(raw)
+    # Scaling by the largest weight first keeps the sum finite for huge weights.
+    return _kernels.normalised(weights)
+
+
+def checked_weights(raw: np.ndarray) -> np.ndarray:
+    """``raw`` as a float array of finite non-negative weights, shape ``(N,)`` with ``N >= 1``.
+
+    Raises
+    ------
+    ValueError
+        If a weight is negative or not finite, or the array is empty or not 1-D.
+    """
     weights = np.asarray(raw, dtype=float)
     if weights.ndim != 1 or weights.size == 0:
         raise ValueError(f"weights must be a non-empty 1-D array, got shape {weights.shape}")
-    peak = weights.max()
-    # A NaN or +inf makes the largest weight not finite, a negative weight or -inf the smallest negative.
-    if not (np.isfinite(peak) and weights.min() >= 0):
-        bad = int(np.flatnonzero(~np.isfinite(weights) | (weights < 0))[0])
+    bad = _kernels.first_invalid(weights)
+    if bad >= 0:
         raise ValueError(f"weights must be finite and non-negative; weight {bad} is {weights[bad]}")
-    if peak == 0:
-        return np.full(weights.size, 1.0 / weights.size)
-    # Scaling by the largest weight first keeps the sum finite for huge weights.
-    scaled = weights / peak
-    return scaled / scaled.sum()
+    return weights
 
 
 def effective_sample_size(weights: np.ndarray) -> float:
@@ -174,10 +186,8 @@ class ParticleSet:
             raise ValueError(f"quantiles must be in [0, 1], got {q}")
         values = self.states[:, dimension]
         order = np.argsort(values, kind="stable")
-        cumulative = np.cumsum(self.weights[order])
-        # Weights sum to one up to rounding: compare with the actual total, and stay in range.
-        rows = np.minimum(np.searchsorted(cumulative, q * cumulative[-1], side="left"), self.size - 1)
-        return values[order[rows]]
+        # Weights sum to one up to rounding: the kernel compares with the actual total, and stays in range.
+        return _kernels.weighted_quantiles(values, self.weights, order, q.reshape(-1)).reshape(q.shape)
 
     def take(self, indices: np.ndarray) -> ParticleSet:
         """The particles at ``indices``, equally weighted: the result of resampling."""
