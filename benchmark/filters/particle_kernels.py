@@ -122,8 +122,28 @@ def cumulative(weights: np.ndarray) -> np.ndarray:
 
 @numba.njit(cache=True, nogil=True)
 def walk(weights: np.ndarray, points: np.ndarray, below_one: float) -> np.ndarray:
-    """For each point, capped at ``below_one``, the first ``j`` with ``c_j`` > point (binary search on :func:`cumulative`)."""
-    return np.searchsorted(cumulative(weights), np.minimum(points, below_one), side="right")
+    """For each point, capped at ``below_one``, the first ``j`` with ``c_j`` > point, ``c`` the :func:`cumulative` weights.
+
+    Points in ascending order (systematic and stratified resampling) are
+    walked up the cumulative weights in one pass; a point below its
+    predecessor is found by binary search.  Either way the index is the
+    one ``numpy.searchsorted(c, point, side="right")`` gives.  The walk ends
+    because ``c_N`` is exactly 1 and every point is below it.
+    """
+    running = cumulative(weights)
+    indices = np.empty(points.shape[0], dtype=np.int64)
+    j = 0
+    previous = -math.inf
+    for k in range(points.shape[0]):
+        point = min(points[k], below_one)
+        if point < previous:
+            j = np.searchsorted(running, point, side="right")
+        else:
+            while running[j] <= point:
+                j += 1
+        indices[k] = j
+        previous = point
+    return indices
 
 
 @numba.njit(cache=True, nogil=True)
