@@ -449,22 +449,36 @@ def best_pairs(
     n_angles, n_offsets = scores.shape
     rows = np.zeros((n_angles * keep, 3), dtype=np.int64)
     values = np.full(n_angles * keep, -1.0)
-    extrema = np.empty(n_offsets, dtype=np.int64)
+    # The local maxima (positive) and minima (negative) in ascending offset: a pair
+    # takes one of each, so each left extremum runs only over those of the other sign.
+    extrema = np.empty((2, n_offsets), dtype=np.int64)
+    counts = np.zeros(2, dtype=np.int64)
     for a in range(n_angles):
         c = scores[a]
-        count = 0
+        counts[:] = 0
         for m in range(n_offsets):
             here = c[m]
             before = c[m - 1] if m > 0 else 0.0
             after = c[m + 1] if m + 1 < n_offsets else 0.0
             if (here > 0 and here >= before and here >= after) or (here < 0 and here <= before and here <= after):
-                extrema[count] = m
-                count += 1
+                sign = 0 if here > 0 else 1
+                extrema[sign, counts[sign]] = m
+                counts[sign] += 1
         base = a * keep
-        for i in range(count):
-            left = extrema[i]
-            for j in range(i + 1, count):
-                right = extrema[j]
+        # For each left extremum, in ascending offset, the first opposite one to its right.
+        first_right = np.zeros(2, dtype=np.int64)
+        taken = np.zeros(2, dtype=np.int64)
+        for _ in range(counts[0] + counts[1]):
+            # The next left extremum is the lower offset of the two signs' next ones.
+            maximum_next = taken[0] < counts[0] and (taken[1] >= counts[1] or extrema[0, taken[0]] < extrema[1, taken[1]])
+            sign = 0 if maximum_next else 1
+            left = extrema[sign, taken[sign]]
+            taken[sign] += 1
+            other = 1 - sign
+            while first_right[other] < counts[other] and extrema[other, first_right[other]] < left:
+                first_right[other] += 1
+            for j in range(first_right[other], counts[other]):
+                right = extrema[other, j]
                 gap = offsets[right] - offsets[left]
                 if gap < min_width:
                     continue
