@@ -185,7 +185,12 @@ class ParticleSet:
         if not np.all((q >= 0.0) & (q <= 1.0)):
             raise ValueError(f"quantiles must be in [0, 1], got {q}")
         values = self.states[:, dimension]
-        order = np.argsort(values, kind="stable")
+        order = np.argsort(values)
+        ordered = values[order]
+        if not np.all(ordered[1:] > ordered[:-1]):
+            # Only distinct values have one ascending order; with ties (or NaN)
+            # the stable sort fixes the order of the weights that are summed.
+            order = np.argsort(values, kind="stable")
         # Weights sum to one up to rounding: the kernel compares with the actual total, and stays in range.
         return _kernels.weighted_quantiles(values, self.weights, order, q.reshape(-1)).reshape(q.shape)
 
