@@ -122,7 +122,7 @@ def cumulative(weights: np.ndarray) -> np.ndarray:
 
 @numba.njit(cache=True, nogil=True)
 def walk(weights: np.ndarray, points: np.ndarray, below_one: float) -> np.ndarray:
-    """For each point, capped at ``below_one``, the first ``j`` with ``c_j`` > point, ``c`` the :func:`cumulative` weights.
+    """For each point, capped at ``below_one``, the first ``j`` with ``c_j > point`` (``c``: :func:`cumulative`).
 
     Points in ascending order (systematic and stratified resampling) are
     walked up the cumulative weights in one pass; a point below its

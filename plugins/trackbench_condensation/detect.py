@@ -204,7 +204,8 @@ class LocalAscent:
         first, smallest = self._first_steps()
         if isinstance(score, ImageScore):
             starts = np.array(states, dtype=float).reshape(-1, 4)
-            return score.ascend(starts, np.asarray(low, float), np.asarray(high, float), first, smallest, self.max_rounds)
+            low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
+            return score.ascend(starts, low, high, first, smallest, self.max_rounds)
         current = np.clip(np.array(states, dtype=float).reshape(-1, 4), low, high)
         values = np.asarray(score(current), dtype=float)
         count = len(current)

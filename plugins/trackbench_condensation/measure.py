@@ -42,7 +42,9 @@ particles x borders x sample points x taps; the image may be ``uint8`` or
 ``float32``.  :func:`particle_weights` is the observation model's whole
 measurement in one pass; :func:`border_scores` and :func:`centre_contrast`
 are its parts; :func:`line_scores` and :func:`best_pairs` serve the
-re-detection of :mod:`trackbench_condensation.detect`.
+re-detection of :mod:`trackbench_condensation.detect`, and
+:func:`compass_ascent` its local ascent of eq. (4.11), every round of it in
+compiled code.
 """
 
 from __future__ import annotations
@@ -470,8 +472,10 @@ def best_pairs(
         taken = np.zeros(2, dtype=np.int64)
         for _ in range(counts[0] + counts[1]):
             # The next left extremum is the lower offset of the two signs' next ones.
-            maximum_next = taken[0] < counts[0] and (taken[1] >= counts[1] or extrema[0, taken[0]] < extrema[1, taken[1]])
-            sign = 0 if maximum_next else 1
+            if taken[0] < counts[0] and (taken[1] >= counts[1] or extrema[0, taken[0]] < extrema[1, taken[1]]):
+                sign = 0
+            else:
+                sign = 1
             left = extrema[sign, taken[sign]]
             taken[sign] += 1
             other = 1 - sign
@@ -557,7 +561,11 @@ def particle_weights(
 
 @numba.njit(cache=True, nogil=True, inline="always")
 def _clip(value: float, low: float, high: float) -> float:
-    """``value`` clipped to ``[low, high]`` as ``numpy.clip`` does it: the larger of value and low, then the smaller of that and high."""
+    """``value`` clipped to ``[low, high]`` as ``numpy.clip`` does it.
+
+    The larger of value and low, then the smaller of that and high, written
+    out so that a ``-0.0`` at a bound of ``0.0`` becomes the bound, as there.
+    """
     above = value if value > low else low
     return above if above < high else high
 

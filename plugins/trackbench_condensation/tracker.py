@@ -310,7 +310,7 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
         return self.observation.score(np.asarray(states, dtype=float), as_grey_image(frame.observation))
 
     def _refresh(self, score: ImageScore) -> None:
-        """Re-initialise or re-detect before this frame's condensation step, when due (``score``: this frame's eq. 4.11)."""
+        """Re-initialise or re-detect before this frame's condensation step, when due (``score``: eq. 4.11 here)."""
         p = self.params
         n = int(p.n_particles)
         if p.reinit_every > 0 and self._steps > 0 and self._steps % p.reinit_every == 0:
@@ -323,7 +323,12 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
         # While lost, every angle of Table 5.2; while tracking, those near the estimate.
         around = None if self._lost else float(self.particle_set.mmse()[1])
         candidates, _ = self.scan.candidates(
-            score.image, self.observation.taps, p.sample_distance_px, p.redetect_candidates, around, p.redetect_window_deg
+            score.image,
+            self.observation.taps,
+            p.sample_distance_px,
+            p.redetect_candidates,
+            around,
+            p.redetect_window_deg,
         )
         # Judge each candidate at its own best skew, like with like against the estimate's eq. (4.11) score.
         candidates, values = self.ascent.refine(candidates, score, *self._refine_bounds)
