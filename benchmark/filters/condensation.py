@@ -27,7 +27,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from benchmark.filters.particles import ParticleSet, normalise_weights
+from benchmark.filters.particles import ParticleSet
 from benchmark.filters.resampling import Resampler, systematic_resample
 
 
@@ -79,8 +79,11 @@ class LinearDriftDiffusion:
         states = np.asarray(states, dtype=float)
         if states.ndim != 2 or states.shape[1] != self.noise_std.size:
             raise ValueError(f"states must have shape (N, {self.noise_std.size}), got {states.shape}")
-        drifted = states @ self.transition.T
-        return drifted + rng.standard_normal(states.shape) * self.noise_std
+        # In place on the draws: the same products and sums as ``drifted + draws * noise_std``.
+        moved = rng.standard_normal(states.shape)
+        moved *= self.noise_std
+        moved += states @ self.transition.T
+        return moved
 
 
 @dataclass
@@ -144,7 +147,7 @@ class Condensation:
         self.resampled = particles.effective_size < self.ess_fraction * particles.size
         if self.resampled:
             particles = particles.take(self.resample(particles.weights, rng))
-        return ParticleSet(self.movement.propagate(particles.states, rng), particles.weights)
+        return particles.moved(self.movement.propagate(particles.states, rng))
 
     def update(self, predicted: ParticleSet, observation: Any) -> ParticleSet:
         """Weigh the predicted set by an observation; the states stay as they are.
@@ -162,4 +165,4 @@ class Condensation:
         raw = self.observation.likelihood(predicted.states, observation)
         if self.carry_weights:
             raw = predicted.weights * raw
-        return ParticleSet(predicted.states, normalise_weights(raw))
+        return predicted.reweighted(raw)

@@ -11,6 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from benchmark.lazy import lazy_module
+
+# The compiled loops load on first use, so that importing the filters does not import numba.
+_kernels = lazy_module("benchmark.filters.particle_kernels")
+
 
 def normalise_weights(raw: np.ndarray) -> np.ndarray:
     """Scale non-negative weights to sum to one.
@@ -32,18 +37,26 @@ def normalise_weights(raw: np.ndarray) -> np.ndarray:
     ValueError
         If a weight is negative or not finite, or the array is empty.
     """
+    weights = checked_weights(raw)
+    # Scaling by the largest weight first keeps the sum finite for huge weights.
+    return _kernels.normalised(weights)
+
+
+def checked_weights(raw: np.ndarray) -> np.ndarray:
+    """``raw`` as a float array of finite non-negative weights, shape ``(N,)`` with ``N >= 1``.
+
+    Raises
+    ------
+    ValueError
+        If a weight is negative or not finite, or the array is empty or not 1-D.
+    """
     weights = np.asarray(raw, dtype=float)
     if weights.ndim != 1 or weights.size == 0:
         raise ValueError(f"weights must be a non-empty 1-D array, got shape {weights.shape}")
-    if not np.all(np.isfinite(weights)) or np.any(weights < 0):
-        bad = int(np.flatnonzero(~np.isfinite(weights) | (weights < 0))[0])
+    bad = _kernels.first_invalid(weights)
+    if bad >= 0:
         raise ValueError(f"weights must be finite and non-negative; weight {bad} is {weights[bad]}")
-    peak = weights.max()
-    if peak == 0:
-        return np.full(weights.size, 1.0 / weights.size)
-    # Scaling by the largest weight first keeps the sum finite for huge weights.
-    scaled = weights / peak
-    return scaled / scaled.sum()
+    return weights
 
 
 def effective_sample_size(weights: np.ndarray) -> float:
@@ -82,18 +95,47 @@ class ParticleSet:
     def __post_init__(self) -> None:
         states = np.asarray(self.states, dtype=float)
         weights = np.asarray(self.weights, dtype=float)
-        if states.ndim != 2 or weights.shape != (states.shape[0],) or states.shape[0] == 0:
-            raise ValueError(f"states (N, D) and weights (N,) do not match: {states.shape} and {weights.shape}")
+        _check_shapes(states, weights)
         if not np.all(np.isfinite(weights)) or np.any(weights < 0):
             raise ValueError(f"particle weights must be finite and non-negative, got {weights}")
         object.__setattr__(self, "states", states)
         object.__setattr__(self, "weights", weights)
 
     @classmethod
+    def _valid(cls, states: np.ndarray, weights: np.ndarray) -> ParticleSet:
+        """A set of float arrays whose weights are known to be finite and non-negative: only the shapes are checked."""
+        _check_shapes(states, weights)
+        particles = object.__new__(cls)
+        object.__setattr__(particles, "states", states)
+        object.__setattr__(particles, "weights", weights)
+        return particles
+
+    @classmethod
     def equally_weighted(cls, states: np.ndarray) -> ParticleSet:
         """Particles with weights ``1/N`` (seeds/000, Fig. 4.10, step 1)."""
         states = np.asarray(states, dtype=float)
-        return cls(states, np.full(states.shape[0], 1.0 / states.shape[0]))
+        n = states.shape[0] if states.ndim == 2 else 0
+        return cls._valid(states, np.full(n, 1.0 / max(n, 1)))
+
+    def moved(self, states: np.ndarray) -> ParticleSet:
+        """The same weights on new states of the same shape: a drift and diffusion of every particle.
+
+        Raises
+        ------
+        ValueError
+            If ``states`` is not ``(N, D)`` for this set's ``N``.
+        """
+        return ParticleSet._valid(np.asarray(states, dtype=float), self.weights)
+
+    def reweighted(self, raw: np.ndarray) -> ParticleSet:
+        """The same states with the weights :func:`normalise_weights` makes of ``raw`` (seeds/000, eq. 4.12).
+
+        Raises
+        ------
+        ValueError
+            If ``raw`` is not ``(N,)``, or a weight is negative or not finite.
+        """
+        return ParticleSet._valid(self.states, normalise_weights(raw))
 
     @property
     def size(self) -> int:
@@ -143,15 +185,24 @@ class ParticleSet:
         if not np.all((q >= 0.0) & (q <= 1.0)):
             raise ValueError(f"quantiles must be in [0, 1], got {q}")
         values = self.states[:, dimension]
-        order = np.argsort(values, kind="stable")
-        cumulative = np.cumsum(self.weights[order])
-        # Weights sum to one up to rounding: compare with the actual total, and stay in range.
-        rows = np.minimum(np.searchsorted(cumulative, q * cumulative[-1], side="left"), self.size - 1)
-        return values[order[rows]]
+        order = np.argsort(values)
+        ordered = values[order]
+        if not np.all(ordered[1:] > ordered[:-1]):
+            # Only distinct values have one ascending order; with ties (or NaN)
+            # the stable sort fixes the order of the weights that are summed.
+            order = np.argsort(values, kind="stable")
+        # Weights sum to one up to rounding: the kernel compares with the actual total, and stays in range.
+        return _kernels.weighted_quantiles(values, self.weights, order, q.reshape(-1)).reshape(q.shape)
 
     def take(self, indices: np.ndarray) -> ParticleSet:
         """The particles at ``indices``, equally weighted: the result of resampling."""
         return ParticleSet.equally_weighted(self.states[np.asarray(indices)])
+
+
+def _check_shapes(states: np.ndarray, weights: np.ndarray) -> None:
+    """Raise ValueError unless ``states`` is ``(N, D)`` and ``weights`` ``(N,)`` with ``N >= 1``."""
+    if states.ndim != 2 or weights.shape != (states.shape[0],) or states.shape[0] == 0:
+        raise ValueError(f"states (N, D) and weights (N,) do not match: {states.shape} and {weights.shape}")
 
 
 class ParticleBeliefView:

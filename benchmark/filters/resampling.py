@@ -24,7 +24,11 @@ from typing import Literal
 
 import numpy as np
 
-from benchmark.filters.particles import normalise_weights
+from benchmark.filters.particles import checked_weights, normalise_weights
+from benchmark.lazy import lazy_module
+
+# The compiled loops load on first use, so that importing the filters does not import numba.
+_kernels = lazy_module("benchmark.filters.particle_kernels")
 
 _BELOW_ONE = np.nextafter(1.0, 0.0)
 
@@ -33,15 +37,18 @@ Resampler = Callable[[np.ndarray, np.random.Generator], np.ndarray]
 
 
 def cumulative_weights(weights: np.ndarray) -> np.ndarray:
-    """Cumulative weights ``c_1..c_N`` scaled so that ``c_N`` is exactly 1 (seeds/000, eqs. 3.8-3.9)."""
-    cumulative = np.cumsum(normalise_weights(weights))
-    return cumulative / cumulative[-1]
+    """Cumulative weights ``c_1..c_N`` scaled so that ``c_N`` is exactly 1 (seeds/000, eqs. 3.8-3.9).
+
+    The running sums of :func:`~benchmark.filters.particles.normalise_weights`
+    divided by the last, in one compiled pass
+    (:func:`benchmark.filters.particle_kernels.cumulative`).
+    """
+    return _kernels.cumulative(checked_weights(weights))
 
 
 def _walk(weights: np.ndarray, points: np.ndarray) -> np.ndarray:
     """For each point ``r`` in ``[0, 1)`` the first ``j`` with ``c_j > r`` (binary search)."""
-    points = np.minimum(points, _BELOW_ONE)
-    return np.searchsorted(cumulative_weights(weights), points, side="right")
+    return _kernels.walk(checked_weights(weights), np.asarray(points, dtype=float), _BELOW_ONE)
 
 
 def multinomial_resample(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from benchmark.lazy import lazy_module
-from trackbench_condensation.observation import as_grey_image
+from trackbench_condensation.observation import ImageScore, as_grey_image
 
 # The numba kernels load on the first frame, so that listing the trackers does not import numba.
 measure = lazy_module("trackbench_condensation.measure")
@@ -162,6 +162,12 @@ class LocalAscent:
     halvings: int = 3
     max_rounds: int = 40
 
+    def _first_steps(self) -> tuple[np.ndarray, float]:
+        """The first steps of ``(d, alpha, w, beta)`` in px and rad, and the ``d`` step at which a candidate stops."""
+        first = np.array(self.first_steps, dtype=float)
+        first[[1, 3]] = np.radians(first[[1, 3]])
+        return first, first[0] / 2.0**self.halvings
+
     def refine(
         self,
         states: np.ndarray,
@@ -177,6 +183,10 @@ class LocalAscent:
             ``(K, 4)`` starting states, px and rad.
         score : callable
             ``(N, 4)`` states to ``(N,)`` scores, higher better (eq. 4.11).
+            An :class:`~trackbench_condensation.observation.ImageScore` runs
+            the whole search in one compiled call
+            (:func:`~trackbench_condensation.measure.compass_ascent`), with
+            the same result bit for bit.
         low, high : numpy.ndarray
             ``(4,)`` bounds of the states (``-inf`` / ``inf`` for none).
 
@@ -191,15 +201,17 @@ class LocalAscent:
         ----------
         seeds/000, section 4.5, eq. (4.11).
         """
+        first, smallest = self._first_steps()
+        if isinstance(score, ImageScore):
+            starts = np.array(states, dtype=float).reshape(-1, 4)
+            low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
+            return score.ascend(starts, low, high, first, smallest, self.max_rounds)
         current = np.clip(np.array(states, dtype=float).reshape(-1, 4), low, high)
         values = np.asarray(score(current), dtype=float)
         count = len(current)
         if count == 0:
             return current, values
-        first = np.array(self.first_steps, dtype=float)
-        first[[1, 3]] = np.radians(first[[1, 3]])
         steps = np.tile(first, (count, 1))
-        smallest = first[0] / 2.0**self.halvings
         moves = np.concatenate([np.eye(4), -np.eye(4)])
         rows = np.arange(count)
         for _ in range(self.max_rounds):

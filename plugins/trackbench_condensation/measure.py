@@ -42,7 +42,9 @@ particles x borders x sample points x taps; the image may be ``uint8`` or
 ``float32``.  :func:`particle_weights` is the observation model's whole
 measurement in one pass; :func:`border_scores` and :func:`centre_contrast`
 are its parts; :func:`line_scores` and :func:`best_pairs` serve the
-re-detection of :mod:`trackbench_condensation.detect`.
+re-detection of :mod:`trackbench_condensation.detect`, and
+:func:`compass_ascent` its local ascent of eq. (4.11), every round of it in
+compiled code.
 """
 
 from __future__ import annotations
@@ -449,22 +451,38 @@ def best_pairs(
     n_angles, n_offsets = scores.shape
     rows = np.zeros((n_angles * keep, 3), dtype=np.int64)
     values = np.full(n_angles * keep, -1.0)
-    extrema = np.empty(n_offsets, dtype=np.int64)
+    # The local maxima (positive) and minima (negative) in ascending offset: a pair
+    # takes one of each, so each left extremum runs only over those of the other sign.
+    extrema = np.empty((2, n_offsets), dtype=np.int64)
+    counts = np.zeros(2, dtype=np.int64)
     for a in range(n_angles):
         c = scores[a]
-        count = 0
+        counts[:] = 0
         for m in range(n_offsets):
             here = c[m]
             before = c[m - 1] if m > 0 else 0.0
             after = c[m + 1] if m + 1 < n_offsets else 0.0
             if (here > 0 and here >= before and here >= after) or (here < 0 and here <= before and here <= after):
-                extrema[count] = m
-                count += 1
+                sign = 0 if here > 0 else 1
+                extrema[sign, counts[sign]] = m
+                counts[sign] += 1
         base = a * keep
-        for i in range(count):
-            left = extrema[i]
-            for j in range(i + 1, count):
-                right = extrema[j]
+        # For each left extremum, in ascending offset, the first opposite one to its right.
+        first_right = np.zeros(2, dtype=np.int64)
+        taken = np.zeros(2, dtype=np.int64)
+        for _ in range(counts[0] + counts[1]):
+            # The next left extremum is the lower offset of the two signs' next ones.
+            if taken[0] < counts[0] and (taken[1] >= counts[1] or extrema[0, taken[0]] < extrema[1, taken[1]]):
+                sign = 0
+            else:
+                sign = 1
+            left = extrema[sign, taken[sign]]
+            taken[sign] += 1
+            other = 1 - sign
+            while first_right[other] < counts[other] and extrema[other, first_right[other]] < left:
+                first_right[other] += 1
+            for j in range(first_right[other], counts[other]):
+                right = extrema[other, j]
                 gap = offsets[right] - offsets[left]
                 if gap < min_width:
                     continue
@@ -539,3 +557,93 @@ def particle_weights(
             value = max(abs(left - right) + centre_weight * max(centre[i], 0.0), epsilon)
         out[i] = value if exponent == 1.0 else value**exponent
     return out
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _clip(value: float, low: float, high: float) -> float:
+    """``value`` clipped to ``[low, high]`` as ``numpy.clip`` does it.
+
+    The larger of value and low, then the smaller of that and high, written
+    out so that a ``-0.0`` at a bound of ``0.0`` becomes the bound, as there.
+    """
+    above = value if value > low else low
+    return above if above < high else high
+
+
+@numba.njit(cache=True, nogil=True)
+def compass_ascent(
+    states: np.ndarray,
+    image: np.ndarray,
+    taps: np.ndarray,
+    spacing: float,
+    bilinear: bool,
+    epsilon: float,
+    centre_weight: float,
+    low: np.ndarray,
+    high: np.ndarray,
+    first_steps: np.ndarray,
+    smallest: float,
+    max_rounds: int,
+) -> tuple[np.ndarray, np.ndarray]:
+    """A compass search of the eq. (4.11) score (:func:`particle_weights`, no exponent) from each state.
+
+    Per state and round, the eight moves of ``+-step`` along one of ``d``,
+    ``alpha``, ``w`` and ``beta`` are clipped to ``[low, high]`` and scored;
+    the first best move is taken when it scores strictly higher, otherwise
+    all four steps are halved.  A state stops when its ``d`` step falls
+    below ``smallest`` or after ``max_rounds`` rounds.  This is
+    :meth:`trackbench_condensation.detect.LocalAscent.refine` on the score of
+    the observation model, the same arithmetic in the same order, so that
+    both give the same states and scores bit for bit.
+
+    Parameters
+    ----------
+    states : numpy.ndarray
+        ``(K, 4)`` starting states ``(d, alpha, w, beta)``, px and rad.
+    image, taps, spacing, bilinear, epsilon, centre_weight
+        As for :func:`particle_weights`.
+    low, high : numpy.ndarray
+        ``(4,)`` bounds of the states.
+    first_steps : numpy.ndarray
+        ``(4,)`` first steps, px and rad.
+    smallest : float
+        The ``d`` step below which a state stops, px.
+    max_rounds : int
+        Upper bound on the rounds of each state.
+
+    Returns
+    -------
+    states : numpy.ndarray
+        ``(K, 4)`` refined states.
+    scores : numpy.ndarray
+        ``(K,)`` their eq. (4.11) scores.
+
+    References
+    ----------
+    seeds/000, section 4.5, eq. (4.11).
+    """
+    count = states.shape[0]
+    current = np.empty((count, 4))
+    for i in range(count):
+        for j in range(4):
+            current[i, j] = _clip(states[i, j], low[j], high[j])
+    values = particle_weights(current, image, taps, spacing, bilinear, epsilon, centre_weight, 1.0)
+    moves = np.concatenate((np.eye(4), -np.eye(4)))
+    trial = np.empty((moves.shape[0], 4))
+    steps = np.empty(4)
+    for i in range(count):
+        steps[:] = first_steps
+        for _ in range(max_rounds):
+            if not steps[0] >= smallest:
+                break
+            for m in range(moves.shape[0]):
+                for j in range(4):
+                    trial[m, j] = _clip(current[i, j] + moves[m, j] * steps[j], low[j], high[j])
+            trial_values = particle_weights(trial, image, taps, spacing, bilinear, epsilon, centre_weight, 1.0)
+            best = np.argmax(trial_values)
+            if trial_values[best] > values[i]:
+                current[i] = trial[best]
+                values[i] = trial_values[best]
+            else:
+                steps *= 0.5
+    return current, values

@@ -153,3 +153,68 @@ class BorderObservation:
             float(self.centre_weight),
             exponent,
         )
+
+
+@dataclass(frozen=True)
+class ImageScore:
+    """:meth:`BorderObservation.score` on one image: a callable from ``(N, D)`` states to ``(N,)`` scores.
+
+    Besides scoring, it runs a local ascent of that score in one compiled
+    call (:meth:`ascend`), which :class:`~trackbench_condensation.detect.LocalAscent`
+    uses instead of scoring each round's moves from Python.
+
+    Parameters
+    ----------
+    observation : BorderObservation
+        The observation model.
+    image : numpy.ndarray
+        The frame's grey image (:func:`as_grey_image`).
+
+    References
+    ----------
+    seeds/000, section 4.5, eq. (4.11).
+    """
+
+    observation: BorderObservation
+    image: np.ndarray
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "image", as_grey_image(self.image))
+
+    def __call__(self, states: np.ndarray) -> np.ndarray:
+        """Eq. (4.11) scores of ``(N, D)`` states (:meth:`BorderObservation.score`)."""
+        return self.observation.score(states, self.image)
+
+    def ascend(
+        self,
+        states: np.ndarray,
+        low: np.ndarray,
+        high: np.ndarray,
+        first_steps: np.ndarray,
+        smallest: float,
+        max_rounds: int,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The compass search of :func:`trackbench_condensation.measure.compass_ascent` from ``(K, 4)`` states.
+
+        Returns
+        -------
+        states : numpy.ndarray
+            ``(K, 4)`` refined states.
+        scores : numpy.ndarray
+            ``(K,)`` their eq. (4.11) scores.
+        """
+        observation = self.observation
+        return measure.compass_ascent(
+            np.ascontiguousarray(states, dtype=float),
+            self.image,
+            observation.taps,
+            float(observation.sample_distance_px),
+            observation.interpolation == "bilinear",
+            float(observation.epsilon),
+            float(observation.centre_weight),
+            np.ascontiguousarray(low, dtype=float),
+            np.ascontiguousarray(high, dtype=float),
+            np.ascontiguousarray(first_steps, dtype=float),
+            float(smallest),
+            int(max_rounds),
+        )

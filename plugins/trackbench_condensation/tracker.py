@@ -82,7 +82,7 @@ from benchmark.tracker import Tracker
 from trackbench_condensation.detect import LineScan, LocalAscent, propose
 from trackbench_condensation.lost import LostCable
 from trackbench_condensation.movement import COLUMN_NAMES, diffusion_std, movement_model
-from trackbench_condensation.observation import BorderObservation, as_grey_image
+from trackbench_condensation.observation import BorderObservation, ImageScore, as_grey_image
 from trackbench_condensation.params import CondensationParams
 from trackbench_condensation.prior import InitLimits, particles_at, uniform_particles
 from trackbench_condensation.report import Report
@@ -288,18 +288,17 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
             raise DataError(f"condensation: frame {frame.index}: {exc}") from exc
         if image.shape[1] != self._frame_width:
             self._fit_frame(image.shape[1])
-        self._refresh(image)
+        score = ImageScore(self.observation, image)
+        self._refresh(score)
         self._steps += 1
         self.prior_set = self.filter.predict(self.particle_set, self._rng)
         self.particle_set = self.filter.update(self.prior_set, image)
         mean = self.particle_set.mmse()[:4]
-        mean_score = float(self.observation.score(mean[None, :], image)[0])
+        mean_score = float(score(mean[None, :])[0])
         self._lost = self.lost.update(mean_score)
         if self._lost or self.report.too_wide(self.particle_set, float(mean[2])):
             return None
-        state = self.report.state(
-            mean, mean_score, lambda states: self.observation.score(states, image), *self._refine_bounds
-        )
+        state = self.report.state(mean, mean_score, score, *self._refine_bounds)
         if self.width_prior is not None:
             self.width_prior.update(float(state[2]))
         if self.silhouette is not None:
@@ -315,8 +314,8 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
         """
         return self.observation.score(np.asarray(states, dtype=float), as_grey_image(frame.observation))
 
-    def _refresh(self, image: np.ndarray) -> None:
-        """Re-initialise or re-detect before this frame's condensation step, when due."""
+    def _refresh(self, score: ImageScore) -> None:
+        """Re-initialise or re-detect before this frame's condensation step, when due (``score``: eq. 4.11 here)."""
         p = self.params
         n = int(p.n_particles)
         if p.reinit_every > 0 and self._steps > 0 and self._steps % p.reinit_every == 0:
@@ -329,12 +328,15 @@ class CondensationTracker(ParticleBeliefView, Tracker[CameraTruth, CableState]):
         # While lost, every angle of Table 5.2; while tracking, those near the estimate.
         around = None if self._lost else float(self.particle_set.mmse()[1])
         candidates, _ = self.scan.candidates(
-            image, self.observation.taps, p.sample_distance_px, p.redetect_candidates, around, p.redetect_window_deg
+            score.image,
+            self.observation.taps,
+            p.sample_distance_px,
+            p.redetect_candidates,
+            around,
+            p.redetect_window_deg,
         )
         # Judge each candidate at its own best skew, like with like against the estimate's eq. (4.11) score.
-        candidates, values = self.ascent.refine(
-            candidates, lambda states: self.observation.score(states, image), *self._refine_bounds
-        )
+        candidates, values = self.ascent.refine(candidates, score, *self._refine_bounds)
         # Propose only candidates whose evidence would pass the lost test
         # (while lost) or clearly beats the tracked cable's (while tracking).
         if self._lost:

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from hypothesis.extra import numpy as hnp
 
 from benchmark.filters.particles import ParticleSet, effective_sample_size, normalise_weights
 
@@ -252,3 +253,19 @@ def test_quantiles_ignore_a_few_light_particles_far_off() -> None:
 def test_a_quantile_outside_zero_to_one_is_rejected(q: float) -> None:
     with pytest.raises(ValueError, match="quantiles must be in"):
         ParticleSet.equally_weighted(np.zeros((3, 2))).quantiles([0.5, q], 1)
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.data())
+def test_quantiles_sum_the_weights_in_the_stable_order_whether_values_tie_or_not(data):
+    n = data.draw(st.integers(1, 300))
+    # Few distinct values force ties; continuous ones make them unlikely.
+    column = st.one_of(st.integers(-3, 3).map(float), st.floats(-1e3, 1e3))
+    values = data.draw(hnp.arrays(np.float64, n, elements=column))
+    weights = normalise_weights(data.draw(hnp.arrays(np.float64, n, elements=st.floats(0.0, 10.0))))
+    q = np.asarray(data.draw(st.lists(st.floats(0.0, 1.0), min_size=1, max_size=3)))
+    order = np.argsort(values, kind="stable")
+    cumulative = np.cumsum(weights[order])
+    rows = np.minimum(np.searchsorted(cumulative, q * cumulative[-1], side="left"), n - 1)
+    particles = ParticleSet(np.column_stack([values, -values]), weights)
+    np.testing.assert_array_equal(particles.quantiles(q, 0), values[order[rows]])

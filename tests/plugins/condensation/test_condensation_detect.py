@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from trackbench_condensation.detect import LineScan, LocalAscent, propose
 from trackbench_condensation.kernel import dog_taps
-from trackbench_condensation.observation import BorderObservation
+from trackbench_condensation.observation import BorderObservation, ImageScore
 
 from benchmark.modalities.camera.geometry import cable_borders, score_line_pair
 from benchmark.modalities.camera.model import CableState
@@ -104,3 +104,23 @@ def test_local_ascent_never_loses_score_and_stays_within_its_bounds(offset, peak
     # On a concave score a start within a few grid steps ends at the bounded maximum.
     target = np.clip(centre, low, high)
     assert np.all(np.abs(refined[0] - target) <= np.array([0.3, 0.005, 0.3, 0.005]))
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    start=st.tuples(st.floats(-60, 60), st.floats(-0.7, 0.7), st.floats(-10, 120), st.floats(-0.05, 0.25)),
+    centre_weight=st.sampled_from([0.0, 1.0]),
+    interpolation=st.sampled_from(["nearest", "bilinear"]),
+)
+def test_the_compiled_ascent_is_the_python_search_bit_for_bit(scene, start, centre_weight, interpolation):
+    # ImageScore runs LocalAscent.refine in one compiled call; a plain callable of the same
+    # score takes the vectorised Python path.  Both must end on the same states and scores exactly.
+    image = scene.draw_cable(CableState(10.0, math.radians(6.0), 40.0, math.radians(2.0)), seed=3)
+    observation = BorderObservation(centre_weight=centre_weight, interpolation=interpolation)
+    states = np.array([start, [0.0, 0.0, 30.0, 0.0], [12.0, 0.1, 38.0, 0.03]])
+    low, high = np.array([-np.inf, -0.8, 5.0, 0.0]), np.array([np.inf, 0.8, 100.0, math.radians(10.0)])
+    python = LocalAscent().refine(states, lambda s: observation.score(s, image), low, high)
+    compiled = LocalAscent().refine(states, ImageScore(observation, image), low, high)
+    np.testing.assert_array_equal(compiled[0], python[0])
+    np.testing.assert_array_equal(compiled[1], python[1])
+    assert np.any(compiled[1] > observation.score(np.clip(states, low, high), image))

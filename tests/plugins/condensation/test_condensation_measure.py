@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from hypothesis.extra import numpy as hnp
 from trackbench_condensation.kernel import dog_taps
 from trackbench_condensation.measure import (
     _border,
@@ -207,3 +208,52 @@ def test_centre_contrast_rewards_a_brighter_centreline():
     contrast = centre_contrast(states, image, 20.0, False)
     assert contrast[0] > 0
     assert contrast[0] > contrast[1]
+
+
+def reference_best_pairs(scores, offsets, min_width, max_width, keep):
+    """best_pairs as first written: every pair of extrema, left to right, the best ``keep`` per angle kept in order."""
+    rows, values = [], []
+    for a, c in enumerate(scores):
+        padded = np.r_[0.0, c, 0.0]
+        extrema = [
+            m
+            for m in range(len(c))
+            if (c[m] > 0 and c[m] >= padded[m] and c[m] >= padded[m + 2])
+            or (c[m] < 0 and c[m] <= padded[m] and c[m] <= padded[m + 2])
+        ]
+        best: list[tuple[float, tuple[int, int, int]]] = []
+        for i, left in enumerate(extrema):
+            for right in extrema[i + 1 :]:
+                gap = offsets[right] - offsets[left]
+                if gap < min_width:
+                    continue
+                if gap > max_width:
+                    break
+                if c[left] * c[right] >= 0:
+                    continue
+                value = abs(c[left]) + abs(c[right])
+                if len(best) == keep and value <= best[-1][0]:
+                    continue
+                # After every kept pair of at least this value (ties keep the earlier pair first).
+                slot = sum(1 for kept, _ in best if kept >= value)
+                best.insert(slot, (value, (a, left, right)))
+                del best[keep:]
+        rows += [row for _, row in best]
+        values += [value for value, _ in best]
+    return np.array(rows, dtype=np.int64).reshape(-1, 3), np.array(values)
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.data())
+def test_best_pairs_keeps_the_pairs_of_the_exhaustive_search(data):
+    angles, count = data.draw(st.integers(1, 3)), data.draw(st.integers(1, 40))
+    level = st.one_of(st.just(0.0), st.integers(-5, 5).map(float), st.floats(-100, 100))
+    scores = data.draw(hnp.arrays(np.float64, (angles, count), elements=level))
+    offsets = np.cumsum(data.draw(hnp.arrays(np.float64, count, elements=st.floats(0.5, 3.0))))
+    min_width = data.draw(st.floats(0.0, 10.0))
+    max_width = min_width + data.draw(st.floats(0.0, 40.0))
+    keep = data.draw(st.integers(1, 4))
+    rows, values = best_pairs(scores, offsets, min_width, max_width, keep)
+    expected_rows, expected_values = reference_best_pairs(scores, offsets, min_width, max_width, keep)
+    np.testing.assert_array_equal(rows, expected_rows)
+    np.testing.assert_array_equal(values, expected_values)
