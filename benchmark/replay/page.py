@@ -156,13 +156,13 @@ def _script_json(data: Any) -> str:
     return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
 
 
-def replay_html(recording: Recording) -> str:
-    """The page of ``recording`` as one HTML document."""
+def replay_html(recording: Recording, back: tuple[str, str] | None = None) -> str:
+    """The page of ``recording`` as one HTML document; ``back``, an address and its label, is linked above it."""
     title = f"{recording.tracker} on {recording.dataset}, seed {recording.seed}"
     data = Markup(_script_json(page_data(recording)))
-    return _templates.get_template("replay.html").render(title=title, data=data, colours=OUTCOME_COLOURS)
+    return _templates.get_template("replay.html").render(title=title, data=data, colours=OUTCOME_COLOURS, back=back)
 
 
-def write_replay(recording: Recording, path: Path) -> Path:
-    """Write the page of ``recording`` to ``path`` (atomically) and return it."""
-    return write_text_atomically(path, replay_html(recording), "replay page")
+def write_replay(recording: Recording, path: Path, back: tuple[str, str] | None = None) -> Path:
+    """Write the page of ``recording`` to ``path`` (atomically) and return it; ``back`` as :func:`replay_html`'s."""
+    return write_text_atomically(path, replay_html(recording, back), "replay page")
