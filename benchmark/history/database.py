@@ -519,7 +519,7 @@ class History:
 
     @_reports_database_errors
     def replays(self) -> pd.DataFrame:
-        """What the nightlies did about their cells' replays, one row per cell, without the pages: :data:`REPLAY_COLUMNS`."""
+        """What the nightlies did about their cells' replays, one row per cell, without pages: :data:`REPLAY_COLUMNS`."""
         columns = [_cell_replays.c[name] for name in REPLAY_COLUMNS]
         with self._engine.connect() as connection:
             rows = connection.execute(sa.select(*columns).order_by(_cell_replays.c.cell_id)).all()

@@ -65,6 +65,10 @@ DEFAULT_BUDGET = 50_000_000
 """Bytes of replay pages a nightly writes at most, by default (``--replay-budget 50MB``): about 30 camera replays of
 :data:`FRAMES_BEFORE` + :data:`FRAMES_AFTER` + 1 frames (a camera frame's JPEG in the page is about 17 kB)."""
 
+NO_FRAMES = ("the run kept none of the cell's frames (it stopped before its first, or its worker was stopped): "
+             "the replay would not know where to stop")
+"""Why a cell without a frame in the history has no replay."""
+
 FAILED_OUTCOMES = ("false", "missed")
 """The outcomes of a frame that count as a failure."""
 
@@ -246,7 +250,7 @@ def record_replays(
     back: Callable[[int], tuple[str, str]],
     log: Callable[[str], None] = lambda line: None,
 ) -> ReplaySummary:
-    """Record the replays of run ``run_id``'s cells in :func:`replay_order` within ``plan.budget``, keep them in ``history``.
+    """Record replays of run ``run_id``'s cells in :func:`replay_order` within ``plan.budget``; keep them in ``history``.
 
     Parameters
     ----------
@@ -276,47 +280,39 @@ def record_replays(
     if plan.budget <= 0:
         return summary
     order = replay_order(history, history.cells([run_id]), changes)
-    by_key = {cell.key: cell for cell in plan.cells()} if order else {}
+    selected = Call.of(lambda: {cell.key: cell for cell in plan.cells()} if order else {}, "selecting the cells")
+    over_budget = f"beyond the night's replay budget ({megabytes(plan.budget)})"
     over = False
     for chosen in order:
-        cell = chosen.cell
-        command = replay_command(cell, chosen.frames)
-        row = _row_of(int(cell["id"]), "" if chosen.frames is None else str(chosen.frames), command)
-        label = f"{cell['tracker']} on {cell['dataset']}, seed {int(cell['seed'])} (cell #{int(cell['id'])})"
-        if chosen.frames is None:
-            why = ("the run kept none of the cell's frames (it stopped before its first, or its worker was "
-                   "stopped): the replay would not know where to stop")
-            summary.replays.append(row("no frames", why))
+        cell, frames = chosen.cell, chosen.frames
+        row = _row_of(int(cell["id"]), "" if frames is None else str(frames), replay_command(cell, frames))
+        if frames is None:
+            summary.replays.append(row("no frames", NO_FRAMES))
             continue
         if over:
-            summary.replays.append(row("over budget", f"beyond the night's replay budget ({megabytes(plan.budget)})"))
+            summary.replays.append(row("over budget", over_budget))
             continue
-        found = by_key.get(_key(cell))
-        if found is None:
-            why = "the cell is not among the cells the nightly selected"
-            summary.replays.append(row("failed", why))
-            summary.problems.append(f"replay of {label} failed: {why}")
-            log(summary.problems[-1])
-            continue
-        frames = chosen.frames
-        call = Call.of(lambda: _page(_prepared(found, plan, out), frames, back(int(cell["id"]))), "replay")
-        if not call.ok:
-            fault = call.fault
-            if fault is not None and fault.is_a(NoViewError):
-                summary.replays.append(row("no view", fault.message))
-                continue
+        if not selected.ok:
+            call = selected
+        elif (found := selected.result.get(_key(cell))) is None:  # type: ignore[union-attr]
+            call = Call("replay", "error", note="the cell is not among the cells the nightly selected")
+        else:
+            call = Call.of(lambda: _page(_prepared(found, plan, out), frames, back(int(cell["id"]))), "replay")
+        if call.fault is not None and call.fault.is_a(NoViewError):
+            summary.replays.append(row("no view", call.fault.message))
+        elif not call.ok:
             summary.replays.append(row("failed", f"recording the replay failed: {call.summary}"))
+            label = f"{cell['tracker']} on {cell['dataset']}, seed {int(cell['seed'])} (cell #{int(cell['id'])})"
             summary.problems.append(f"replay of {label} failed: {call.summary}")
             log(summary.problems[-1])
-            continue
-        page: bytes = call.result  # type: ignore[assignment]
-        if summary.spent + len(page) > plan.budget:
+        elif summary.spent + len(call.result) > plan.budget:  # type: ignore[arg-type]
             over = True
-            summary.replays.append(row("over budget", f"beyond the night's replay budget ({megabytes(plan.budget)})"))
-            continue
-        summary.spent += len(page)
-        digest = hashlib.sha256(page).hexdigest()[:20]
-        summary.replays.append(row(RECORDED, "", size=len(page), digest=digest, page=page))
+            summary.replays.append(row("over budget", over_budget))
+        else:
+            page: bytes = call.result  # type: ignore[assignment]
+            summary.spent += len(page)
+            digest = hashlib.sha256(page).hexdigest()[:20]
+            summary.replays.append(row(RECORDED, "", size=len(page), digest=digest, page=page))
     history.record_replays(summary.replays)
     summary.replays = [dataclasses.replace(replay, page=None) for replay in summary.replays]
     return summary

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import re
+import shutil
 from pathlib import Path
 
 import pandas as pd
@@ -74,6 +75,11 @@ def test_a_failed_cell_gets_a_replay_linked_both_ways_and_kept_with_its_run(invo
     assert replay.read_text() == html and replay.stat().st_ino == inode  # the first run's page, linked as it was
     later = raising_cell(kept(tmp_path)[0], run_id=2)
     assert (site / "replays" / "2" / f"{later}.html").is_file()
+
+    shutil.rmtree(site)  # the history alone makes the site again, replays included
+    rebuilt = invoke("report", "--history", str(tmp_path / "history.sqlite"), "--site", str(site))
+    assert rebuilt.exit_code == 0, rebuilt.output
+    assert replay.read_text() == html and f'href="../replays/1/{cell_id}.html"' in page
 
 
 def test_the_budget_stops_replays_and_the_page_shows_the_command_instead(invoke: Invoke, tmp_path: Path) -> None:
