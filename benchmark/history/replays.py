@@ -136,14 +136,16 @@ class ReplaySummary:
         states = pd.Series([replay.state for replay in self.replays], dtype=object).value_counts()
         recorded = int(states.get(RECORDED, 0))
         others = ", ".join(f"{count} {state}" for state, count in states.items() if state != RECORDED)
-        line = (f"replays: {counted(recorded, 'page')} ({megabytes(self.spent)} of the "
-                f"{megabytes(self.budget)} budget)")
+        line = (f"replays: {counted(recorded, 'page')} ({shown_size(self.spent)} of the "
+                f"{shown_size(self.budget)} budget)")
         return line + (f"; without a page: {others}" if others else "")
 
 
-def megabytes(size: int) -> str:
-    """A size in bytes as ``12.3 MB``."""
-    return f"{size / 1e6:.1f} MB"
+def shown_size(size: int) -> str:
+    """A size in bytes as ``12.3 MB``, ``850 kB`` or ``12 B``."""
+    if size >= 10**6:
+        return f"{size / 1e6:.1f} MB"
+    return f"{size / 1e3:.0f} kB" if size >= 10**3 else f"{size} B"
 
 
 def failed_frames(frames: pd.DataFrame) -> int:
@@ -281,7 +283,7 @@ def record_replays(
         return summary
     order = replay_order(history, history.cells([run_id]), changes)
     selected = Call.of(lambda: {cell.key: cell for cell in plan.cells()} if order else {}, "selecting the cells")
-    over_budget = f"beyond the night's replay budget ({megabytes(plan.budget)})"
+    over_budget = f"beyond the night's replay budget ({shown_size(plan.budget)})"
     over = False
     for chosen in order:
         cell, frames = chosen.cell, chosen.frames

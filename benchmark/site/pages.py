@@ -28,6 +28,7 @@ from markupsafe import Markup, escape
 
 from benchmark.history.database import DETAILED_RUNS, RECORDED, REPLAY_COLUMNS, SERIES, History
 from benchmark.history.regressions import Step, Thresholds, find_changes, group_changes, steps
+from benchmark.history.replays import shown_size
 from benchmark.leaderboard import error_columns, is_pooled, key_labels, leaderboards
 from benchmark.metrics import Metric, Metrics, error_columns_of
 from benchmark.modality import Modality
@@ -516,7 +517,7 @@ def cell_page(night: Night, cell_id: int, site: Path) -> Drawn:
     if replay is not None:
         recorded = replay["state"] == RECORDED
         replay = dict(replay, href=f"../{replay_name(run_id, cell_id)}" if recorded else None,
-                      shown_size=f"{int(replay['size']) / 1e6:.1f} MB")
+                      shown_size=shown_size(int(replay["size"])))
     earlier = night.cells[night.cells["id"] == night.previous.get(cell_id, -1)]
     versions = sorted({str(version) for version in earlier["tracker_version"]})
     html = render(

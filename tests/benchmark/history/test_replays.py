@@ -53,7 +53,7 @@ def raising_cell(cells: pd.DataFrame, run_id: int = 1) -> int:
 def test_a_failed_cell_gets_a_replay_linked_both_ways_and_kept_with_its_run(invoke: Invoke, tmp_path: Path) -> None:
     first = nightly(invoke, tmp_path)
     assert first.exit_code == EXIT_FAILED, first.output
-    assert "replays: 1 page (" in first.stderr and "of the 50.0 MB budget" in first.stderr
+    assert "replays: 1 page (" in first.stderr and "kB of the 50.0 MB budget" in first.stderr
     cells, rows = kept(tmp_path)
     cell_id = raising_cell(cells)
     assert rows[["cell_id", "state", "frames", "command"]].values.tolist() == [[cell_id, RECORDED, "0:3", COMMAND]]
@@ -85,7 +85,7 @@ def test_a_failed_cell_gets_a_replay_linked_both_ways_and_kept_with_its_run(invo
 def test_the_budget_stops_replays_and_the_page_shows_the_command_instead(invoke: Invoke, tmp_path: Path) -> None:
     result = nightly(invoke, tmp_path, "--replay-budget", "1kB")
     assert result.exit_code == EXIT_FAILED, result.output
-    assert "replays: 0 pages (0.0 MB of the 0.0 MB budget); without a page: 1 over budget" in result.stderr
+    assert "replays: 0 pages (0 B of the 1 kB budget); without a page: 1 over budget" in result.stderr
     cells, rows = kept(tmp_path)
     assert rows["state"].tolist() == ["over budget"] and rows["size"].tolist() == [0]
     page = (tmp_path / "site" / "cells" / f"{raising_cell(cells)}.html").read_text()
