@@ -160,8 +160,8 @@ def replay_window(frames: pd.DataFrame, status: str) -> FrameRange | None:
     -------
     FrameRange or None
         For a cell that ended ok, :data:`FRAMES_BEFORE` frames before its
-        first false or missed frame to :data:`FRAMES_AFTER` after it (the
-        window clipped to the sequence when recorded), or as many frames
+        first false or missed frame to :data:`FRAMES_AFTER` after it (within
+        the frames it ran), or as many frames
         from the first where none failed (an RMSE regression); for a cell
         that did not end ok, the :data:`FRAMES_BEFORE` frames before the
         frame it stopped at.  None for a cell without a frame to replay.
@@ -173,7 +173,7 @@ def replay_window(frames: pd.DataFrame, status: str) -> FrameRange | None:
         return FrameRange(max(0, stopped - FRAMES_BEFORE), stopped)
     failed = frames["frame"][frames["outcome"].isin(FAILED_OUTCOMES)]
     first = int(failed.min()) if len(failed) else FRAMES_BEFORE
-    return FrameRange(max(0, first - FRAMES_BEFORE), first + FRAMES_AFTER + 1)
+    return FrameRange(max(0, first - FRAMES_BEFORE), min(first + FRAMES_AFTER + 1, int(frames["frame"].max()) + 1))
 
 
 def replay_order(history: History, cells: pd.DataFrame, changes: pd.DataFrame | None) -> list[Chosen]:

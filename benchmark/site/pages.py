@@ -516,8 +516,9 @@ def cell_page(night: Night, cell_id: int, site: Path) -> Drawn:
     replay = night.replay_rows.get(cell_id)
     if replay is not None:
         recorded = replay["state"] == RECORDED
+        first, _, stop = str(replay["frames"]).partition(":")
         replay = dict(replay, href=f"../{replay_name(run_id, cell_id)}" if recorded else None,
-                      shown_size=shown_size(int(replay["size"])))
+                      shown_size=shown_size(int(replay["size"])), shown_frames=f"{first}\u2013{int(stop or 1) - 1}")
     earlier = night.cells[night.cells["id"] == night.previous.get(cell_id, -1)]
     versions = sorted({str(version) for version in earlier["tracker_version"]})
     html = render(

@@ -59,7 +59,7 @@ def test_a_failed_cell_gets_a_replay_linked_both_ways_and_kept_with_its_run(invo
     assert rows[["cell_id", "state", "frames", "command"]].values.tolist() == [[cell_id, RECORDED, "0:3", COMMAND]]
     site = tmp_path / "site"
     page = (site / "cells" / f"{cell_id}.html").read_text()
-    assert f'href="../replays/1/{cell_id}.html"' in page and COMMAND in page
+    assert f'href="../replays/1/{cell_id}.html"' in page and COMMAND in page and "Watch frames 0\u20132" in page
     replay = site / "replays" / "1" / f"{cell_id}.html"
     html = replay.read_text()
     assert f'href="../../cells/{cell_id}.html"' in html
@@ -180,11 +180,11 @@ def test_the_order_is_not_ok_then_regressions_then_most_failed_frames() -> None:
     assert shown == [
         (5, NOT_OK, 0, FrameRange(0, 2)),
         (7, NOT_OK, 0, None),  # stopped before its first frame
-        (2, REGRESSION, 0, FrameRange(0, FRAMES_BEFORE + FRAMES_AFTER + 1)),  # no frame failed: from the first
-        (3, FAILED_FRAMES, 3, FrameRange(0, 1 + FRAMES_AFTER + 1)),
-        (6, FAILED_FRAMES, 3, FrameRange(0, FRAMES_AFTER + 1)),
-        (1, FAILED_FRAMES, 2, FrameRange(0, 2 + FRAMES_AFTER + 1)),
-        (4, FAILED_FRAMES, 1, FrameRange(0, 1 + FRAMES_AFTER + 1)),
+        (2, REGRESSION, 0, FrameRange(0, 4)),  # no frame failed: from the first, within the frames it ran
+        (3, FAILED_FRAMES, 3, FrameRange(0, 5)),
+        (6, FAILED_FRAMES, 3, FrameRange(0, 5)),
+        (1, FAILED_FRAMES, 2, FrameRange(0, 4)),
+        (4, FAILED_FRAMES, 1, FrameRange(0, 4)),
     ]
 
 
@@ -193,6 +193,7 @@ def test_the_window_is_around_the_first_failed_frame_or_before_the_fault() -> No
     assert replay_window(frames, "ok") == FrameRange(100 - FRAMES_BEFORE, 100 + FRAMES_AFTER + 1)
     assert replay_window(frames, "error") == FrameRange(200 - FRAMES_BEFORE, 200)
     assert replay_window(frames.iloc[:100], "ok") == FrameRange(0, FRAMES_BEFORE + FRAMES_AFTER + 1)
+    assert replay_window(frames.iloc[:130], "ok") == FrameRange(100 - FRAMES_BEFORE, 130)
     assert replay_window(frames.iloc[:0], "timeout") is None
 
 
