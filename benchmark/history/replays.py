@@ -46,8 +46,6 @@ import pandas as pd
 
 from benchmark.faults import Call
 from benchmark.history.database import RECORDED, CellReplay, History
-from benchmark.replay.record import FrameRange
-from benchmark.replay.views import NoViewError
 from benchmark.results import CellKey
 from benchmark.text import counted
 
@@ -55,6 +53,7 @@ if TYPE_CHECKING:
     from pathlib import Path
 
     from benchmark.frame_cache import FrameCache
+    from benchmark.replay.record import FrameRange
     from benchmark.runner import Cell
 
 FRAMES_BEFORE = 30
@@ -166,6 +165,8 @@ def replay_window(frames: pd.DataFrame, status: str) -> FrameRange | None:
         that did not end ok, the :data:`FRAMES_BEFORE` frames before the
         frame it stopped at.  None for a cell without a frame to replay.
     """
+    from benchmark.replay.record import FrameRange  # here, so that drawing the site does not import the runner
+
     if "frame" not in frames or frames.empty:
         return None
     if status != "ok":
@@ -278,6 +279,8 @@ def record_replays(
         What was recorded, and what was not and why.  Never raises for a
         cell's replay: whatever recording it raises is kept as its reason.
     """
+    from benchmark.replay.views import NoViewError
+
     summary = ReplaySummary(budget=plan.budget)
     if plan.budget <= 0:
         return summary
