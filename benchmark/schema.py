@@ -194,6 +194,18 @@ history_run_changes = sa.Table(
     sa.Column("run_id", sa.Integer, sa.ForeignKey("runs.id"), primary_key=True),
     sa.Column("changes", sa.Text, nullable=False),
 )
+history_cell_replays = sa.Table(
+    "cell_replays",
+    HISTORY,
+    sa.Column("cell_id", sa.Integer, sa.ForeignKey("cells.id"), primary_key=True),
+    sa.Column("state", sa.String(16), nullable=False),
+    sa.Column("why", sa.Text, nullable=False),
+    sa.Column("frames", sa.String(32), nullable=False),
+    sa.Column("command", sa.Text, nullable=False),
+    sa.Column("size", sa.Integer, nullable=False),
+    sa.Column("digest", sa.String(64), nullable=False),
+    sa.Column("page", sa.LargeBinary, nullable=True),
+)
 
 
 def add_column(connection: sa.Connection, table: sa.Table, column: sa.Column) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -29,6 +30,25 @@ EXIT_REGRESSION = 3
 EXIT_SPEED_REGRESSION = 4
 """``nightly --fail-on-speed`` found a speed regression, held on a repeat, and no accuracy regression."""
 
+BYTE_UNITS = {"": 1, "b": 1, "kb": 10**3, "mb": 10**6, "gb": 10**9, "kib": 2**10, "mib": 2**20, "gib": 2**30}
+"""The units a size may be given in (case ignored)."""
+
+
+class ByteSize(click.ParamType):
+    """A size in bytes: a number and an optional unit, ``50MB``, ``1.5 GB``, ``800kB``, ``64MiB``, ``0``."""
+
+    name = "SIZE"
+
+    def convert(self, value: object, param: click.Parameter | None, ctx: click.Context | None) -> int:
+        if isinstance(value, int):
+            return value
+        found = re.fullmatch(r"\s*(\d+(?:\.\d*)?)\s*([A-Za-z]*)\s*", str(value))
+        unit = found[2].lower() if found else ""
+        if found is None or unit not in BYTE_UNITS:
+            self.fail(f"{value!r} is not a size such as 50MB, 800kB or 0 (units: kB, MB, GB, KiB, MiB, GiB)",
+                      param, ctx)
+        return int(float(found[1]) * BYTE_UNITS[unit])
+
 
 @click.command("nightly")
 @run_options
@@ -47,6 +67,14 @@ EXIT_SPEED_REGRESSION = 4
     is_flag=True,
     help="Exit with 4 when a speed regression held on its repeat (default: report it and exit 0).",
 )
+@click.option(
+    "--replay-budget",
+    "replay_budget",
+    type=ByteSize(),
+    default="50MB",
+    show_default=True,
+    help="Size of the replay pages of the night's failed cells, at most (0: none).",
+)
 @click.pass_context
 def nightly(
     ctx: click.Context,
@@ -57,6 +85,7 @@ def nightly(
     window: int,
     min_step_s: float,
     fail_on_speed: bool,
+    replay_budget: int,
     **options: Any,
 ) -> None:
     """Run the benchmark, add the run to the history, report its changes and rewrite the site.
@@ -70,11 +99,21 @@ def nightly(
     regressed; else 4 when a speed regressed and --fail-on-speed is given
     (without it a speed regression is reported only); else 1 when a cell
     failed, as run does; else 0.
+
+    Then the night's failed cells are replayed frame by frame into pages of
+    the site, linked from their cell pages, until --replay-budget is spent:
+    first the cells that did not end ok, then those of an accuracy
+    regression, then the cells with the most false and missed frames.  A
+    replay that cannot be made is a line here and a reason on its cell's
+    page, and changes no exit status.
     """
     from benchmark.history.database import shown_location
     from benchmark.history.machine import describe_load
+    from benchmark.frame_cache import FrameCache
     from benchmark.history.nightly import CHANGES_NAME, REPEAT_FOLDER, describe_changes, run_nightly
+    from benchmark.history.replays import ReplayPlan
     from benchmark.progress import Meter
+    from benchmark.selection import Selection, select_cells
 
     limits = thresholds(min_effects, window, min_step_s)
 
@@ -85,6 +124,10 @@ def nightly(
 
     session: Session = ctx.obj
     registry = session.registry
+    selection = Selection(options["trackers"], options["suites"], options["datasets"], options["params"],
+                          options["seeds"], options["init"], options["train"])
+    replays = ReplayPlan(replay_budget, lambda: select_cells(registry, selection),
+                         None if options["no_cache"] else FrameCache(options["cache"]))
     with Meter("site pages") as pages:
         kept = run_nightly(
             run,
@@ -97,12 +140,16 @@ def nightly(
             seeds=options["seeds"],
             metrics=registry.metrics,
             report=pages,
+            replays=replays,
+            log=lambda line: click.echo(line, err=True),
         )
     if kept.repeat is not None:
         repeated = kept.repeat.statuses.total()
         click.echo(f"speed changes held against a repeat of their {repeated} cells in {out / REPEAT_FOLDER}", err=True)
     title = f"Changes of nightly run {kept.run_id}"
     click.echo(describe_changes(kept.changes, title, registry.metrics, out / CHANGES_NAME))
+    if kept.replays is not None and replay_budget:
+        click.echo(kept.replays.describe(), err=True)
     click.echo(f"machine load during the run: {describe_load(kept.load)}", err=True)
     click.echo(f"history {shown_location(history)}: run {kept.run_id}; site {kept.index}", err=True)
     if kept.accuracy_regressed:

@@ -12,6 +12,7 @@ row per cell to ``cells``, copied from the run's results database
     cell_pictures(cell_id -> cells, frame, outcome, png BLOB)
     run_boards(run_id -> runs, modality, board JSON)
     run_changes(run_id -> runs, changes JSON)
+    cell_replays(cell_id -> cells, state, why, frames, command, size, digest, page BLOB)
 
 These are the tables of :data:`benchmark.schema.HISTORY`, whose cells and
 pictures share their columns with the results database's.
@@ -30,8 +31,12 @@ the history alone.  ``run_boards`` keeps the run's leaderboards as the nightly p
 them, so that a site need not work them out again from every frame table;
 ``run_changes`` keeps what the nightly said of its run
 (:func:`benchmark.history.regressions.find_changes`, after any repeat), so
-that the site tells the same story.  Frames and pictures (about 0.5 MB for a camera cell
-that failed often) are kept for the last :data:`DETAILED_RUNS` runs only;
+that the site tells the same story.  ``cell_replays`` keeps what the nightly
+did about the replay of each cell it chose to replay
+(:mod:`benchmark.history.replays`): the replay page itself (compressed)
+where it recorded one, else why not, and the ``trackbench replay`` command
+that makes it.  Frames, pictures (about 0.5 MB for a camera cell
+that failed often) and replays are kept for the last :data:`DETAILED_RUNS` runs only;
 the summaries of every run stay, for the trends.
 
 Runs recorded before the step's CPU time was measured timed the wall
@@ -61,6 +66,7 @@ import json
 import re
 import zlib
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any, Concatenate, ParamSpec, TypeVar
@@ -96,6 +102,7 @@ _cell_frames = schema.history_cell_frames
 _cell_pictures = schema.history_cell_pictures
 _run_changes = schema.history_run_changes
 _run_boards = schema.history_run_boards
+_cell_replays = schema.history_cell_replays
 
 _P = ParamSpec("_P")
 _T = TypeVar("_T")
@@ -193,6 +200,50 @@ def _load_table(text: str) -> pd.DataFrame:
 
     kept = json.loads(text)
     return pd.read_json(StringIO(json.dumps(kept["table"])), orient="split", dtype=kept["dtypes"])
+
+
+RECORDED = "recorded"
+"""The state of a :class:`CellReplay` whose page was recorded."""
+
+
+@dataclass(frozen=True)
+class CellReplay:
+    """What a nightly did about the replay of one of its cells (:mod:`benchmark.history.replays`).
+
+    Attributes
+    ----------
+    cell_id : int
+        The cell, in the history.
+    state : str
+        :data:`RECORDED`, or why there is no page: ``over budget``,
+        ``no view`` (a modality the replay cannot show), ``failed`` (recording
+        it raised) or ``no frames`` (the cell failed before its first frame).
+    why : str
+        The reason, as the cell page shows it; empty when recorded.
+    frames : str
+        The frames replayed, ``A:B`` (:class:`benchmark.replay.record.FrameRange`).
+    command : str
+        The ``trackbench replay`` command that makes the replay.
+    size : int
+        The page's size in bytes; 0 without one.
+    digest : str
+        A hash of the page; empty without one.
+    page : bytes or None
+        The page (HTML, UTF-8) when recorded.
+    """
+
+    cell_id: int
+    state: str
+    why: str
+    frames: str
+    command: str
+    size: int = 0
+    digest: str = ""
+    page: bytes | None = None
+
+
+REPLAY_COLUMNS = ["cell_id", "state", "why", "frames", "command", "size", "digest"]
+"""The columns of :meth:`History.replays`: those of :class:`CellReplay` but its page."""
 
 
 WALL_TIMED = {"fps": "wall_fps"}
@@ -438,10 +489,10 @@ class History:
 
     @staticmethod
     def _forget_details(connection: sa.Connection) -> None:
-        """Drop the frame tables and pictures of the runs older than the last :data:`DETAILED_RUNS`."""
+        """Drop the frame tables, pictures and replays of the runs older than the last :data:`DETAILED_RUNS`."""
         kept = sa.select(_runs.c.id).order_by(_runs.c.id.desc()).limit(DETAILED_RUNS)
         old_cells = sa.select(_cells.c.id).where(_cells.c.run_id.not_in(kept.scalar_subquery()))
-        for table in (_cell_frames, _cell_pictures):
+        for table in (_cell_frames, _cell_pictures, _cell_replays):
             connection.execute(table.delete().where(table.c.cell_id.in_(old_cells.scalar_subquery())))
 
     @_reports_database_errors
@@ -451,6 +502,42 @@ class History:
         with self._engine.begin() as connection:
             connection.execute(_run_changes.delete().where(_run_changes.c.run_id == int(run_id)))
             connection.execute(_run_changes.insert().values(run_id=int(run_id), changes=text))
+
+    @_reports_database_errors
+    def record_replays(self, replays: Iterable[CellReplay]) -> None:
+        """Keep what a nightly did about its cells' replays, replacing what was kept for the same cells."""
+        rows = [
+            {**{name: getattr(replay, name) for name in REPLAY_COLUMNS},
+             "page": None if replay.page is None else zlib.compress(replay.page)}
+            for replay in replays
+        ]
+        if not rows:
+            return
+        with self._engine.begin() as connection:
+            connection.execute(_cell_replays.delete().where(_cell_replays.c.cell_id.in_([r["cell_id"] for r in rows])))
+            connection.execute(_cell_replays.insert(), rows)
+
+    @_reports_database_errors
+    def replays(self) -> pd.DataFrame:
+        """What the nightlies did about their cells' replays, one row per cell, without pages: :data:`REPLAY_COLUMNS`."""
+        columns = [_cell_replays.c[name] for name in REPLAY_COLUMNS]
+        with self._engine.connect() as connection:
+            rows = connection.execute(sa.select(*columns).order_by(_cell_replays.c.cell_id)).all()
+        return pd.DataFrame([tuple(row) for row in rows], columns=REPLAY_COLUMNS)
+
+    @_reports_database_errors
+    def replay_page(self, cell_id: int) -> bytes:
+        """The replay page recorded for cell ``cell_id`` (HTML, UTF-8)."""
+        with self._engine.connect() as connection:
+            blob = connection.execute(
+                sa.select(_cell_replays.c.page).where(_cell_replays.c.cell_id == int(cell_id))
+            ).scalar_one_or_none()
+        if blob is None:
+            raise self._error(f"no replay page of cell {cell_id} (only the last {DETAILED_RUNS} runs keep theirs)")
+        try:
+            return zlib.decompress(blob)
+        except zlib.error as exc:
+            raise self._error(f"the replay page of cell {cell_id} cannot be read ({exc})") from None
 
     @_reports_database_errors
     def changes(self, run_id: int) -> pd.DataFrame | None:

@@ -7,7 +7,9 @@ machine is (:class:`benchmark.history.machine.LoadMeter`), then
 :func:`benchmark.history.regressions.find_changes` compares it with the
 runs before it, the cells of every series with a speed change run once
 more into ``OUT/repeat`` and a change holds only if the repeat shows it
-too (:func:`benchmark.history.regressions.confirm_speed`), and
+too (:func:`benchmark.history.regressions.confirm_speed`), the failed
+cells are replayed into the history within a size budget
+(:func:`benchmark.history.replays.record_replays`), and
 :func:`benchmark.site.build_site` rewrites the site.
 """
 
@@ -25,11 +27,13 @@ from benchmark import __version__
 from benchmark.history.database import History
 from benchmark.history.machine import LoadMeter, describe_machine, git_commit, machine_key
 from benchmark.history.regressions import Thresholds, confirm_speed, find_changes, group_changes
+from benchmark.history.replays import ReplayPlan, ReplaySummary, record_replays
 from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
 from benchmark.report.summary import terminal_width
 from benchmark.results import summarise
 from benchmark.site import build_site
+from benchmark.site.pages import replay_back
 from benchmark.store import DATABASE_NAME, ResultStore
 from benchmark.text import counted, one_line, shortened
 
@@ -70,6 +74,8 @@ class Nightly:
         How busy the machine was during the run (:meth:`LoadMeter.stop`).
     repeat : RunSummary or None
         The repeat of the cells with a speed change; None when none had one.
+    replays : ReplaySummary or None
+        What the replay step recorded; None when the nightly was given no replay plan.
     """
 
     summary: RunSummary
@@ -78,6 +84,7 @@ class Nightly:
     index: Path
     load: dict[str, Any] = field(default_factory=dict)
     repeat: RunSummary | None = None
+    replays: ReplaySummary | None = None
 
     def _regressed(self, kind: str) -> bool:
         return bool(((self.changes["verdict"] == "regression") & (self.changes["kind"] == kind)).any())
@@ -138,6 +145,8 @@ def run_nightly(
     seeds: int,
     metrics: Metrics = CORE,
     report: Report | None = None,
+    replays: ReplayPlan | None = None,
+    log: Callable[[str], None] = lambda line: None,
 ) -> Nightly:
     """Run the benchmark into ``out``, append the run to ``history``, find its changes and rewrite ``site``.
 
@@ -163,6 +172,11 @@ def run_nightly(
     report : callable, optional
         Told ``report(done, total)`` pages as the site is built
         (:class:`benchmark.progress.Meter`).
+    replays : ReplayPlan, optional
+        The budget and the cells of the replays of the failed cells
+        (:func:`~benchmark.history.replays.record_replays`); none without it.
+    log : callable
+        Told a line for each replay that failed (which fails nothing else).
 
     Notes
     -----
@@ -201,8 +215,11 @@ def run_nightly(
             changes = confirm_speed(changes, speeds)
         database.record_changes(run_id, changes)
         changes.to_csv(out / CHANGES_NAME, index=False)
+        replayed = None
+        if replays is not None:
+            replayed = record_replays(database, run_id, changes, replays, out, replay_back, log)
         index = build_site(database, site, modalities, thresholds=thresholds, metrics=metrics, report=report)
-    return Nightly(summary, run_id, changes, index, load, repeat)
+    return Nightly(summary, run_id, changes, index, load, repeat, replayed)
 
 
 def record_nightly(

@@ -177,13 +177,22 @@ def _script_json(data: Any) -> str:
     return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
 
 
-def replay_html(recording: Recording, view: ReplayView | None = None) -> str:
-    """The page of ``recording`` as one HTML document; ``view`` by default its modality's."""
+def replay_html(
+    recording: Recording, view: ReplayView | None = None, back: tuple[str, str] | None = None, start: int | None = None
+) -> str:
+    """The page of ``recording`` as one HTML document.
+
+    ``view`` draws its frames, by default its modality's; ``back``, an
+    address and its label, is linked above it; the page opens at frame
+    ``start`` (by default its first) unless its address names one (``#frame=N``).
+    """
     title = f"{recording.tracker} on {recording.dataset}, seed {recording.seed}"
-    data = Markup(_script_json(page_data(recording, view)))
-    return _templates.get_template("replay.html").render(title=title, data=data, colours=OUTCOME_COLOURS)
+    data = Markup(_script_json({**page_data(recording, view), "start": start}))
+    return _templates.get_template("replay.html").render(title=title, data=data, colours=OUTCOME_COLOURS, back=back)
 
 
-def write_replay(recording: Recording, path: Path, view: ReplayView | None = None) -> Path:
-    """Write the page of ``recording`` to ``path`` (atomically) and return it; ``view`` by default its modality's."""
-    return write_text_atomically(path, replay_html(recording, view), "replay page")
+def write_replay(
+    recording: Recording, path: Path, view: ReplayView | None = None, back: tuple[str, str] | None = None
+) -> Path:
+    """Write the page of ``recording`` to ``path`` (atomically) and return it; ``view`` and ``back`` as :func:`replay_html`'s."""
+    return write_text_atomically(path, replay_html(recording, view, back), "replay page")

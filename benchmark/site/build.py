@@ -7,7 +7,9 @@
     runs/<id>.html         one run: its changes against the runs before it, its boards as the nightly kept them
     compare.html           any two runs side by side, picked in the browser
     trackers/<name>.html   a tracker's headline metrics over the runs (interactive), its cells, changed parameters
-    cells/<id>.html        one cell of a run that keeps its details: frames (interactive), pictures, parameters
+    cells/<id>.html        one cell of a run that keeps its details: frames (interactive), pictures, parameters,
+                           its replay or why there is none
+    replays/<run>/<id>.html  a cell's replay page as its nightly recorded it (:mod:`benchmark.history.replays`)
     assets/itables.js      the table library (:mod:`benchmark.site.tables`)
     assets/plotly.js       the plotting library (:mod:`benchmark.site.figures`)
 
@@ -28,7 +30,9 @@ metrics, and what of the history the page shows.  A history only grows:
 a run and its cells never change once recorded, only the details of old
 runs are dropped, so a run's page is named by the runs up to it, its
 successor and whether it keeps details, and a cell's page by its row and
-the cell it is compared with.  The build's ``manifest.json`` keeps each
+the cell it is compared with (and what its nightly did about its replay).
+A replay page is named by the hash of the page kept in the history, so
+it is written once and linked from build to build after.  The build's ``manifest.json`` keeps each
 page's hash and files; a page whose hash equals the shown build's is
 hard-linked from it (copied where links fail) instead of drawn.  The
 pages to draw are drawn by worker processes, forked with the history
@@ -57,7 +61,7 @@ import pandas as pd
 import benchmark
 from benchmark.errors import DataError
 from benchmark.files import make_folder
-from benchmark.history.database import History
+from benchmark.history.database import RECORDED, History
 from benchmark.history.regressions import Thresholds
 from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
@@ -67,7 +71,7 @@ from benchmark.site.pages import PAGE_KINDS, Drawn, Night, PageKind, page_name
 from benchmark.site.tables import ASSET as ITABLES_ASSET
 from benchmark.site.tables import write_bundle
 
-OWNED = ("index.html", "runs.html", "compare.html", "assets", "runs", "trackers", "cells")
+OWNED = ("index.html", "runs.html", "compare.html", "assets", "runs", "trackers", "cells", "replays")
 """What the site shows at its top, each a link through :data:`CURRENT`; nothing else there is touched."""
 BUILDS = ".builds"
 """The site's folder of builds, each a complete site."""
@@ -147,7 +151,10 @@ def _plan(night: Night) -> list[Page]:
             compared = (earlier, int(row["run_id"]) in detailed, row["tracker_version"], row["params"])
         # Empty values left out: a column added to the history later (a new metric) leaves old cells' pages as they are.
         known = {name: value for name, value in cell.items() if not (isinstance(value, float) and math.isnan(value))}
-        pages.append(Page("cell", int(cell["id"]), _digest(shared, known, compared)))
+        replay = night.replay_rows.get(int(cell["id"]))
+        pages.append(Page("cell", int(cell["id"]), _digest(shared, known, compared, replay)))
+        if replay is not None and replay["state"] == RECORDED:
+            pages.append(Page("replay", int(cell["id"]), _digest(int(cell["run_id"]), replay["digest"])))
     pages += [Page("compare", None, everything), Page("runs", None, everything)]
     return pages
 
@@ -158,7 +165,8 @@ def _load(history: History, modalities: Mapping[str, Modality], metrics: Metrics
         raise DataError(f"history database {history.location}: no runs yet, so no site to build")
     kept = {int(run_id): history.changes(int(run_id)) for run_id in runs["id"]}
     return Night(history, modalities, metrics, thresholds, runs, history.cells(), {},
-                 {run_id: changes for run_id, changes in kept.items() if changes is not None})
+                 {run_id: changes for run_id, changes in kept.items() if changes is not None},
+                 replays=history.replays())
 
 
 _night: Night | None = None

@@ -26,8 +26,9 @@ import jinja2
 import pandas as pd
 from markupsafe import Markup, escape
 
-from benchmark.history.database import DETAILED_RUNS, SERIES, History
+from benchmark.history.database import DETAILED_RUNS, RECORDED, REPLAY_COLUMNS, SERIES, History
 from benchmark.history.regressions import Step, Thresholds, find_changes, group_changes, steps
+from benchmark.history.replays import shown_size
 from benchmark.leaderboard import error_columns, is_pooled, key_labels, leaderboards
 from benchmark.metrics import Metric, Metrics, error_columns_of
 from benchmark.modality import Modality
@@ -97,6 +98,16 @@ def changed_parameters(now: Mapping[str, Any], before: list[Mapping[str, Any]]) 
     return changed
 
 
+def replay_name(run_id: int, cell_id: int) -> str:
+    """Where the replay of a cell is in the site: ``replays/<run>/<cell>.html``, with its run's other replays."""
+    return f"replays/{int(run_id)}/{int(cell_id)}.html"
+
+
+def replay_back(cell_id: int) -> tuple[str, str]:
+    """The address of a cell's page as seen from its replay (:func:`replay_name`), and its label."""
+    return f"../../cells/{int(cell_id)}.html", f"cell #{int(cell_id)} of the nightly site"
+
+
 @dataclass(frozen=True)
 class Drawn:
     """What drawing a page left: its files, relative to the site's root, and facts other pages use.
@@ -123,6 +134,8 @@ class Night:
     frames: dict[int, pd.DataFrame]
     kept: Mapping[int, pd.DataFrame]
     run_facts: dict[int, dict[str, Any]] = field(default_factory=dict)
+    replays: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(columns=REPLAY_COLUMNS))
+    """What the nightlies did about their cells' replays (:meth:`History.replays`)."""
 
     @property
     def run(self) -> pd.Series:
@@ -160,6 +173,11 @@ class Night:
         ids = [int(run) for run in self.runs["id"]]
         at = ids.index(run_id)
         return (ids[at - 1] if at else None), (ids[at + 1] if at + 1 < len(ids) else None)
+
+    @functools.cached_property
+    def replay_rows(self) -> dict[int, dict[str, Any]]:
+        """Each replayed cell's row of :attr:`replays`, by cell id."""
+        return {int(row["cell_id"]): row for row in self.replays.to_dict("records")}
 
     def frames_of(self, cell_id: int) -> pd.DataFrame:
         if cell_id not in self.frames:
@@ -495,6 +513,12 @@ def cell_page(night: Night, cell_id: int, site: Path) -> Drawn:
     of_board = night.metrics.for_board(str(cell["modality"]), errors)
     summary = {metric.name: metric.format(cell[metric.name]) for metric in of_board if metric.name in cell}
     run_id = int(cell["run_id"])
+    replay = night.replay_rows.get(cell_id)
+    if replay is not None:
+        recorded = replay["state"] == RECORDED
+        first, _, stop = str(replay["frames"]).partition(":")
+        replay = dict(replay, href=f"../{replay_name(run_id, cell_id)}" if recorded else None,
+                      shown_size=shown_size(int(replay["size"])), shown_frames=f"{first}\u2013{int(stop or 1) - 1}")
     earlier = night.cells[night.cells["id"] == night.previous.get(cell_id, -1)]
     versions = sorted({str(version) for version in earlier["tracker_version"]})
     html = render(
@@ -502,7 +526,7 @@ def cell_page(night: Night, cell_id: int, site: Path) -> Drawn:
         f"{cell['tracker']} on {cell['dataset']} \u00b7 trackbench nightly",
         cell=cell.to_dict(), tracker_href=night.tracker_href(str(cell["tracker"]), "../"), figure=figure,
         outcomes={outcome: int(counts.get(outcome, 0)) for outcome in OUTCOME_COLOURS}, summary=summary,
-        pictures=pictures, changed=changed_parameters(cell["params"], list(earlier["params"])),
+        pictures=pictures, replay=replay, changed=changed_parameters(cell["params"], list(earlier["params"])),
         old_version=", ".join(versions) if versions and versions != [str(cell["tracker_version"])] else "",
         earlier=int(earlier["id"].iloc[0]) if len(earlier) and int(earlier["run_id"].iloc[0]) in night.detailed
         else None,
@@ -513,6 +537,15 @@ def cell_page(night: Night, cell_id: int, site: Path) -> Drawn:
     return Drawn(files, frames=frames if run_id == int(night.run["id"]) else None)
 
 
+def replay_page(night: Night, cell_id: int, site: Path) -> Drawn:
+    """``replays/<run>/<cell>.html``: a cell's replay page as the nightly recorded it, written out as it was kept."""
+    run_id = int(night.cells.loc[night.cells["id"] == cell_id, "run_id"].iloc[0])
+    name = replay_name(run_id, cell_id)
+    (site / name).parent.mkdir(parents=True, exist_ok=True)
+    (site / name).write_bytes(night.history.replay_page(cell_id))
+    return Drawn([name])
+
+
 PageKind = Callable[[Night, Any, Path], Drawn]
 
 PAGE_KINDS: dict[str, PageKind] = {
@@ -520,6 +553,7 @@ PAGE_KINDS: dict[str, PageKind] = {
     "run": run_page,
     "tracker": tracker_page,
     "cell": cell_page,
+    "replay": replay_page,
     "runs": runs_page,
 }
 """Every kind of page but the compare page (:mod:`benchmark.site.compare`), by name."""

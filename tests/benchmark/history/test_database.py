@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 from benchmark.errors import DataError
-from benchmark.history.database import History, database_url, shown_location
+from benchmark.history.database import RECORDED, CellReplay, History, database_url, shown_location
 from benchmark.history.database import _pack as database_pack
 from benchmark.leaderboard import load_leaderboards
 from benchmark.modalities.camera.modality import CAMERA
@@ -175,20 +175,49 @@ def test_another_programs_database_is_refused_and_left_byte_for_byte_unchanged(
     assert other.read_bytes() == before
 
 
-def test_only_the_latest_runs_keep_frames_and_pictures(
+def replay_of(cell_id: int, page: bytes = b"<!DOCTYPE html><title>replay</title>") -> CellReplay:
+    return CellReplay(cell_id, RECORDED, "", "0:3", "trackbench replay ...", len(page), "d", page)
+
+
+def test_only_the_latest_runs_keep_frames_pictures_and_replays(
     invoke: Invoke, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.setattr("benchmark.history.database.DETAILED_RUNS", 2)
     out = tmp_path / "out"
     assert invoke("run", "--tracker", "blind", "--in-process", "--out", str(out)).exit_code == 0
     with History(tmp_path / "history.sqlite") as history:
-        runs = [record(history, out) for _ in range(3)]
+        runs = [record(history, out)]
+        first = int(history.cells()["id"].iloc[0])
+        history.record_replays([replay_of(first)])
+        runs += [record(history, out) for _ in range(2)]
         cells = history.cells()
-        first, last = (int(cells[cells["run_id"] == run]["id"].iloc[0]) for run in (runs[0], runs[-1]))
+        last = int(cells[cells["run_id"] == runs[-1]]["id"].iloc[0])
+        history.record_replays([replay_of(last)])
         assert history.pictures(first) == [] and history.pictures(last)
         with pytest.raises(DataError, match=f"cell {first} "):
             history.frames(first)
+        with pytest.raises(DataError, match=f"no replay page of cell {first} "):
+            history.replay_page(first)
+        assert history.replays()["cell_id"].tolist() == [last]
         assert len(history.frames(last)) > 0 and len(cells) == 3 * len(cells[cells["run_id"] == runs[0]])
+
+
+def test_a_cells_replay_is_kept_with_its_page_and_replaced_when_said_again(invoke: Invoke, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    assert invoke("run", "--tracker", "blind", "--in-process", "--out", str(out)).exit_code == 0
+    with History(tmp_path / "history.sqlite") as history:
+        record(history, out)
+        first, second = (int(cell) for cell in history.cells()["id"].iloc[:2])
+        page = bytes(range(256)) * 100
+        history.record_replays([replay_of(first, page), CellReplay(second, "over budget", "beyond", "0:9", "c")])
+        history.record_replays([replay_of(first, page[::-1])])
+        kept = history.replays()
+        assert history.replay_page(first) == page[::-1]
+        with pytest.raises(DataError, match=f"no replay page of cell {second} "):
+            history.replay_page(second)
+    assert kept[["cell_id", "state", "why", "frames", "size"]].values.tolist() == [
+        [first, RECORDED, "", "0:3", len(page)], [second, "over budget", "beyond", "0:9", 0]
+    ]
 
 
 def test_an_older_history_gets_the_declaration_column_and_keeps_its_cells(invoke: Invoke, tmp_path: Path) -> None:

@@ -136,11 +136,15 @@ def test_two_nightlies_are_kept_and_read_back_and_the_password_is_never_shown(
         first_cell = int(cells["id"].iloc[0])
         frames = history.frames(first_cell)
         pictures = history.pictures(int(cells["id"].iloc[-1]))
+        replays = history.replays()
+        page = history.replay_page(int(replays["cell_id"].iloc[-1]))
     assert runs["id"].tolist() == [1, 2] and runs["seeds"].tolist() == [2, 2]
     assert set(cells["run_id"]) == {1, 2} and set(cells["seed"]) == {0, 1}
     assert (cells[cells["run_id"] == 2]["params"].map(lambda params: params["sigma_px"]) == 40).all()
     assert len(frames) > 0 and {"frame", "outcome"} <= set(frames.columns)
     assert all(picture.png.startswith(b"\x89PNG") for picture in pictures)
+    assert set(replays["state"]) == {"recorded"} and page.startswith(b"<!DOCTYPE html>")  # noisy misses frames
+    assert len(page) == int(replays["size"].iloc[-1])
 
     compared = invoke("compare", "1", "2", "--history", empty_database)
     assert compared.exit_code == 0, compared.output

@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from benchmark.registry import Registry
-from benchmark.replay.page import page_data, write_replay
+from benchmark.replay.page import page_data, replay_html, write_replay
 from benchmark.replay.record import record_cell
 
 from benchmark.replay.record import Recording
@@ -86,9 +86,14 @@ def test_an_address_opens_a_frame_with_the_belief_zoomed_to_it(
     chromium: sync_api.Browser, registry: Registry, tmp_path: Path
 ) -> None:
     recording = record_cell(make_cell(registry.trackers["fake-particles"], FakeSequence("fake/S1", FRAMES)))
-    path = write_replay(recording, tmp_path / "replay.html")
+    path = tmp_path / "replay.html"
+    path.write_text(replay_html(recording, start=4))
     browser = Browser(chromium.new_page(viewport={"width": 1200, "height": 800}))
     page = browser.open(path)
+    page.wait_for_function("document.getElementById('belief').dataset.frame === '4'")  # the page's start
+    page.goto(path.as_uri() + "#frame=6")
+    page.reload()
+    page.wait_for_function("document.getElementById('belief').dataset.frame === '6'")  # the address's frame
     whole = page.evaluate("document.getElementById('belief').toDataURL()")
     page.goto(path.as_uri() + "#frame=6&zoom")
     page.reload()

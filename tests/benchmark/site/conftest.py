@@ -10,7 +10,8 @@ the changed parameter, and the trend of ``hough`` has a step at the third
 run.
 
 ``hostile`` is a one-run history of fake trackers whose name and error
-message are HTML, to check that the site escapes what plugins supply.
+message are HTML, to check that the site escapes what plugins supply; its
+failed cells have replays, as a nightly records them.
 """
 
 from __future__ import annotations
@@ -26,12 +27,14 @@ import pytest
 
 from benchmark.harness import run_benchmark
 from benchmark.history.database import History
+from benchmark.history.replays import DEFAULT_BUDGET, ReplayPlan, record_replays
 from benchmark.io import export_sequence
 from benchmark.model import Frame, Sequence, SequenceInfo
 from benchmark.plugins import load_registry
 from benchmark.registry import Registry
 from benchmark.selection import Selection, select_cells
 from benchmark.site import build_site
+from benchmark.site.pages import replay_back
 from benchmark.store import ResultStore
 
 CLIP_FRAMES = 30
@@ -135,5 +138,7 @@ def hostile(fakes: types.ModuleType, tmp_path_factory: pytest.TempPathFactory) -
     history = History(folder / "history.sqlite")
     selection = Selection(trackers=(HOSTILE_NAME, "shouting"), datasets=("fake/S1",), seeds=2)
     record(registry, history, selection, folder / "run", [10])
+    plan = ReplayPlan(DEFAULT_BUDGET, lambda: select_cells(registry, selection))
+    record_replays(history, int(history.runs()["id"].iloc[-1]), None, plan, folder / "run", replay_back)
     return build(history, folder / "site", registry)
 

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from .conftest import Site
+from .conftest import HOSTILE_NAME, Site
 
 sync_api = pytest.importorskip("playwright.sync_api", reason="the browser tests need Python playwright")
 
@@ -154,8 +154,21 @@ def test_hostile_names_stay_text(browser: Browser, hostile: Site) -> None:
     assert '<script>alert("tracker")</script>' in page.inner_text("#board-0")
     cells = [str(link.get_attribute("href")) for link in page.query_selector_all("#board-0 tbody a[href^='cells/']")]
     assert cells
+    replays = 0
     for cell in cells:
-        browser.open(hostile.root / cell)
+        page = browser.open(hostile.root / cell)
+        if page.query_selector("a.replay") is None:
+            continue
+        replays += 1
+        with page.expect_navigation(wait_until="load"):
+            page.click("a.replay")
+        title = page.inner_text("h1")
+        assert "/replays/1/" in page.url and (HOSTILE_NAME in title or "shouting" in title)
+        page.wait_for_function("document.querySelector('#strip').width > 0")
+        with page.expect_navigation(wait_until="load"):
+            page.click("#back")
+        assert page.url.endswith(cell)
+    assert replays == len(cells)  # every cell failed on a frame (each tracker misses frames)
     assert browser.problems == []
 
 
