@@ -108,6 +108,7 @@ class Prediction:
     width: float
 
 
+@functools.lru_cache(maxsize=32)
 def pair_rules(params: SegmentationParams) -> PairRules:
     """The pairing limits of a parameter set."""
     return PairRules(
@@ -181,8 +182,12 @@ def cell_lines(
     rows, cols = cell
     height, width = grey.shape
     cell_modulus = modulus[rows, cols]
-    mask = None if prediction is None else prediction.roi[rows, cols]
     cell_grey = grey[rows, cols]
+    # One mask serves the histogram and the contours: every pixel, or the region of interest's.
+    if prediction is None:
+        mask = np.ones(cell_grey.shape, np.bool_)
+    else:
+        mask = np.ascontiguousarray(prediction.roi[rows, cols], dtype=np.bool_)
     levels = mountain_starts(
         cell_grey,
         cell_modulus,
@@ -196,7 +201,7 @@ def cell_lines(
     )
     if levels is None:
         return Segments.empty()
-    contours = label_changes(cell_grey, levels, np.ones(cell_grey.shape, np.bool_) if mask is None else mask)
+    contours = label_changes(cell_grey, levels, mask)
     alpha = 0.0 if prediction is None else prediction.alpha
     chain_rows, chain_cols, starts = follow_chains(
         contours, alpha, reach=p.reach_px, max_gap=p.max_gap_rows, min_rows=p.min_segment_rows

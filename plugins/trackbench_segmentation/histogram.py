@@ -58,18 +58,26 @@ def gradient_modulus(image: np.ndarray) -> np.ndarray:
         ``float32`` array of shape ``(H, W)``: ``sqrt(Gx^2 + Gy^2) / 4`` with
         ``Gx``, ``Gy`` the 3 x 3 Sobel responses (borders replicated).  The
         division by the Sobel kernel's weight 4 makes an ideal step of ``h``
-        grey levels read ``h``.  The responses are integers, computed
-        exactly, so the result does not depend on how the image happens to
-        lie in memory (OpenCV's floating-point paths do).
+        grey levels read ``h``.  The responses are integers of at most
+        ``4 * 255`` and ``Gx^2 + Gy^2`` at most ``2 * 1020^2 < 2^24``, so in
+        ``float32`` every sum is exact whatever order OpenCV adds in; only
+        the square root rounds, correctly, as ``numpy.sqrt`` does.  The
+        result does not depend on how the image happens to lie in memory.
 
     References
     ----------
     seeds/000, section 2.3: "a digital approximation of the gradient
     modulus ... computed using the Sobel operator".
     """
-    gx = cv2.Sobel(image, cv2.CV_16S, 1, 0, ksize=3, borderType=cv2.BORDER_REPLICATE).astype(np.int32)
-    gy = cv2.Sobel(image, cv2.CV_16S, 0, 1, ksize=3, borderType=cv2.BORDER_REPLICATE).astype(np.int32)
-    return np.sqrt((gx * gx + gy * gy).astype(np.float32)) * np.float32(0.25)
+    gx = cv2.Sobel(image, cv2.CV_32F, 1, 0, ksize=3, borderType=cv2.BORDER_REPLICATE)
+    gy = cv2.Sobel(image, cv2.CV_32F, 0, 1, ksize=3, borderType=cv2.BORDER_REPLICATE)
+    # In place, to spare the allocations: every step but the square root is exact (see above).
+    np.multiply(gx, gx, out=gx)
+    np.multiply(gy, gy, out=gy)
+    np.add(gx, gy, out=gx)
+    np.sqrt(gx, out=gx)
+    np.multiply(gx, np.float32(0.25), out=gx)
+    return gx
 
 
 def ranked_bins(counts: np.ndarray, shares: Sequence[float]) -> np.ndarray:

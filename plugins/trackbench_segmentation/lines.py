@@ -228,18 +228,44 @@ def group_collinear(segments: Segments, strip_px: float, max_angle: float) -> Se
     s = segments
     order = np.argsort(-s.n, kind="stable")
     labels = _group(s.n, s.sv, s.su, s.svv, s.suv, s.suu, s.v_low, s.v_high, order, float(strip_px), float(max_angle))
-    count = int(labels.max()) + 1
-    totals = {
-        f.name: np.bincount(labels, weights=getattr(s, f.name), minlength=count)
-        for f in fields(s)
-        if f.name not in ("v_low", "v_high")
-    }
-    v_low = np.full(count, np.inf)
-    v_high = np.full(count, -np.inf)
-    np.minimum.at(v_low, labels, s.v_low)
-    np.maximum.at(v_high, labels, s.v_high)
-    joined = Segments(v_low=v_low, v_high=v_high, **totals)
+    joined = Segments(*_join(labels, int(labels.max()) + 1, *(getattr(s, name) for name in _NAMES)))
     return joined.take(np.argsort(-joined.n, kind="stable"))
+
+
+@numba.njit(cache=True, nogil=True)
+def _join(
+    labels: np.ndarray,
+    count: int,
+    n: np.ndarray,
+    sv: np.ndarray,
+    su: np.ndarray,
+    svv: np.ndarray,
+    suv: np.ndarray,
+    suu: np.ndarray,
+    sg: np.ndarray,
+    v_low: np.ndarray,
+    v_high: np.ndarray,
+) -> tuple[np.ndarray, ...]:
+    """The :class:`Segments` fields of the groups ``labels`` number ``0 .. count-1``, in the order of :data:`_NAMES`.
+
+    The sums are taken segment after segment in index order, as ``np.bincount`` with weights takes them,
+    so they are the same to the last bit; the rows are the least and greatest of the group's.
+    """
+    sums = np.zeros((7, count))
+    low = np.full(count, np.inf)
+    high = np.full(count, -np.inf)
+    for k in range(labels.shape[0]):
+        group = labels[k]
+        sums[0, group] += n[k]
+        sums[1, group] += sv[k]
+        sums[2, group] += su[k]
+        sums[3, group] += svv[k]
+        sums[4, group] += suv[k]
+        sums[5, group] += suu[k]
+        sums[6, group] += sg[k]
+        low[group] = min(low[group], v_low[k])
+        high[group] = max(high[group], v_high[k])
+    return sums[0], sums[1], sums[2], sums[3], sums[4], sums[5], sums[6], low, high
 
 
 @numba.njit(cache=True, nogil=True)
@@ -333,13 +359,48 @@ def select_long(
     """
     if len(segments) == 0:
         return segments
+    s = segments
     keep = np.flatnonzero(
-        (segments.span >= min_rows) & (segments.mean_gradient >= min_gradient) & (segments.rms <= max_rms)
+        _is_long(s.n, s.sv, s.su, s.svv, s.suv, s.suu, s.sg, s.v_low, s.v_high, min_rows, min_gradient, max_rms)
     )
     return segments.take(keep[np.argsort(-segments.n[keep], kind="stable")[:max_count]])
+
+
+@numba.njit(cache=True, nogil=True)
+def _is_long(
+    n: np.ndarray,
+    sv: np.ndarray,
+    su: np.ndarray,
+    svv: np.ndarray,
+    suv: np.ndarray,
+    suu: np.ndarray,
+    sg: np.ndarray,
+    v_low: np.ndarray,
+    v_high: np.ndarray,
+    min_rows: float,
+    min_gradient: float,
+    max_rms: float,
+) -> np.ndarray:
+    """Per segment, :func:`select_long`'s test of :attr:`Segments.span`, :attr:`Segments.mean_gradient` and
+    :attr:`Segments.rms`, each computed with the same operations in the same order as the properties."""
+    keep = np.empty(n.shape[0], np.bool_)
+    for k in range(n.shape[0]):
+        denominator = n[k] * svv[k] - sv[k] * sv[k]
+        b = (n[k] * suv[k] - su[k] * sv[k]) / denominator if denominator > 0 else 0.0
+        a = (su[k] - b * sv[k]) / n[k]
+        squares = (
+            suu[k] - 2 * a * su[k] - 2 * b * suv[k] + n[k] * a * a + 2 * a * b * sv[k] + b * b * svv[k]
+        )
+        if squares < 0.0:
+            squares = 0.0
+        rms = np.sqrt(squares / n[k] / (1.0 + b * b))
+        keep[k] = (v_high[k] - v_low[k] + 1.0 >= min_rows) and (sg[k] / n[k] >= min_gradient) and (rms <= max_rms)
+    return keep
 
 
 def compile_kernels() -> None:
     """Compile (or load from numba's cache) the grouping kernel now."""
     one = np.ones(2)
     _group(one, one, one, 2 * one, one, one, one, one, np.arange(2), 1.0, 0.1)
+    _join(np.zeros(2, np.int64), 1, one, one, one, one, one, one, one, one, one)
+    _is_long(one, one, one, 2 * one, one, one, one, one, one, 1.0, 1.0, 1.0)

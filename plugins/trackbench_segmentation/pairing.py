@@ -120,8 +120,16 @@ def border_pairs(
         overlap >= rules.min_overlap * np.minimum(span[first], span[second])
     )
     found: list[BorderPair] = []
-    for i, j in zip(first[candidates], second[candidates]):
-        borders = (pixel_line(a[i], b[i], v_low[i], v_high[i], size), pixel_line(a[j], b[j], v_low[j], v_high[j], size))
+    made: dict[int, Line] = {}
+
+    def line(k: int) -> Line:
+        # A line takes part in many candidate pairs; it is made once.
+        if k not in made:
+            made[k] = pixel_line(a[k], b[k], v_low[k], v_high[k], size)
+        return made[k]
+
+    for i, j in zip(first[candidates].tolist(), second[candidates].tolist()):
+        borders = (line(i), line(j))
         state = cable_from_borders(*borders)
         if abs(state.beta) > rules.max_skew or not rules.min_width <= state.w <= rules.max_width:
             continue
@@ -131,7 +139,7 @@ def border_pairs(
             if agreement <= 0:
                 continue
             score *= agreement
-        found.append(BorderPair(int(i), int(j), borders, state, score))
+        found.append(BorderPair(i, j, borders, state, score))
     found.sort(key=lambda pair: -pair.score)
     return found
 

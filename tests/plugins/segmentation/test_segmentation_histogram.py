@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import cv2
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -69,6 +70,26 @@ def test_gradient_modulus_reads_a_step_height():
     assert modulus.dtype == np.float32
     assert modulus[4, 5] == pytest.approx(80.0) and modulus[4, 6] == pytest.approx(80.0)
     assert modulus[4, 2] == 0.0 and modulus[4, 9] == 0.0
+
+
+def _integer_modulus(image: np.ndarray) -> np.ndarray:
+    """The modulus as first written: integer Sobel responses, their squares summed exactly in int32."""
+    gx = cv2.Sobel(image, cv2.CV_16S, 1, 0, ksize=3, borderType=cv2.BORDER_REPLICATE).astype(np.int32)
+    gy = cv2.Sobel(image, cv2.CV_16S, 0, 1, ksize=3, borderType=cv2.BORDER_REPLICATE).astype(np.int32)
+    return np.sqrt((gx * gx + gy * gy).astype(np.float32)) * np.float32(0.25)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    image=arrays(np.uint8, st.tuples(st.integers(3, 40), st.integers(3, 40)), elements=st.sampled_from([0, 1, 128, 254, 255]))
+    | cells,
+    transposed=st.booleans(),
+)
+def test_gradient_modulus_equals_the_integer_sobel_reading_bit_for_bit(image, transposed):
+    # The float32 responses and their squares are whole numbers below 2^24, so only the root rounds.
+    image = image.T if transposed else image
+    expected = _integer_modulus(np.ascontiguousarray(image))
+    assert np.array_equal(gradient_modulus(image), expected)
 
 
 def _two_hills(first: float, second: float) -> np.ndarray:
