@@ -73,7 +73,8 @@ class SearchWindow:
 
     def admits(self, line: HoughLine) -> bool:
         """True when the line lies in the window of either previous border."""
-        return any(self._within(line, border) is not None for border in self.borders)
+        first, second = self.borders
+        return self._within(line, first) is not None or self._within(line, second) is not None
 
     def deviation(self, first: HoughLine, second: HoughLine) -> float | None:
         """How far a candidate pair lies from the previous pair, or None if outside.
