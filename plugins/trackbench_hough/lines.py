@@ -89,7 +89,10 @@ class HoughLine:
     def distance_to(self, r: float, phi: float) -> tuple[float, float]:
         """Absolute differences ``(|dr|, |dphi|)`` to a line ``(r, phi)``, modulo the half turn."""
         dphi = self.phi - phi
-        wrapped = wrap_half_turn(dphi)
+        # wrap_half_turn(dphi), written out: this runs for every pair of lines compared.
+        wrapped = math.remainder(dphi, math.pi)
+        if wrapped == -math.pi / 2:
+            wrapped = math.pi / 2
         # Wrapping by a half turn flips the other normal, and with it the sign of r.
         other_r = -r if abs(dphi - wrapped) > math.pi / 2 else r
         return abs(self.r - other_r), abs(wrapped)
