@@ -187,8 +187,10 @@ def predict(
     noise = _floats(process_noise, float)
     offset = _NONE if control is None else _floats(control, float)
     G, predicted = _linearise(transition, jacobian, mean, "transition", "state")
+    n = mean.size
+    covariance, predicted_mean = np.empty((n, n)), np.empty(n)
     try:
-        out = _kernels.predict_step(G, mean, belief.covariance, noise, predicted, offset)
+        _kernels.predict_step(G, mean, belief.covariance, noise, predicted, offset, covariance, predicted_mean)
     except _kernels.TypingError:
         _name_bad_dimensions(
             ("the transition matrix" if jacobian is None else "the transition Jacobian", G, 2),
@@ -197,8 +199,7 @@ def predict(
             ("control", offset, 1),
         )
         raise
-    n = mean.size
-    return _belief(out[n], out[:n])
+    return _belief(predicted_mean, covariance)
 
 
 def update(
@@ -253,8 +254,10 @@ def update(
     z = _floats(measurement, float)
     noise = _floats(measurement_noise, float)
     H, predicted = _linearise(observe, jacobian, mean, "measurement", "measurement")
+    n = mean.size
+    covariance, corrected_mean = np.empty((n, n)), np.empty(n)
     try:
-        out = _kernels.correct_step(mean, belief.covariance, H, noise, z, predicted)
+        _kernels.correct_step(mean, belief.covariance, H, noise, z, predicted, covariance, corrected_mean)
     except _kernels.TypingError:
         _name_bad_dimensions(
             ("the measurement matrix" if jacobian is None else "the measurement Jacobian", H, 2),
@@ -263,8 +266,7 @@ def update(
             ("the measurement", z, 1),
         )
         raise
-    n = mean.size
-    return _belief(out[n], out[:n])
+    return _belief(corrected_mean, covariance)
 
 
 def compile_kernels() -> None:

@@ -47,51 +47,67 @@ def sandwich_add(G: np.ndarray, P: np.ndarray, out: np.ndarray) -> None:
 
 @numba.njit(cache=True, nogil=True)
 def predict_step(
-    G: np.ndarray, x: np.ndarray, P: np.ndarray, R: np.ndarray, predicted: np.ndarray, control: np.ndarray
-) -> np.ndarray:
-    """``G P G^T + R`` in rows ``0..n-1``, the predicted mean in row ``n`` (seeds/002 Table 2, lines 2-3).
+    G: np.ndarray,
+    x: np.ndarray,
+    P: np.ndarray,
+    R: np.ndarray,
+    predicted: np.ndarray,
+    control: np.ndarray,
+    covariance: np.ndarray,
+    mean: np.ndarray,
+) -> None:
+    """Write ``G P G^T + R`` into ``covariance`` and the predicted mean into ``mean`` (seeds/002 Table 2, lines 2-3).
 
     The mean is ``predicted + control``, or ``G x + control`` when
     ``predicted`` is empty (a linear model); an empty ``control`` adds
-    nothing.
+    nothing.  The caller allocates the outputs: an array made here would
+    cost more to hand back to Python than the whole step of a small filter.
     """
     n = x.shape[0]
     if G.shape[0] != n or G.shape[1] != n:
         raise ValueError("the transition matrix (or Jacobian) does not match the state size")
     if R.shape[0] != n or R.shape[1] != n:
         raise ValueError("process_noise does not match the state size")
-    out = np.empty((n + 1, n))
+    if covariance.shape[0] != n or covariance.shape[1] != n or mean.shape[0] != n:
+        raise ValueError("the output arrays do not match the state size")
     for i in range(n):
         for j in range(n):
-            out[i, j] = R[i, j]
-    sandwich_add(G, P, out)
-    mirror(out, n)
+            covariance[i, j] = R[i, j]
+    sandwich_add(G, P, covariance)
+    mirror(covariance, n)
     if predicted.shape[0] == 0:
         for i in range(n):
             s = 0.0
             for k in range(n):
                 s += G[i, k] * x[k]
-            out[n, i] = s
+            mean[i] = s
     elif predicted.shape[0] == n:
         for i in range(n):
-            out[n, i] = predicted[i]
+            mean[i] = predicted[i]
     else:
         raise ValueError("the transition function does not return a state of the belief's size")
     if control.shape[0] == n:
         for i in range(n):
-            out[n, i] += control[i]
+            mean[i] += control[i]
     elif control.shape[0] != 0:
         raise ValueError("control does not match the state size")
-    return out
 
 
 @numba.njit(cache=True, nogil=True)
 def correct_step(
-    x: np.ndarray, P: np.ndarray, H: np.ndarray, Q: np.ndarray, z: np.ndarray, hx: np.ndarray
-) -> np.ndarray:
-    """Joseph-form covariance in rows ``0..n-1``, mean in row ``n`` (seeds/002 Table 2, lines 4-6).
+    x: np.ndarray,
+    P: np.ndarray,
+    H: np.ndarray,
+    Q: np.ndarray,
+    z: np.ndarray,
+    hx: np.ndarray,
+    covariance: np.ndarray,
+    mean: np.ndarray,
+) -> None:
+    """Write the Joseph-form covariance into ``covariance`` and the mean into ``mean`` (seeds/002 Table 2, lines 4-6).
 
-    ``hx`` is ``h(x)``, or empty for a linear model ``h(x) = H x``.
+    ``hx`` is ``h(x)``, or empty for a linear model ``h(x) = H x``.  The
+    caller allocates the outputs, as for :func:`predict_step`.
     """
     n = x.shape[0]
     m = H.shape[0]
@@ -101,6 +117,8 @@ def correct_step(
         raise ValueError("measurement_noise does not match the measurement size")
     if z.shape[0] != m:
         raise ValueError("the measurement does not match the measurement model")
+    if covariance.shape[0] != n or covariance.shape[1] != n or mean.shape[0] != n:
+        raise ValueError("the output arrays do not match the state size")
     innovation = np.empty(m)
     for i in range(m):
         innovation[i] = z[i]
@@ -156,13 +174,14 @@ def correct_step(
             for k in range(m):
                 s -= K[i, k] * H[k, j]
             I_KH[i, j] = s
-    out = np.zeros((n + 1, n))
-    sandwich_add(I_KH, P, out)
-    sandwich_add(K, Q, out)
-    mirror(out, n)
+    for i in range(n):
+        for j in range(n):
+            covariance[i, j] = 0.0
+    sandwich_add(I_KH, P, covariance)
+    sandwich_add(K, Q, covariance)
+    mirror(covariance, n)
     for i in range(n):
         s = x[i]
         for j in range(m):
             s += K[i, j] * innovation[j]
-        out[n, i] = s
-    return out
+        mean[i] = s

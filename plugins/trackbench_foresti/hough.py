@@ -514,25 +514,39 @@ def line_support(
 
 
 def _distinct(alphas: np.ndarray, rhos: np.ndarray, alpha_reach: float, rho_reach: float) -> list[int]:
-    """Indices of the lines (strongest first) not within reach of an earlier kept line."""
-    lines = list(zip(alphas.tolist(), rhos.tolist(), strict=True))
-    kept: list[int] = []
-    for i, (alpha, rho) in enumerate(lines):
-        if not any(_within_reach(alpha, rho, *lines[k], alpha_reach, rho_reach) for k in kept):
-            kept.append(i)
-    return kept
+    """Indices of the lines (strongest first) not within reach of an earlier kept line.
+
+    Two lines are within reach when their angles differ by at most
+    ``alpha_reach`` and their distances by at most ``rho_reach``, modulo a
+    half turn: the angle difference is folded as :func:`fold_angle` does
+    (numba's float ``%`` rounds as Python's), and folding it by a half turn
+    flips the other line's ``rho``.
+    """
+    alphas = np.ascontiguousarray(alphas, dtype=np.float64).reshape(-1)
+    rhos = np.ascontiguousarray(rhos, dtype=np.float64).reshape(-1)
+    return _distinct_kernel(alphas, rhos, float(alpha_reach), float(rho_reach)).tolist()
 
 
-def _within_reach(
-    alpha: float, rho: float, other_alpha: float, other_rho: float, alpha_reach: float, rho_reach: float
-) -> bool:
-    """Whether two lines lie within ``alpha_reach`` and ``rho_reach`` of each other, modulo a half turn."""
-    difference = alpha - other_alpha
-    turn = fold_angle(difference)
-    # Folding the angle difference by a half turn flips the other line's rho.
-    if abs(difference - turn) > math.pi / 2:
-        other_rho = -other_rho
-    return abs(turn) <= alpha_reach and abs(rho - other_rho) <= rho_reach
+@numba.njit(cache=True, nogil=True)
+def _distinct_kernel(alphas: np.ndarray, rhos: np.ndarray, alpha_reach: float, rho_reach: float) -> np.ndarray:
+    """:func:`_distinct` as an array of indices."""
+    quarter_turn = math.pi / 2
+    kept = np.empty(alphas.size, np.int64)
+    count = 0
+    for i in range(alphas.size):
+        distinct = True
+        for c in range(count):
+            k = kept[c]
+            difference = alphas[i] - alphas[k]
+            turn = (difference + quarter_turn) % math.pi - quarter_turn
+            other_rho = -rhos[k] if abs(difference - turn) > quarter_turn else rhos[k]
+            if abs(turn) <= alpha_reach and abs(rhos[i] - other_rho) <= rho_reach:
+                distinct = False
+                break
+        if distinct:
+            kept[count] = i
+            count += 1
+    return kept[:count]
 
 
 def hough_lines(
@@ -602,3 +616,4 @@ def compile_kernels() -> None:
     _vote(index, one, one, one, one, index, 1, 1.0, np.zeros(1, np.int32))
     _dominant(np.zeros((1, 1), np.int32), index, index, 1, 2.0)
     _near(one, one, one, 0.0, 1.0, 0.0, 0.0, 1.0, 0.1)
+    _distinct_kernel(one, one, 0.1, 1.0)

@@ -34,6 +34,11 @@ import math
 import cv2
 import numpy as np
 
+from benchmark.lazy import lazy_module
+
+# The compiled loops load on the first frame, so that listing the trackers does not import numba.
+crossings = lazy_module("trackbench_hough.crossings")
+
 
 def log_response(image: np.ndarray, sigma: float) -> np.ndarray:
     """Laplacian of Gaussian of a grey image.
@@ -106,13 +111,13 @@ def crossing_steps(response: np.ndarray, sigma: float, stride: int = 2) -> np.nd
     """
     if stride < 1:
         raise ValueError(f"stride must be at least 1, got {stride}")
-    samples = []
-    for first, second in (
-        (response[::stride, :-1], response[::stride, 1:]),
-        (response[:-1, ::stride], response[1:, ::stride]),
-    ):
-        samples.append(np.abs(first - second)[np.signbit(first) != np.signbit(second)])
-    return np.concatenate(samples).astype(np.float64) * step_height_scale(sigma)
+    return crossings.crossing_jumps(_floating(response), stride).astype(np.float64) * step_height_scale(sigma)
+
+
+def _floating(response: np.ndarray) -> np.ndarray:
+    """The response as a ``float32`` or ``float64`` array, the dtypes the compiled loops are typed for."""
+    response = np.asarray(response)
+    return response if response.dtype in (np.float32, np.float64) else response.astype(np.float64)
 
 
 def zero_crossings(response: np.ndarray, sigma: float, min_step: float) -> np.ndarray:
@@ -142,19 +147,10 @@ def zero_crossings(response: np.ndarray, sigma: float, min_step: float) -> np.nd
     seeds/000, section 2.1: zero crossings indicate borders; thresholding
     keeps the strong ones.
     """
-    min_jump = min_step / step_height_scale(sigma)
-    edges = np.zeros(response.shape, dtype=bool)
-    magnitude = np.abs(response)
-    for axis in (0, 1):
-        first = [slice(None), slice(None)]
-        second = [slice(None), slice(None)]
-        first[axis], second[axis] = slice(None, -1), slice(1, None)
-        a, b = response[tuple(first)], response[tuple(second)]
-        crossing = (np.signbit(a) != np.signbit(b)) & (np.abs(a - b) >= min_jump)
-        first_nearer = magnitude[tuple(first)] <= magnitude[tuple(second)]
-        edges[tuple(first)] |= crossing & first_nearer
-        edges[tuple(second)] |= crossing & ~first_nearer
-    return edges.astype(np.uint8) * 255
+    response = _floating(response)
+    # The jump is compared in the response's own precision, as numpy compares an array with a Python float.
+    min_jump = response.dtype.type(min_step / step_height_scale(sigma))
+    return crossings.strong_crossings(response, min_jump)
 
 
 def edge_image(image: np.ndarray, sigma: float, min_step: float) -> np.ndarray:
@@ -179,3 +175,8 @@ def edge_image(image: np.ndarray, sigma: float, min_step: float) -> np.ndarray:
     seeds/000, section 2.1.
     """
     return zero_crossings(log_response(image, sigma), sigma, min_step)
+
+
+def compile_kernels() -> None:
+    """Compile (or load from numba's cache) the zero-crossing loops now, before the first timed frame."""
+    crossings.compile_kernels()

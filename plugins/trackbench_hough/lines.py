@@ -89,7 +89,10 @@ class HoughLine:
     def distance_to(self, r: float, phi: float) -> tuple[float, float]:
         """Absolute differences ``(|dr|, |dphi|)`` to a line ``(r, phi)``, modulo the half turn."""
         dphi = self.phi - phi
-        wrapped = wrap_half_turn(dphi)
+        # wrap_half_turn(dphi), written out: this runs for every pair of lines compared.
+        wrapped = math.remainder(dphi, math.pi)
+        if wrapped == -math.pi / 2:
+            wrapped = math.pi / 2
         # Wrapping by a half turn flips the other normal, and with it the sign of r.
         other_r = -r if abs(dphi - wrapped) > math.pi / 2 else r
         return abs(self.r - other_r), abs(wrapped)
@@ -162,19 +165,48 @@ def hough_lines(
     seeds/004, section IV (normal parametrisation, Fig. 7a).
     """
     size = (edges.shape[1], edges.shape[0])
-    found: list[HoughLine] = []
+    return [HoughLine.from_opencv(rho, theta, votes, size) for rho, theta, votes in accumulator_maxima(
+        edges, rho_step, theta_step, min_votes, intervals
+    ).tolist()]
+
+
+def accumulator_maxima(
+    edges: np.ndarray,
+    rho_step: float,
+    theta_step: float,
+    min_votes: int,
+    intervals: list[tuple[float, float]] | None = None,
+) -> np.ndarray:
+    """OpenCV's ``(rho, theta, votes)`` of the lines :func:`hough_lines` returns, in its order.
+
+    The transform without the bookkeeping, so that a caller that reads only
+    the strongest few lines makes a :class:`HoughLine` of only those
+    (:meth:`HoughLine.from_opencv`).  Parameters as :func:`hough_lines`.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``float64`` array of shape ``(n, 3)``, most votes first; lines of
+        equal votes in OpenCV's order, interval by interval.
+
+    References
+    ----------
+    seeds/000, section 2.1 (Hough transform [HA62], limited parameter space).
+    """
+    found = []
     for low, high in intervals or [(0.0, math.pi)]:
         if high - low < theta_step:
             low, high = max(0.0, 0.5 * (low + high) - theta_step), min(math.pi, 0.5 * (low + high) + theta_step)
+        # OpenCV reads the edge image and does not write to it.
         raw = cv2.HoughLinesWithAccumulator(
-            edges.copy(), rho_step, theta_step, int(min_votes), min_theta=float(low), max_theta=float(high)
+            edges, rho_step, theta_step, int(min_votes), min_theta=float(low), max_theta=float(high)
         )
-        if raw is None:
-            continue
-        for rho, theta, votes in np.asarray(raw, dtype=np.float64).reshape(-1, 3):
-            found.append(HoughLine.from_opencv(rho, theta, votes, size))
-    found.sort(key=lambda item: -item.votes)
-    return found
+        if raw is not None:
+            found.append(np.asarray(raw, dtype=np.float64).reshape(-1, 3))
+    if not found:
+        return np.zeros((0, 3))
+    lines = found[0] if len(found) == 1 else np.concatenate(found)
+    return lines[np.argsort(-lines[:, 2], kind="stable")]
 
 
 def suppress_duplicates(
@@ -205,10 +237,11 @@ def suppress_duplicates(
     """
     kept: list[HoughLine] = []
     for line in lines:
-        if all(
-            not (dr < r_tolerance and dphi < phi_tolerance)
-            for dr, dphi in (line.distance_to(other.r, other.phi) for other in kept)
-        ):
+        for other in kept:
+            dr, dphi = line.distance_to(other.r, other.phi)
+            if dr < r_tolerance and dphi < phi_tolerance:
+                break
+        else:
             kept.append(line)
             if limit is not None and len(kept) >= limit:
                 break

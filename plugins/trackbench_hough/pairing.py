@@ -161,10 +161,14 @@ def choose_pair(
     """
     best: BorderPair | None = None
     best_score = -math.inf
+    fits: dict[int, tuple[tuple[float, float] | None, tuple[float, float] | None]] = {}
     for pair in pairs:
         score = pair.votes
         if window is not None:
-            deviation = window.deviation(pair.first, pair.second)
+            # A line is in many pairs: its fits to the window are computed once.
+            first = fits.get(id(pair.first)) or fits.setdefault(id(pair.first), window.fits(pair.first))
+            second = fits.get(id(pair.second)) or fits.setdefault(id(pair.second), window.fits(pair.second))
+            deviation = window.deviation_of_fits(first, second)
             if deviation is None:
                 continue
             score *= 1.0 - closeness_weight * deviation

@@ -41,8 +41,8 @@ from benchmark.modalities.camera.geometry import ImageSize, Line, cable_borders
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
-from trackbench_hough.edges import log_response, zero_crossings
-from trackbench_hough.lines import hough_lines, suppress_duplicates
+from trackbench_hough.edges import compile_kernels, log_response, zero_crossings
+from trackbench_hough.lines import HoughLine, accumulator_maxima, suppress_duplicates
 from trackbench_hough.pairing import choose_pair, compatible_pairs
 from trackbench_hough.params import HoughParams
 from trackbench_hough.sizes import FrameSizes
@@ -87,6 +87,7 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
             The first frame's truth; with ``use_init`` the borders of its
             cable, when known, centre the first search window.
         """
+        compile_kernels()
         self._window = None
         self._searched = None
         self._misses = 0
@@ -146,13 +147,15 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
         response = log_response(image, p.log_sigma)
         edges = zero_crossings(response, p.log_sigma, EDGE_THRESHOLDS[p.edge_rule](response, p.log_sigma, p))
         window = self._searched = self._window
-        lines = hough_lines(
+        raw = accumulator_maxima(
             edges,
             sizes.rho_step,
             sizes.theta_step,
             sizes.min_votes,
             window.theta_intervals() if window is not None else None,
         )
+        # Lines are made one by one as duplicate suppression reads them: it stops after max_lines.
+        lines = (HoughLine.from_opencv(rho, theta, votes, sizes.size) for rho, theta, votes in raw.tolist())
         admitted = lines if window is None else (line for line in lines if window.admits(line))
         lines = suppress_duplicates(admitted, sizes.duplicate_rho, math.radians(p.duplicate_theta_deg), p.max_lines)
         pairs = compatible_pairs(

@@ -77,7 +77,18 @@ class SearchWindow:
 
     def admits(self, line: HoughLine) -> bool:
         """True when the line lies in the window of either previous border."""
-        return any(self._within(line, border) is not None for border in self.borders)
+        first, second = self.borders
+        return self._within(line, first) is not None or self._within(line, second) is not None
+
+    def fits(self, line: HoughLine) -> tuple[tuple[float, float] | None, tuple[float, float] | None]:
+        """The line's normalised offsets ``(|dr| / r_half, |dphi| / phi_half)`` from each previous border.
+
+        None for a border whose window the line lies outside.  A line takes
+        part in many candidate pairs; its fits are computed once and handed
+        to :meth:`deviation_of_fits`.
+        """
+        first, second = self.borders
+        return self._within(line, first), self._within(line, second)
 
     def deviation(self, first: HoughLine, second: HoughLine) -> float | None:
         """How far a candidate pair lies from the previous pair, or None if outside.
@@ -86,9 +97,16 @@ class SearchWindow:
         that fits; the deviation is the largest normalised offset, in
         ``[0, 1]`` (0: exactly the previous pair, 1: at the window's edge).
         """
+        return self.deviation_of_fits(self.fits(first), self.fits(second))
+
+    @staticmethod
+    def deviation_of_fits(
+        first: tuple[tuple[float, float] | None, tuple[float, float] | None],
+        second: tuple[tuple[float, float] | None, tuple[float, float] | None],
+    ) -> float | None:
+        """:meth:`deviation` of two lines from their :meth:`fits`."""
         best: float | None = None
-        for a, b in ((first, second), (second, first)):
-            fit_a, fit_b = self._within(a, self.borders[0]), self._within(b, self.borders[1])
+        for fit_a, fit_b in ((first[0], second[1]), (second[0], first[1])):
             if fit_a is None or fit_b is None:
                 continue
             worst = max(*fit_a, *fit_b)
