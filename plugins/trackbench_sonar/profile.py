@@ -111,9 +111,19 @@ def running_median(values: np.ndarray, window: int) -> np.ndarray:
         Shape ``(n,)``; near the ends the window is cut to the values that
         exist, which keeps it centred where it can.
     """
-    import pandas as pd  # here, so that loading the plugin does not import pandas
+    values = np.asarray(values, dtype=float)
+    if window % 2 == 0 or values.size == 0:
+        import pandas as pd  # here, so that loading the plugin does not import pandas
 
-    return pd.Series(values).rolling(window, center=True, min_periods=1).median().to_numpy()
+        return pd.Series(values).rolling(window, center=True, min_periods=1).median().to_numpy()
+    half = window // 2
+    padded = np.concatenate([np.full(half, np.inf), values, np.full(half, np.inf)])
+    # Each window sorted, the missing ends last; the middle one, or the mean of the middle two as pandas takes it.
+    windows = np.sort(np.lib.stride_tricks.sliding_window_view(padded, window), axis=1)
+    index = np.arange(values.size)
+    count = np.minimum(index + half, values.size - 1) - np.maximum(index - half, 0) + 1
+    rows = np.arange(values.size)
+    return (windows[rows, (count - 1) // 2] + windows[rows, count // 2]) / 2
 
 
 def spike_mask(across_m: np.ndarray, depth_m: np.ndarray, window: int, spike_m: float) -> np.ndarray:
