@@ -30,13 +30,27 @@ import numba
 import numpy as np
 
 _SQRT_HALF = math.sqrt(0.5)
+_ERFC_ZERO = 27.5
+"""``erfc(t)`` is below the smallest double (``4.9e-324``) for ``t`` beyond this, so 0."""
+_ERFC_TWO = 6.5
+"""``erfc(-t) = 2 - erfc(t)`` rounds to 2 for ``t`` beyond this (``erfc(6.5) = 3.8e-20``, half an ulp of 2 is ``2.2e-16``)."""
 
 
 @numba.njit(cache=True, nogil=True)
 def _smoothed_box(v: float, r: float) -> float:  # pragma: no cover - compiled
     """``Phi((v + 1) / r) - Phi((v - 1) / r)`` (:func:`trackbench_sonar.footprint.smoothed_box`)."""
     r = max(r, 1e-9)
-    return 0.5 * math.erfc(-(v + 1.0) / r * _SQRT_HALF) - 0.5 * math.erfc(-(v - 1.0) / r * _SQRT_HALF)
+    return _upper_tail(-(v + 1.0) / r * _SQRT_HALF) - _upper_tail(-(v - 1.0) / r * _SQRT_HALF)
+
+
+@numba.njit(cache=True, nogil=True)
+def _upper_tail(t: float) -> float:  # pragma: no cover - compiled
+    """``erfc(t) / 2``, without calling ``erfc`` where it is 0 or 2 in double precision."""
+    if t > _ERFC_ZERO:
+        return 0.0
+    if t < -_ERFC_TWO:
+        return 1.0
+    return 0.5 * math.erfc(t)
 
 
 @numba.njit(cache=True, nogil=True)
