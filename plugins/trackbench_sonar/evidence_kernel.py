@@ -33,7 +33,7 @@ _SQRT_HALF = math.sqrt(0.5)
 _ERFC_ZERO = 27.5
 """``erfc(t)`` is below the smallest double (``4.9e-324``) for ``t`` beyond this, so 0."""
 _ERFC_TWO = 6.5
-"""``erfc(-t) = 2 - erfc(t)`` rounds to 2 for ``t`` beyond this (``erfc(6.5) = 3.8e-20``, half an ulp of 2 is ``2.2e-16``)."""
+"""``erfc(-t) = 2 - erfc(t)`` rounds to 2 beyond this (``erfc(6.5) = 3.8e-20``; half an ulp of 2: ``2.2e-16``)."""
 
 
 @numba.njit(cache=True, nogil=True)

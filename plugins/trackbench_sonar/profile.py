@@ -250,7 +250,7 @@ def upper_envelope(
 def _shallowest_crossings(
     across: np.ndarray, depth: np.ndarray, grid_m: float, first: int, last: int
 ) -> tuple[np.ndarray, np.ndarray]:  # pragma: no cover - compiled
-    """:func:`upper_envelope`, segment by segment: each grid point keeps its shallowest crossing, the first of equals."""
+    """:func:`upper_envelope` segment by segment: each grid point keeps its shallowest crossing, first of equals."""
     size = last - first + 1
     envelope = np.full(size, np.nan)
     segment = np.full(size, -1, dtype=np.int64)

@@ -87,7 +87,7 @@ def reference_candidates(model: FootprintLikelihood, profile: Profile) -> tuple[
 
 
 def assert_agrees(model: FootprintLikelihood, profile: Profile, pedestal_m: float = math.inf) -> None:
-    """The evidence within :data:`RELATIVE`, the pedestal within ``pedestal_m`` (a coefficient: exact as its fit is posed)."""
+    """The evidence within :data:`RELATIVE`, the pedestal within ``pedestal_m`` (a fitted coefficient)."""
     found = model.candidates(profile)
     evidence, pedestal, scored = reference_candidates(model, profile)
     np.testing.assert_array_equal(found.scored, scored)
