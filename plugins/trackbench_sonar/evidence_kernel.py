@@ -74,7 +74,7 @@ def _semicircle(
 def _normal_equations(
     design: np.ndarray, weights: np.ndarray, target: np.ndarray, n: int, pipe: bool, normal: np.ndarray
 ) -> None:  # pragma: no cover - compiled
-    """The weighted normal equations of the seabed's three columns (and the pipe's fourth), augmented, into ``normal``."""
+    """The weighted normal equations of the seabed's three columns (and the pipe's fourth) into ``normal``."""
     a00 = a01 = a02 = a03 = a11 = a12 = a13 = a22 = a23 = a33 = 0.0
     b0 = b1 = b2 = b3 = 0.0
     for j in range(n):
