@@ -60,12 +60,19 @@ The scan (Fig. 2 of the paper) holds ``E`` at every grid position.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from trackbench_sonar.cross_section import CrossSection
-from trackbench_sonar.footprint import SeenCrossSection, footprint_sigma
+from trackbench_sonar.evidence_kernel import footprint_evidence
+from trackbench_sonar.footprint import (
+    TABLE_OFFSET_STEP,
+    TABLE_REACH,
+    TABLE_SIGMA_STEP,
+    semicircle_table,
+    footprint_sigma,
+)
 from trackbench_sonar.likelihood import LikelihoodScan
 from trackbench_sonar.profile import Profile
 
@@ -97,15 +104,6 @@ class Evidence:
     pedestal_m: np.ndarray
     returns: np.ndarray
     scored: np.ndarray
-
-
-def _solve(design: np.ndarray, weights: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """Weighted least squares of each row: ``design (K, P, W)``, ``weights`` and ``target (K, W)``; ``(K, P)``."""
-    weighted = design * weights[:, None, :]
-    normal = weighted @ np.swapaxes(design, 1, 2)
-    normal += np.eye(design.shape[1])[None] * 1e-12 * np.maximum(np.trace(normal, axis1=1, axis2=2), 1.0)[:, None, None]
-    right = weighted @ target[:, :, None]
-    return np.linalg.solve(normal, right)[:, :, 0]
 
 
 @dataclass(frozen=True)
@@ -144,7 +142,6 @@ class FootprintLikelihood:
     relief_widths: float = 2.0
     robust_sigmas: float = 10.0
     iterations: int = 3
-    _seen: SeenCrossSection = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         for label in ("sigma_m", "seabed_widths", "relief_widths", "robust_sigmas"):
@@ -155,7 +152,6 @@ class FootprintLikelihood:
             raise ValueError(f"beam_width must be in [0, pi), got {self.beam_width!r}")
         if self.iterations < 1:
             raise ValueError(f"iterations must be >= 1, got {self.iterations!r}")
-        object.__setattr__(self, "_seen", SeenCrossSection(self.section))
 
     def candidates(self, profile: Profile) -> Evidence:
         """Fit both models about every grid position of the profile and score each.
@@ -180,53 +176,33 @@ class FootprintLikelihood:
         if count == 0 or x.size < MIN_RETURNS:
             nothing = np.zeros(count)
             return Evidence(centre, nothing, np.full(count, np.nan), nothing.astype(np.int64), nothing.astype(bool))
-        a = self.section.half_width_m
-        reach = a + self.seabed_widths * self.section.major_m
+        reach = self.section.half_width_m + self.seabed_widths * self.section.major_m
         low = np.searchsorted(x, centre - reach, side="left")
         high = np.searchsorted(x, centre + reach, side="right")
-        returns = high - low
-        width = max(int(returns.max()), 1)
-        index = low[:, None] + np.arange(width)[None, :]
-        inside = index < high[:, None]
-        index = np.minimum(index, x.size - 1)
-        u = x[index] - centre[:, None]
-        depth = z[index]
-        sigma_f = footprint_sigma(centre, profile.depth_m, self.beam_width)[:, None]
-        relief = self.relief_widths * self._seen.seen_half_width(sigma_f)
-        seabed = np.stack([np.ones_like(u), u / reach, np.exp(-0.5 * (u / relief) ** 2)], axis=1)
-        span = self._seen.pedestal(u, sigma_f)
-        arc = self._seen.arc(u, sigma_f)
-        mask = inside.astype(float)
-
-        floor_cost = self._robust_cost(seabed, mask, depth)
-        pipe = np.concatenate([seabed, -span[:, None, :]], axis=1)
-        pipe_cost, pedestal = self._robust_cost(pipe, mask, depth + arc, pedestal=True)
-        negative = ~(pedestal >= 0.0)
-        if np.any(negative):
-            # s < 0 would put the pipe's centre below the seafloor: fit it resting at s = 0 instead.
-            rows = np.flatnonzero(negative)
-            pipe_cost[rows] = self._robust_cost(seabed[rows], mask[rows], depth[rows] + arc[rows])
-            pedestal[rows] = 0.0
-
-        beyond_port = np.any(inside & (u <= -a), axis=1)
-        beyond_starboard = np.any(inside & (u >= a), axis=1)
-        scored = (returns >= MIN_RETURNS) & beyond_port & beyond_starboard
-        evidence = np.where(scored, np.maximum(floor_cost - pipe_cost, 0.0), 0.0)
-        evidence = np.where(np.isfinite(evidence), evidence, 0.0)
-        return Evidence(centre, evidence, np.where(scored, pedestal, np.nan), returns, scored)
-
-    def _robust_cost(
-        self, design: np.ndarray, mask: np.ndarray, target: np.ndarray, *, pedestal: bool = False
-    ) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
-        """The Cauchy cost of the IRLS fit of ``target`` on ``design`` (and the last coefficient, if ``pedestal``)."""
-        k = self.robust_sigmas * self.sigma_m
-        weights = mask
-        for _ in range(self.iterations):
-            coefficients = _solve(design, weights, target)
-            residual = target - np.einsum("kp,kpw->kw", coefficients, design)
-            weights = mask / (1.0 + (residual / k) ** 2)
-        cost = np.sum(mask * k * k * np.log1p((residual / k) ** 2), axis=1) / self.sigma_m**2
-        return (cost, coefficients[:, -1]) if pedestal else cost
+        sigma_f = footprint_sigma(centre, profile.depth_m, self.beam_width)
+        offsets, sigmas, table = semicircle_table()
+        evidence, pedestal, scored = footprint_evidence(
+            x,
+            z,
+            centre,
+            sigma_f,
+            low,
+            high,
+            self.section.half_width_m,
+            self.section.half_height_m,
+            reach,
+            self.relief_widths,
+            self.robust_sigmas * self.sigma_m,
+            self.sigma_m,
+            self.iterations,
+            MIN_RETURNS,
+            table,
+            float(offsets[0]),
+            TABLE_OFFSET_STEP,
+            TABLE_SIGMA_STEP,
+            TABLE_REACH,
+        )
+        return Evidence(centre, evidence, pedestal, high - low, scored)
 
     def scan(self, profile: Profile) -> LikelihoodScan:
         """The evidence over the profile's grid (seeds/003, Fig. 2); empty for an empty profile."""

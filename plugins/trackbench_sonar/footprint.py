@@ -94,7 +94,7 @@ def _semicircle_area(t: np.ndarray) -> np.ndarray:
 
 
 @functools.cache
-def _semicircle_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def semicircle_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Offsets ``v``, footprints ``r`` and ``(sqrt(1 - t^2) * N(0, r))(v)`` on their grid (computed once).
 
     Each row is the semicircle averaged over the cells of the offset grid
@@ -130,7 +130,7 @@ def smoothed_semicircle(offset: np.ndarray, sigma: np.ndarray) -> np.ndarray:
         footprints beyond :data:`TABLE_MAX_SIGMA` use the widest row, and
         offsets beyond :data:`TABLE_REACH` give 0.
     """
-    offsets, sigmas, table = _semicircle_table()
+    offsets, sigmas, table = semicircle_table()
     v, r = np.broadcast_arrays(np.asarray(offset, dtype=float), np.asarray(sigma, dtype=float))
     row = np.clip(r / TABLE_SIGMA_STEP, 0.0, sigmas.size - 1.000001)
     column = np.clip((v - offsets[0]) / TABLE_OFFSET_STEP, 0.0, offsets.size - 1.000001)

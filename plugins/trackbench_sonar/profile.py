@@ -39,6 +39,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numba
 import numpy as np
 
 from benchmark.errors import DataError
@@ -111,9 +112,19 @@ def running_median(values: np.ndarray, window: int) -> np.ndarray:
         Shape ``(n,)``; near the ends the window is cut to the values that
         exist, which keeps it centred where it can.
     """
-    import pandas as pd  # here, so that loading the plugin does not import pandas
+    values = np.asarray(values, dtype=float)
+    if window % 2 == 0 or values.size == 0:
+        import pandas as pd  # here, so that loading the plugin does not import pandas
 
-    return pd.Series(values).rolling(window, center=True, min_periods=1).median().to_numpy()
+        return pd.Series(values).rolling(window, center=True, min_periods=1).median().to_numpy()
+    half = window // 2
+    padded = np.concatenate([np.full(half, np.inf), values, np.full(half, np.inf)])
+    # Each window sorted, the missing ends last; the middle one, or the mean of the middle two as pandas takes it.
+    windows = np.sort(np.lib.stride_tricks.sliding_window_view(padded, window), axis=1)
+    index = np.arange(values.size)
+    count = np.minimum(index + half, values.size - 1) - np.maximum(index - half, 0) + 1
+    rows = np.arange(values.size)
+    return (windows[rows, (count - 1) // 2] + windows[rows, count // 2]) / 2
 
 
 def spike_mask(across_m: np.ndarray, depth_m: np.ndarray, window: int, spike_m: float) -> np.ndarray:
@@ -232,19 +243,29 @@ def upper_envelope(
         Index ``j`` of the polyline segment (from return ``j`` to ``j + 1``)
         each depth was read on.
     """
-    x0, x1 = across[:-1], across[1:]
-    z0, z1 = depth[:-1], depth[1:]
-    low = np.maximum(np.ceil(np.minimum(x0, x1) / grid_m).astype(np.int64), first)
-    high = np.minimum(np.floor(np.maximum(x0, x1) / grid_m).astype(np.int64), last)
-    count = np.maximum(high - low + 1, 0)
-    segment = np.repeat(np.arange(x0.size), count)
-    # Grid index of each (segment, grid point) pair: low of its segment plus its rank within it.
-    starts = np.cumsum(count) - count
-    index = low[segment] + np.arange(segment.size) - starts[segment]
-    run = x1[segment] - x0[segment]
-    share = np.where(run != 0.0, (index * grid_m - x0[segment]) / np.where(run != 0.0, run, 1.0), 0.0)
-    crossing = z0[segment] + np.clip(share, 0.0, 1.0) * (z1[segment] - z0[segment])
-    # The shallowest crossing of each grid point comes first in this order.
-    order = np.lexsort((crossing, index))
-    winners = order[np.flatnonzero(np.diff(index[order], prepend=first - 1))]
-    return crossing[winners], segment[winners]
+    return _shallowest_crossings(np.asarray(across, dtype=float), np.asarray(depth, dtype=float), grid_m, first, last)
+
+
+@numba.njit(cache=True, nogil=True)
+def _shallowest_crossings(
+    across: np.ndarray, depth: np.ndarray, grid_m: float, first: int, last: int
+) -> tuple[np.ndarray, np.ndarray]:  # pragma: no cover - compiled
+    """:func:`upper_envelope` segment by segment: each grid point keeps its shallowest crossing, first of equals."""
+    size = last - first + 1
+    envelope = np.full(size, np.nan)
+    segment = np.full(size, -1, dtype=np.int64)
+    for j in range(across.size - 1):
+        x0, x1, z0, z1 = across[j], across[j + 1], depth[j], depth[j + 1]
+        low = max(int(math.ceil(min(x0, x1) / grid_m)), first)
+        high = min(int(math.floor(max(x0, x1) / grid_m)), last)
+        run = x1 - x0
+        for index in range(low, high + 1):
+            share = (index * grid_m - x0) / run if run != 0.0 else 0.0
+            crossing = z0 + min(max(share, 0.0), 1.0) * (z1 - z0)
+            k = index - first
+            best = envelope[k]
+            # A sort puts nan last: any number beats it.
+            if segment[k] < 0 or crossing < best or (best != best and crossing == crossing):
+                envelope[k] = crossing
+                segment[k] = j
+    return envelope, segment

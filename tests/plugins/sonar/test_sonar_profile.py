@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
-from trackbench_sonar.profile import MAX_GRID_POINTS, resample_swath, running_median, spike_mask
+from trackbench_sonar.profile import MAX_GRID_POINTS, resample_swath, running_median, spike_mask, upper_envelope
 
 from benchmark.errors import DataError
 from benchmark.modalities.sonar.model import Swath
@@ -64,6 +64,48 @@ def test_the_envelope_is_the_shallowest_crossing_of_every_segment():
             if min(x0, x1) <= x <= max(x0, x1) and x0 != x1
         ]
         assert z == pytest.approx(min(crossings))
+
+
+def sorted_envelope(across, depth, grid_m, first, last):
+    """The upper envelope as one sort of every (grid point, crossing) pair: the loop's bit-for-bit reference."""
+    x0, x1, z0, z1 = across[:-1], across[1:], depth[:-1], depth[1:]
+    low = np.maximum(np.ceil(np.minimum(x0, x1) / grid_m).astype(np.int64), first)
+    high = np.minimum(np.floor(np.maximum(x0, x1) / grid_m).astype(np.int64), last)
+    count = np.maximum(high - low + 1, 0)
+    segment = np.repeat(np.arange(x0.size), count)
+    index = low[segment] + np.arange(segment.size) - (np.cumsum(count) - count)[segment]
+    run = x1[segment] - x0[segment]
+    share = np.where(run != 0.0, (index * grid_m - x0[segment]) / np.where(run != 0.0, run, 1.0), 0.0)
+    crossing = z0[segment] + np.clip(share, 0.0, 1.0) * (z1[segment] - z0[segment])
+    order = np.lexsort((crossing, index))
+    winners = order[np.flatnonzero(np.diff(index[order], prepend=first - 1))]
+    return crossing[winners], segment[winners]
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    arrays(float, st.integers(2, 40), elements=st.floats(-3.0, 3.0).map(lambda v: round(v, 2))),
+    st.data(),
+    st.sampled_from([0.05, 0.06, 0.037, 0.1]),
+)
+def test_the_envelope_equals_the_sorted_form_bit_for_bit(across, data, grid_m):
+    depth = data.draw(arrays(float, across.size, elements=st.floats(5.0, 6.0).map(lambda v: round(v, 1))))
+    first, last = math.ceil(across.min() / grid_m), math.floor(across.max() / grid_m)
+    if last < first:
+        return
+    envelope, segment = upper_envelope(across, depth, grid_m, first, last)
+    expected, expected_segment = sorted_envelope(across, depth, grid_m, first, last)
+    np.testing.assert_array_equal(envelope, expected)  # ties (rounded values) keep the first segment
+    np.testing.assert_array_equal(segment, expected_segment)
+
+
+@settings(max_examples=100, deadline=None)
+@given(arrays(float, st.integers(1, 30), elements=st.floats(-1e3, 1e3)), st.sampled_from([1, 3, 5, 7]))
+def test_running_median_equals_pandas_bit_for_bit(values, window):
+    import pandas as pd
+
+    expected = pd.Series(values).rolling(window, center=True, min_periods=1).median().to_numpy()
+    np.testing.assert_array_equal(running_median(values, window), expected)
 
 
 def test_a_spike_along_its_beam_is_removed_but_the_pipe_is_kept(swaths):
