@@ -7,6 +7,7 @@ import os
 import cv2
 import numpy as np
 import pytest
+import threadpoolctl
 
 from benchmark.executors.local import LocalExecutor
 from benchmark.workers import cell_isolation, native_threads
@@ -22,11 +23,14 @@ def threads_after_loading_every_plugin() -> dict[str, int]:
     return native_threads()
 
 
-def test_a_worker_runs_one_blas_openmp_opencv_and_numba_thread() -> None:
+def test_a_worker_runs_one_blas_openmp_opencv_and_numba_thread(monkeypatch: pytest.MonkeyPatch) -> None:
     cv2.setNumThreads(2)
     image = np.random.default_rng(0).random((480, 640)).astype(np.float32)
     cv2.GaussianBlur(image, (31, 31), 5.0)  # this process's OpenCV pool is up before the worker is forked
-    counts = LocalExecutor(1).call(threads_after_loading_every_plugin, (), 120.0)
+    for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):  # the suite's conftest limits them
+        monkeypatch.setenv(name, "2")
+    with threadpoolctl.threadpool_limits(2):  # the BLAS and OpenMP pools this process has loaded: two threads
+        counts = LocalExecutor(1).call(threads_after_loading_every_plugin, (), 120.0)
     assert any("openblas" in name for name in counts)
     assert any("gomp" in name or "omp" in name for name in counts)
     assert {"opencv", "numba"} <= set(counts)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -27,11 +29,18 @@ def _fitted(classes: int, missing: bool, seed: int = 0, leaves: int = 31) -> His
 
 
 CLASSIFIERS = {
-    "three classes": _fitted(3, missing=False),
-    "three classes, missing values": _fitted(3, missing=True),
-    "two classes, missing values": _fitted(2, missing=True),
-    "four classes, trees of up to 60 leaves": _fitted(4, missing=True, leaves=60),
+    "three classes": dict(classes=3, missing=False),
+    "three classes, missing values": dict(classes=3, missing=True),
+    "two classes, missing values": dict(classes=2, missing=True),
+    "four classes, trees of up to 60 leaves": dict(classes=4, missing=True, leaves=60),
 }
+"""The classifiers the tables are checked against, by name: the arguments of :func:`_fitted`."""
+
+
+@functools.cache
+def classifier_named(name: str) -> HistGradientBoostingClassifier:
+    """The classifier ``name`` of :data:`CLASSIFIERS`, fitted on first use (not at collection, in every worker)."""
+    return _fitted(**CLASSIFIERS[name])
 
 
 @st.composite
@@ -57,7 +66,7 @@ def points(draw, forest: Forest) -> np.ndarray:
 @settings(max_examples=40, deadline=None)
 @given(data=st.data())
 def test_the_tables_predict_exactly_what_scikit_learn_predicts(name, data):
-    classifier = CLASSIFIERS[name]
+    classifier = classifier_named(name)
     regions = RegionClassifier.of(classifier, 0.5)
     x = data.draw(points(regions.forest))
     expected = classifier.predict_proba(x)
@@ -67,16 +76,16 @@ def test_the_tables_predict_exactly_what_scikit_learn_predicts(name, data):
 
 
 def test_trees_of_more_than_32_leaves_keep_64_bit_masks():
-    forest = RegionClassifier.of(CLASSIFIERS["four classes, trees of up to 60 leaves"], 0.5).forest
+    forest = RegionClassifier.of(classifier_named("four classes, trees of up to 60 leaves"), 0.5).forest
     assert forest.reachable.dtype == np.uint64
-    assert RegionClassifier.of(CLASSIFIERS["three classes"], 0.5).forest.reachable.dtype == np.uint32
+    assert RegionClassifier.of(classifier_named("three classes"), 0.5).forest.reachable.dtype == np.uint32
 
 
 @pytest.mark.parametrize("name", CLASSIFIERS)
 @settings(max_examples=40, deadline=None)
 @given(data=st.data())
 def test_each_value_selects_the_row_of_its_bin_among_the_sorted_thresholds(name, data):
-    forest = RegionClassifier.of(CLASSIFIERS[name], 0.5).forest
+    forest = RegionClassifier.of(classifier_named(name), 0.5).forest
     x = data.draw(points(forest))
     rows = _bin_rows(x, forest.thresholds, forest.starts, forest.cell_low, forest.cell_scale, forest.cell_bins)
     for f in range(x.shape[1]):
@@ -86,7 +95,7 @@ def test_each_value_selects_the_row_of_its_bin_among_the_sorted_thresholds(name,
 
 
 def test_float32_descriptors_are_compared_as_scikit_learn_compares_them():
-    classifier = CLASSIFIERS["three classes"]
+    classifier = classifier_named("three classes")
     x = np.random.default_rng(1).random((2000, 5)).astype(np.float32)
     expected = classifier.predict_proba(x.astype(np.float64))
     assert RegionClassifier.of(classifier, 0.5).probabilities(x).tobytes() == expected.tobytes()
