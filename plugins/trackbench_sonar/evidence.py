@@ -64,8 +64,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from benchmark.lazy import lazy_module
 from trackbench_sonar.cross_section import CrossSection
-from trackbench_sonar.evidence_kernel import footprint_evidence
 from trackbench_sonar.footprint import (
     TABLE_OFFSET_STEP,
     TABLE_REACH,
@@ -75,6 +75,8 @@ from trackbench_sonar.footprint import (
 )
 from trackbench_sonar.likelihood import LikelihoodScan
 from trackbench_sonar.profile import Profile
+
+evidence_kernel = lazy_module("trackbench_sonar.evidence_kernel")
 
 MIN_RETURNS = 6
 """Fewest returns in a candidate's window for it to be scored (the pipe model has four unknowns)."""
@@ -181,7 +183,7 @@ class FootprintLikelihood:
         high = np.searchsorted(x, centre + reach, side="right")
         sigma_f = footprint_sigma(centre, profile.depth_m, self.beam_width)
         offsets, sigmas, table = semicircle_table()
-        evidence, pedestal, scored = footprint_evidence(
+        evidence, pedestal, scored = evidence_kernel.footprint_evidence(
             x,
             z,
             centre,
