@@ -67,6 +67,9 @@ def _worker_pool() -> Any:
     """
     global _pool
     with _pool_lock:
+        if _pool is not None and not _pool.active:
+            _pool.stop()  # broken, e.g. a replacement for a crashed process failed to start: start afresh
+            _pool = None
         if _pool is None:
             import multiprocessing
 
@@ -76,6 +79,23 @@ def _worker_pool() -> Any:
             _pool = worker_pool(get_worker().state.nthreads)
             atexit.register(_pool.stop)
         return _pool
+
+
+def _in_worker_pool(work: Callable[[Any], Any]) -> Any:
+    """``work(pool)``, which schedules on the pool, in this worker's pool; again in a fresh pool if that one broke.
+
+    A pebble pool that fails to replace a process (a crashed cell's) goes
+    into an error state, and every later ``schedule`` raises
+    ``RuntimeError``: the task it was given never ran, so it is given to a
+    new pool rather than charged with the pool's fault.
+    """
+    pool = _worker_pool()
+    try:
+        return work(pool)
+    except RuntimeError:
+        if pool.active:
+            raise
+        return work(_worker_pool())
 
 
 @functools.cache
@@ -104,12 +124,13 @@ def run_cell_on_worker(cell: Cell, timeout_s: float | None, model: bytes | None 
     adopted = Call.of(lambda: _adopt_model(cell, model), "storing the fitted model on the worker")
     if not adopted.ok:
         return cell_from_call(cell, adopted, timeout_s)
-    return cell_in_pool(_worker_pool(), adopted.value(), timeout_s)
+    return _in_worker_pool(lambda pool: cell_in_pool(pool, adopted.value(), timeout_s))
 
 
 def call_on_worker(function: Callable[..., Any], args: tuple[Any, ...], timeout_s: float | None) -> Any:
     """The Dask task of :meth:`DaskExecutor.call`: ``function(*args)`` in this worker's process pool."""
-    return value_from_future(_worker_pool().schedule(function, args=args, timeout=timeout_s), timeout_s)
+    future = _in_worker_pool(lambda pool: pool.schedule(function, args=args, timeout=timeout_s))
+    return value_from_future(future, timeout_s)
 
 
 class DaskExecutor:
