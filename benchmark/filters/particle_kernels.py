@@ -147,6 +147,15 @@ def walk(weights: np.ndarray, points: np.ndarray, below_one: float) -> np.ndarra
 
 
 @numba.njit(cache=True, nogil=True)
+def strictly_ascending(values: np.ndarray, order: np.ndarray) -> bool:
+    """Whether ``values[order]`` rises strictly: distinct values, no NaN, so ``order`` is the only ascending one."""
+    for k in range(1, order.shape[0]):
+        if not values[order[k]] > values[order[k - 1]]:
+            return False
+    return True
+
+
+@numba.njit(cache=True, nogil=True)
 def weighted_quantiles(
     values: np.ndarray, weights: np.ndarray, order: np.ndarray, q: np.ndarray
 ) -> np.ndarray:

@@ -186,8 +186,7 @@ class ParticleSet:
             raise ValueError(f"quantiles must be in [0, 1], got {q}")
         values = self.states[:, dimension]
         order = np.argsort(values)
-        ordered = values[order]
-        if not np.all(ordered[1:] > ordered[:-1]):
+        if not _kernels.strictly_ascending(values, order):
             # Only distinct values have one ascending order; with ties (or NaN)
             # the stable sort fixes the order of the weights that are summed.
             order = np.argsort(values, kind="stable")

@@ -140,8 +140,10 @@ class Silhouette:
             return measure.line_scores(image, self.taps, self.spacing, normals[(side + 1) // 2], lines)[0]
 
         # Eq. (4.11)'s polarity: a bright cable has c_l < 0 < c_r.
-        here = np.zeros(1)
-        if not counts(1, here)[0] - counts(-1, here)[0] > 0:
+        left, right = measure.border_line_scores(
+            image, self.taps, self.spacing, alpha - beta, alpha + beta, (d - 0.5 * w) * cos_beta, (d + 0.5 * w) * cos_beta
+        )
+        if not right - left > 0:
             return np.array([d, alpha, w, beta])
         offsets = np.arange(-(int(np.ceil(0.5 * w)) + radius), radius + 1, dtype=float)
         shift_left = self._shift(offsets, -counts(-1, offsets))
