@@ -269,3 +269,16 @@ def test_quantiles_sum_the_weights_in_the_stable_order_whether_values_tie_or_not
     rows = np.minimum(np.searchsorted(cumulative, q * cumulative[-1], side="left"), n - 1)
     particles = ParticleSet(np.column_stack([values, -values]), weights)
     np.testing.assert_array_equal(particles.quantiles(q, 0), values[order[rows]])
+
+
+@QUICK
+@given(st.integers(1, 60), st.data())
+def test_quantiles_with_and_without_ties_are_those_of_the_stable_order(n: int, data: st.DataObject) -> None:
+    values = data.draw(hnp.arrays(np.float64, n, elements=st.sampled_from([-3.0, -0.0, 0.0, 1.5, 7.0])))
+    raw = data.draw(hnp.arrays(np.float64, n, elements=st.floats(0.0, 10.0)))
+    particles = ParticleSet(np.column_stack([values, values]), normalise_weights(raw + 1.0))
+    q = np.array([0.0, 0.16, 0.5, 0.84, 1.0])
+    order = np.argsort(values, kind="stable")
+    cumulative = np.cumsum(particles.weights[order])
+    rows = np.minimum(np.searchsorted(cumulative, q * cumulative[-1], side="left"), n - 1)
+    np.testing.assert_array_equal(particles.quantiles(q, 0), values[order[rows]])
