@@ -157,3 +157,16 @@ def weighted_quantiles(
     for k in range(q.shape[0]):
         out[k] = values[order[min(rows[k], values.shape[0] - 1)]]
     return out
+
+
+@numba.njit(cache=True, nogil=True)
+def distinct_quantiles(values: np.ndarray, weights: np.ndarray, order: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """:func:`weighted_quantiles` when ``values[order]`` rises strictly; empty otherwise.
+
+    Only distinct values (without NaN) have one ascending order; with ties
+    the caller fixes the order by a stable sort.
+    """
+    for k in range(1, order.shape[0]):
+        if not values[order[k]] > values[order[k - 1]]:
+            return np.empty(0)
+    return weighted_quantiles(values, weights, order, q)

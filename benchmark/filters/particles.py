@@ -185,18 +185,22 @@ class ParticleSet:
         if not np.all((q >= 0.0) & (q <= 1.0)):
             raise ValueError(f"quantiles must be in [0, 1], got {q}")
         values = self.states[:, dimension]
-        order = np.argsort(values)
-        ordered = values[order]
-        if not np.all(ordered[1:] > ordered[:-1]):
+        flat_q = q.reshape(-1)
+        # Weights sum to one up to rounding: the kernels compare with the actual total, and stay in range.
+        found = _kernels.distinct_quantiles(values, self.weights, np.argsort(values), flat_q)
+        if found.size != flat_q.size:
             # Only distinct values have one ascending order; with ties (or NaN)
             # the stable sort fixes the order of the weights that are summed.
-            order = np.argsort(values, kind="stable")
-        # Weights sum to one up to rounding: the kernel compares with the actual total, and stays in range.
-        return _kernels.weighted_quantiles(values, self.weights, order, q.reshape(-1)).reshape(q.shape)
+            found = _kernels.weighted_quantiles(values, self.weights, np.argsort(values, kind="stable"), flat_q)
+        return found.reshape(q.shape)
 
     def take(self, indices: np.ndarray) -> ParticleSet:
         """The particles at ``indices``, equally weighted: the result of resampling."""
-        return ParticleSet.equally_weighted(self.states[np.asarray(indices)])
+        indices = np.asarray(indices)
+        if indices.dtype.kind in "iu":
+            # The same rows as ``states[indices]``, copied faster for integer indices.
+            return ParticleSet.equally_weighted(np.take(self.states, indices, axis=0))
+        return ParticleSet.equally_weighted(self.states[indices])
 
 
 def _check_shapes(states: np.ndarray, weights: np.ndarray) -> None:

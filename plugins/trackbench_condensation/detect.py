@@ -36,6 +36,7 @@ candidates to propose, the tracker decides (:mod:`trackbench_condensation.tracke
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -162,6 +163,7 @@ class LocalAscent:
     halvings: int = 3
     max_rounds: int = 40
 
+    @functools.cached_property
     def _first_steps(self) -> tuple[np.ndarray, float]:
         """The first steps of ``(d, alpha, w, beta)`` in px and rad, and the ``d`` step at which a candidate stops."""
         first = np.array(self.first_steps, dtype=float)
@@ -201,7 +203,7 @@ class LocalAscent:
         ----------
         seeds/000, section 4.5, eq. (4.11).
         """
-        first, smallest = self._first_steps()
+        first, smallest = self._first_steps
         if isinstance(score, ImageScore):
             starts = np.array(states, dtype=float).reshape(-1, 4)
             low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)

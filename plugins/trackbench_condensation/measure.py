@@ -415,6 +415,47 @@ def line_scores(
 
 
 @numba.njit(cache=True, nogil=True)
+def border_line_scores(
+    image: np.ndarray,
+    taps: np.ndarray,
+    spacing: float,
+    alpha_left: float,
+    alpha_right: float,
+    line_left: float,
+    line_right: float,
+) -> tuple[float, float]:
+    """The :func:`line_scores` of two single lines, a cable's left and right border, in one call.
+
+    Parameters
+    ----------
+    image, taps, spacing
+        As for :func:`line_scores`.
+    alpha_left, alpha_right : float
+        Angles of the borders' normals, rad (``alpha -+ beta``).
+    line_left, line_right : float
+        Their signed distances from the image centre, px.
+
+    Returns
+    -------
+    tuple of float
+        The left and the right border's summed responses, ``c_l`` and ``c_r``.
+
+    References
+    ----------
+    seeds/000, section 4.5, eq. (4.11).
+    """
+    alphas = np.empty(1)
+    lines = np.empty(1)
+    alphas[0] = alpha_left
+    lines[0] = line_left
+    left = line_scores(image, taps, spacing, alphas, lines)[0, 0]
+    alphas[0] = alpha_right
+    lines[0] = line_right
+    right = line_scores(image, taps, spacing, alphas, lines)[0, 0]
+    return left, right
+
+
+@numba.njit(cache=True, nogil=True)
 def best_pairs(
     scores: np.ndarray, offsets: np.ndarray, min_width: float, max_width: float, keep: int
 ) -> tuple[np.ndarray, np.ndarray]:

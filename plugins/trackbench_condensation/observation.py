@@ -143,9 +143,13 @@ class BorderObservation:
         return self._weights(states, image, float(self.exponent))
 
     def _weights(self, states: np.ndarray, image: np.ndarray, exponent: float) -> np.ndarray:
+        return self.grey_weights(states, as_grey_image(image), exponent)
+
+    def grey_weights(self, states: np.ndarray, grey: np.ndarray, exponent: float) -> np.ndarray:
+        """:meth:`score` to the power ``exponent`` on an image :func:`as_grey_image` already made."""
         return measure.particle_weights(
             np.ascontiguousarray(states, dtype=float),
-            as_grey_image(image),
+            grey,
             self.taps,
             float(self.sample_distance_px),
             self.interpolation == "bilinear",
@@ -183,7 +187,7 @@ class ImageScore:
 
     def __call__(self, states: np.ndarray) -> np.ndarray:
         """Eq. (4.11) scores of ``(N, D)`` states (:meth:`BorderObservation.score`)."""
-        return self.observation.score(states, self.image)
+        return self.observation.grey_weights(states, self.image, 1.0)
 
     def ascend(
         self,

@@ -48,10 +48,13 @@ CENTRAL_SHARE = 0.68
 """Share of the weight inside the interval whose half-width measures the spread (one sigma of a Gaussian)."""
 
 
+_CENTRAL_BOUNDS = np.array([(1.0 - CENTRAL_SHARE) / 2.0, 1.0 - (1.0 - CENTRAL_SHARE) / 2.0])
+"""The weighted quantiles that bound the central interval."""
+
+
 def spread_of_distance(particles: ParticleSet) -> float:
     """Half the central 68 % weighted interval of the particles' ``d`` (column 0), px."""
-    tail = (1.0 - CENTRAL_SHARE) / 2.0
-    low, high = particles.quantiles([tail, 1.0 - tail], DISTANCE)
+    low, high = particles.quantiles(_CENTRAL_BOUNDS, DISTANCE)
     return float(high - low) / 2.0
 
 

@@ -124,25 +124,27 @@ class Silhouette:
         ----------
         seeds/000, eq. (4.11).
         """
-        d, alpha, w, beta = (float(v) for v in state[:4])
+        d, alpha, w, beta = np.asarray(state, dtype=float)[:4].tolist()
         if not w > 0:
             return np.asarray(state[:4], dtype=float).copy()
-        radius = self.radius
         image = as_grey_image(image)
         # Each border is a straight line with its own normal n(alpha -+ beta), at the
         # distance (d -+ w/2) cos(beta) from the centre; its count is that line's score.
-        normals = (np.array([alpha - beta]), np.array([alpha + beta]))
         cos_beta = np.cos(beta)
+        # Eq. (4.11)'s polarity: a bright cable has c_l < 0 < c_r.
+        left, right = measure.border_line_scores(
+            image, self.taps, self.spacing, alpha - beta, alpha + beta, (d - 0.5 * w) * cos_beta, (d + 0.5 * w) * cos_beta
+        )
+        if not right - left > 0:
+            return np.array([d, alpha, w, beta])
+        radius = self.radius
+        normals = (np.array([alpha - beta]), np.array([alpha + beta]))
 
         def counts(side: int, offsets: np.ndarray) -> np.ndarray:
             # side -1: the left border, moved inwards (+n) by the offsets; +1: the right one (-n).
             lines = (d + side * (0.5 * w - offsets)) * cos_beta
             return measure.line_scores(image, self.taps, self.spacing, normals[(side + 1) // 2], lines)[0]
 
-        # Eq. (4.11)'s polarity: a bright cable has c_l < 0 < c_r.
-        here = np.zeros(1)
-        if not counts(1, here)[0] - counts(-1, here)[0] > 0:
-            return np.array([d, alpha, w, beta])
         offsets = np.arange(-(int(np.ceil(0.5 * w)) + radius), radius + 1, dtype=float)
         shift_left = self._shift(offsets, -counts(-1, offsets))
         shift_right = self._shift(offsets, counts(1, offsets))

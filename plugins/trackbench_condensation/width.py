@@ -77,5 +77,11 @@ class WidthPrior:
         weights = self.observation.likelihood(states, observation)
         if self.mean_width is None:
             return weights
-        z = (states[:, WIDTH] - self.mean_width) / (self.spread * self.mean_width)
-        return weights * np.exp(-0.5 * z * z)
+        # In place, the same operations as ``weights * exp(-0.5 * z * z)`` on ``z = (w - w_bar) / (k w_bar)``.
+        z = states[:, WIDTH] - self.mean_width
+        z /= self.spread * self.mean_width
+        prior = z * -0.5
+        prior *= z
+        prior = np.exp(prior)
+        prior *= weights
+        return prior

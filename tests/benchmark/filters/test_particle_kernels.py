@@ -90,3 +90,29 @@ def test_the_first_invalid_weight_is_found(raw, data):
     spoiled = raw.copy()
     spoiled[bad] = data.draw(st.sampled_from([-1.0, -1e-300, np.nan, np.inf, -np.inf]))
     assert kernels.first_invalid(spoiled) == bad
+
+
+def reference_quantiles(values: np.ndarray, w: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """The quantiles as ``ParticleSet.quantiles`` found them before :func:`kernels.distinct_quantiles`."""
+    order = np.argsort(values)
+    ordered = values[order]
+    if not np.all(ordered[1:] > ordered[:-1]):
+        order = np.argsort(values, kind="stable")
+    return kernels.weighted_quantiles(values, w, order, q)
+
+
+@settings(max_examples=200, deadline=None)
+@given(weights, st.data())
+def test_quantiles_of_distinct_values_or_found_after_a_stable_sort_are_the_old_ones(raw, data):
+    n = raw.size
+    # Few distinct values give ties (-0.0 and 0.0 among them), NaN the unordered case.
+    pool = data.draw(st.sampled_from([st.floats(-1e3, 1e3), st.sampled_from([-1.0, -0.0, 0.0, 2.0, np.nan])]))
+    values = data.draw(hnp.arrays(np.float64, n, elements=pool))
+    q = np.asarray(data.draw(st.lists(st.floats(0.0, 1.0), min_size=1, max_size=4)))
+    w = reference_normalised(raw)
+    found = kernels.distinct_quantiles(values, w, np.argsort(values), q)
+    distinct = bool(np.all(np.sort(values)[1:] > np.sort(values)[:-1]))
+    assert (found.size == q.size) == distinct
+    if not distinct:
+        found = kernels.weighted_quantiles(values, w, np.argsort(values, kind="stable"), q)
+    np.testing.assert_array_equal(found, reference_quantiles(values, w, q))

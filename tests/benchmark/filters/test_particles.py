@@ -179,9 +179,10 @@ def test_best_is_a_particle_of_highest_weight(case: tuple[np.ndarray, np.ndarray
 @QUICK
 @given(states_for(20), st.data())
 def test_take_copies_the_chosen_states_with_equal_weights(states: np.ndarray, data: st.DataObject) -> None:
-    indices = np.array(data.draw(st.lists(st.integers(0, 19), min_size=1, max_size=40)))
+    indices = np.array(data.draw(st.lists(st.integers(-20, 19), min_size=1, max_size=40)))
     taken = ParticleSet.equally_weighted(states).take(indices)
-    assert np.array_equal(taken.states, states[indices])
+    # Bit for bit the rows that indexing picks (negative indices count from the end).
+    assert taken.states.tobytes() == states[indices].tobytes()
     np.testing.assert_allclose(taken.weights, 1.0 / indices.size, rtol=1e-15)
 
 
@@ -268,4 +269,17 @@ def test_quantiles_sum_the_weights_in_the_stable_order_whether_values_tie_or_not
     cumulative = np.cumsum(weights[order])
     rows = np.minimum(np.searchsorted(cumulative, q * cumulative[-1], side="left"), n - 1)
     particles = ParticleSet(np.column_stack([values, -values]), weights)
+    np.testing.assert_array_equal(particles.quantiles(q, 0), values[order[rows]])
+
+
+@QUICK
+@given(st.integers(1, 60), st.data())
+def test_quantiles_with_and_without_ties_are_those_of_the_stable_order(n: int, data: st.DataObject) -> None:
+    values = data.draw(hnp.arrays(np.float64, n, elements=st.sampled_from([-3.0, -0.0, 0.0, 1.5, 7.0])))
+    raw = data.draw(hnp.arrays(np.float64, n, elements=st.floats(0.0, 10.0)))
+    particles = ParticleSet(np.column_stack([values, values]), normalise_weights(raw + 1.0))
+    q = np.array([0.0, 0.16, 0.5, 0.84, 1.0])
+    order = np.argsort(values, kind="stable")
+    cumulative = np.cumsum(particles.weights[order])
+    rows = np.minimum(np.searchsorted(cumulative, q * cumulative[-1], side="left"), n - 1)
     np.testing.assert_array_equal(particles.quantiles(q, 0), values[order[rows]])

@@ -14,6 +14,7 @@ from trackbench_condensation.measure import (
     _border,
     _sample_range,
     best_pairs,
+    border_line_scores,
     border_scores,
     centre_contrast,
     line_scores,
@@ -257,3 +258,18 @@ def test_best_pairs_keeps_the_pairs_of_the_exhaustive_search(data):
     expected_rows, expected_values = reference_best_pairs(scores, offsets, min_width, max_width, keep)
     np.testing.assert_array_equal(rows, expected_rows)
     np.testing.assert_array_equal(values, expected_values)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.tuples(st.floats(-60, 60), st.floats(-60, 60)),
+    st.tuples(st.floats(-200, 200), st.floats(-200, 200)),
+    st.sampled_from([np.uint8, np.float32]),
+    st.integers(0, 2**32 - 1),
+)
+def test_the_two_border_lines_score_as_two_line_score_calls_bit_for_bit(alphas_deg, lines, dtype, seed):
+    image = np.random.default_rng(seed).integers(0, 256, size=(48, 64)).astype(dtype)
+    alpha_left, alpha_right = (math.radians(a) for a in alphas_deg)
+    left, right = border_line_scores(image, TAPS, 7.0, alpha_left, alpha_right, *lines)
+    assert left == line_scores(image, TAPS, 7.0, np.array([alpha_left]), np.array([lines[0]]))[0, 0]
+    assert right == line_scores(image, TAPS, 7.0, np.array([alpha_right]), np.array([lines[1]]))[0, 0]

@@ -70,3 +70,22 @@ def test_the_prior_only_lowers_weights_and_keeps_them_finite(mean_width, widths,
     assert np.all(np.isfinite(weights)) and np.all(weights >= 0) and np.all(weights <= 5.0)
     nearest = int(np.argmin(np.abs(np.array(widths) - mean_width)))
     assert weights[nearest] == weights.max()
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    st.floats(1.0, 500.0),
+    st.lists(st.floats(-50.0, 600.0), min_size=1, max_size=40),
+    st.floats(0.01, 2.0),
+    st.floats(1e-3, 1e4),
+)
+def test_the_prior_is_the_closed_form_bit_for_bit(mean_width, widths, spread, weight):
+    class Constant:
+        def likelihood(self, states: np.ndarray, observation: object) -> np.ndarray:
+            return np.full(len(states), weight)
+
+    prior = WidthPrior(Constant(), spread=spread, rate=0.05)
+    prior.reset(mean_width)
+    states = states_with_width(widths)
+    z = (states[:, 2] - mean_width) / (spread * mean_width)
+    np.testing.assert_array_equal(prior.likelihood(states, None), np.full(len(widths), weight) * np.exp(-0.5 * z * z))
