@@ -44,6 +44,13 @@ cache_option = click.option(
     help=f"Folder of the frame cache (default: ${CACHE_ENV}, else the platform's user cache folder).",
 )
 
+def init_option(
+    default: str = "truth", help: str = "Initialise trackers from the first frame's ground truth, or not."
+) -> Any:
+    """``--init truth|none``: whether a cell's tracker starts from the first frame's truth."""
+    return click.option("--init", type=click.Choice(["truth", "none"]), default=default, show_default=True, help=help)
+
+
 _RUN_OPTIONS = [
     click.option(
         "--suite", "suites", multiple=True, metavar="SUITE", help="Run every sequence of a suite (repeatable)."
@@ -71,13 +78,7 @@ _RUN_OPTIONS = [
         help="Run cells in this process, for debuggers and profilers: no time limit inside a step, "
         "and a tracker that exits or crashes ends the run.",
     ),
-    click.option(
-        "--init",
-        type=click.Choice(["truth", "none"]),
-        default="truth",
-        show_default=True,
-        help="Initialise trackers from the first frame's ground truth, or not.",
-    ),
+    init_option(),
     click.option("--resume", is_flag=True, help="Skip cells this database already finished with status ok."),
     click.option(
         "--timeout",

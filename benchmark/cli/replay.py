@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 import click
 
-from benchmark.cli.options import cache_option
+from benchmark.cli.options import cache_option, init_option
 
 if TYPE_CHECKING:
     from benchmark.cli.session import Session
@@ -51,13 +51,7 @@ def default_page(tracker: str, dataset: str, seed: int) -> Path:
     default=None,
     help="Frames A to B-1 only (the tracker still starts at frame 0).",
 )
-@click.option(
-    "--init",
-    type=click.Choice(["truth", "none"]),
-    default="truth",
-    show_default=True,
-    help="Start from the first frame's truth, or from nothing.",
-)
+@init_option(help="Start from the first frame's truth, or from nothing.")
 @click.option(
     "--out",
     type=click.Path(dir_okay=False, path_type=Path),

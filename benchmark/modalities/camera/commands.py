@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 import click
 
-from benchmark.cli.options import OUT_OPTION
+from benchmark.cli.options import OUT_OPTION, init_option
 from benchmark.hookspecs import hookimpl
 from benchmark.modalities.camera.labeller.command import label_command
 
@@ -76,13 +76,7 @@ def diagnose_command(
 @click.option("--dataset", required=True, metavar="NAME|PATH", help="A camera sequence whose truth has the pose.")
 @click.option("--first", type=click.IntRange(min=0), default=0, show_default=True, help="First frame shown.")
 @click.option("--frames", type=click.IntRange(min=1), default=12, show_default=True, help="Number of frames shown.")
-@click.option(
-    "--init",
-    type=click.Choice(["truth", "none"]),
-    default="none",
-    show_default=True,
-    help="Start from the first frame's truth, or from the tracker's own prior (the paper's x_0).",
-)
+@init_option("none", "Start from the first frame's truth, or from the tracker's own prior (the paper's x_0).")
 @OUT_OPTION
 @click.pass_obj
 def pose_table_command(
