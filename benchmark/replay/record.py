@@ -313,9 +313,10 @@ class _Recorder:
     report: Callable[[int, int], None] | None
 
     def __call__(self, tracker: Any, frame: Frame, estimate: Any, score: FrameScore) -> None:
-        names = tuple(getattr(tracker, "belief_dimensions", ()))
-        if len(names) > len(self.recording.dimensions) and names[: len(self.view.dimensions)] == self.view.dimensions:
-            self.recording.dimensions = names
+        if frame.index == 0:  # the tracker names its belief's columns once, for the whole recording
+            names = tuple(getattr(tracker, "belief_dimensions", ()))
+            if len(names) > len(self.view.dimensions) and names[: len(self.view.dimensions)] == self.view.dimensions:
+                self.recording.dimensions = names
         if frame.index >= self.first:
             tick = time.perf_counter()
             self.recording.frames.append(self._kept(tracker, frame, estimate, score))
