@@ -41,7 +41,7 @@ from benchmark.modalities.camera.geometry import ImageSize, Line, cable_borders
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
-from trackbench_hough.edges import compile_kernels, log_response, zero_crossings
+from trackbench_hough.edges import compile_kernels, log_response, zero_crossings, zero_crossings_in
 from trackbench_hough.lines import HoughLine, accumulator_maxima, suppress_duplicates
 from trackbench_hough.pairing import choose_pair, compatible_pairs
 from trackbench_hough.params import HoughParams
@@ -145,8 +145,14 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
         sizes = self._sizes_for((width, height))
         self._start_window(sizes)
         response = log_response(image, p.log_sigma)
-        edges = zero_crossings(response, p.log_sigma, EDGE_THRESHOLDS[p.edge_rule](response, p.log_sigma, p))
+        min_step = EDGE_THRESHOLDS[p.edge_rule](response, p.log_sigma, p)
         window = self._searched = self._window
+        if window is None:
+            edges = zero_crossings(response, p.log_sigma, min_step)
+        else:
+            # Pixels far from both borders vote only for lines the window does not admit.
+            strips = window.voting_strips(sizes.size, sizes.rho_step, sizes.theta_step)
+            edges = zero_crossings_in(response, p.log_sigma, min_step, strips)
         raw = accumulator_maxima(
             edges,
             sizes.rho_step,
