@@ -27,24 +27,31 @@ def strong_crossings(response: np.ndarray, min_jump: np.float32) -> np.ndarray:
 
     A crossing lies between vertical or horizontal neighbours ``a``, ``b`` of
     opposite sign bits with ``|a - b| >= min_jump`` (``float32``); it marks
-    ``a`` when ``|a| <= |b|``, else ``b``.  Each pixel gathers the marks of
-    its four crossings without branching on them, so the loop vectorises.
+    ``a`` when ``|a| <= |b|``, else ``b``.  Each crossing is judged once, row
+    by row: the marks a row gets from its horizontal crossings and from the
+    row below are gathered in buffers of one row, whose loops vectorise, and
+    the marks the row below gets are kept for it.
     """
     height, width = response.shape
-    edges = np.zeros((height, width), np.uint8)
+    edges = np.empty((height, width), np.uint8)
+    from_above = np.zeros(width, np.uint8)
+    from_left = np.zeros(width, np.uint8)
+    from_right = np.zeros(width, np.uint8)
     for i in range(height):
-        for j in range(width):
-            a = response[i, j]
-            marked = False
-            if j + 1 < width:
-                marked |= _marks(a, response[i, j + 1], min_jump)[0]
-            if j > 0:
-                marked |= _marks(response[i, j - 1], a, min_jump)[1]
-            if i + 1 < height:
-                marked |= _marks(a, response[i + 1, j], min_jump)[0]
-            if i > 0:
-                marked |= _marks(response[i - 1, j], a, min_jump)[1]
-            edges[i, j] = 255 if marked else 0
+        row, out = response[i], edges[i]
+        for j in range(width - 1):
+            first, second = _marks(row[j], row[j + 1], min_jump)
+            from_right[j] = first
+            from_left[j + 1] = second
+        if i + 1 < height:
+            below = response[i + 1]
+            for j in range(width):
+                first, second = _marks(row[j], below[j], min_jump)
+                out[j] = (from_above[j] | first | from_right[j] | from_left[j]) * np.uint8(255)
+                from_above[j] = second
+        else:
+            for j in range(width):
+                out[j] = (from_above[j] | from_right[j] | from_left[j]) * np.uint8(255)
     return edges
 
 

@@ -58,6 +58,8 @@ def test_zero_crossings_match_the_array_formulation(response, sigma, min_step):
     found = zero_crossings(response, sigma, min_step)
     assert found.dtype == np.uint8
     np.testing.assert_array_equal(found, expected)
+    wide = response.astype(np.float64)
+    np.testing.assert_array_equal(zero_crossings(wide, sigma, min_step), zero_crossings_by_arrays(wide, sigma, min_step))
 
 
 @settings(max_examples=150, deadline=None)
