@@ -126,7 +126,7 @@ class SearchWindow:
     def voting_strips(
         self, size: tuple[int, int], rho_step: float, theta_step: float
     ) -> list[tuple[int, int, int, int]]:
-        """Rectangles ``(row0, row1, col0, col1)`` (ends excluded) holding every pixel that can vote for an admitted line.
+        """Rectangles ``(row0, row1, col0, col1)``, ends excluded, holding every pixel that can vote for a line admitted.
 
         HoughLines keeps an accumulator cell when it beats its four
         neighbours, so the pixels that matter are those that vote for an

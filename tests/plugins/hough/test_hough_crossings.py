@@ -59,7 +59,8 @@ def test_zero_crossings_match_the_array_formulation(response, sigma, min_step):
     assert found.dtype == np.uint8
     np.testing.assert_array_equal(found, expected)
     wide = response.astype(np.float64)
-    np.testing.assert_array_equal(zero_crossings(wide, sigma, min_step), zero_crossings_by_arrays(wide, sigma, min_step))
+    expected_wide = zero_crossings_by_arrays(wide, sigma, min_step)
+    np.testing.assert_array_equal(zero_crossings(wide, sigma, min_step), expected_wide)
 
 
 @settings(max_examples=150, deadline=None)
@@ -94,7 +95,9 @@ def test_median_crossing_step_is_numpys_median_of_the_steps(response, sigma, str
 
 @settings(max_examples=100, deadline=None)
 @given(
-    values=hnp.arrays(np.float32, st.integers(2, 3000), elements=st.floats(0.0, 1e4, width=32) | st.sampled_from([0.0, 1.0, 2.0])),
+    values=hnp.arrays(
+        np.float32, st.integers(2, 3000), elements=st.floats(0.0, 1e4, width=32) | st.sampled_from([0.0, 1.0, 2.0])
+    ),
 )
 def test_order_statistics_are_those_of_the_sorted_values(values):
     rank = values.size // 2
@@ -106,7 +109,7 @@ def test_order_statistics_are_those_of_the_sorted_values(values):
 @given(
     response=responses,
     min_step=st.floats(0.0, 400.0),
-    corners=st.lists(st.tuples(st.integers(0, 12), st.integers(0, 12), st.integers(0, 12), st.integers(0, 12)), max_size=3),
+    corners=st.lists(st.tuples(*[st.integers(0, 12)] * 4), max_size=3),
 )
 def test_zero_crossings_in_rectangles_are_those_of_the_whole_frame(response, min_step, corners):
     height, width = response.shape

@@ -106,5 +106,5 @@ def test_voting_strips_cover_the_rows_near_a_horizontal_border():
 def test_voting_strips_follow_a_vertical_border():
     window = SearchWindow(((0.0, 0.0), (20.0, 0.0)), 5.0, math.radians(1.0))
     strips = window.voting_strips((640, 480), 1.0, math.radians(0.5))
-    assert [(row0, row1) for row0, row1, _, _ in strips] == [(row0, min(row0 + 60, 480)) for row0 in range(0, 480, 60)]
+    assert [(row0, row1) for row0, row1, _, _ in strips] == [(row0, row0 + 60) for row0 in range(0, 480, 60)]
     assert all(100 < col0 < 319.5 < 339.5 < col1 < 540 for _, _, col0, col1 in strips)
