@@ -14,6 +14,11 @@ OpenCV does not write to the edge image, so it is passed without a copy,
 as the tracker passes it.
 What it leaves out, the zero crossings, the window's admission, duplicate
 suppression and pairing, is the tracker's own work.  Goal: issue 34's.
+
+The LoG stays frame-wide in both: "the LoG filter still has to be applied
+on the whole image" (seeds/000, section 2.1), and the tracker's threshold is
+a statistic of the whole frame's zero crossings
+(:mod:`trackbench_hough.thresholds`).
 """
 
 from __future__ import annotations
