@@ -114,6 +114,42 @@ def crossing_steps(response: np.ndarray, sigma: float, stride: int = 2) -> np.nd
     return crossings.crossing_jumps(_floating(response), stride).astype(np.float64) * step_height_scale(sigma)
 
 
+def median_crossing_step(response: np.ndarray, sigma: float, stride: int = 2) -> float | None:
+    """The median of :func:`crossing_steps`, exactly as ``numpy.median`` gives it, from less work.
+
+    Scaling by ``step_height_scale(sigma) > 0`` keeps the order of the
+    jumps, so the middle one or two ``float32`` jumps are found by counting
+    (:func:`trackbench_hough.crossings.order_statistics`) instead of
+    partitioning every step, then scaled and averaged in ``float64`` as
+    ``numpy.median`` averages the two middle steps.
+
+    Parameters
+    ----------
+    response, sigma, stride
+        As :func:`crossing_steps`.
+
+    Returns
+    -------
+    float or None
+        The median step height in grey levels; None without crossings.
+
+    References
+    ----------
+    seeds/000, section 2.1 (zero crossings of the LoG indicate borders).
+    """
+    if stride < 1:
+        raise ValueError(f"stride must be at least 1, got {stride}")
+    jumps = crossings.crossing_jumps(_floating(response), stride)
+    scale = step_height_scale(sigma)
+    if jumps.size < 2 or np.isnan(jumps).any():
+        return float(np.median(jumps.astype(np.float64) * scale)) if jumps.size else None
+    rank = jumps.size // 2
+    below, middle = crossings.order_statistics(jumps, rank)
+    if jumps.size % 2:
+        return float(np.float64(middle) * scale)
+    return float((np.float64(below) * scale + np.float64(middle) * scale) / 2.0)
+
+
 def _floating(response: np.ndarray) -> np.ndarray:
     """The response as a ``float32`` or ``float64`` array, the dtypes the compiled loops are typed for."""
     response = np.asarray(response)
@@ -151,6 +187,45 @@ def zero_crossings(response: np.ndarray, sigma: float, min_step: float) -> np.nd
     # The jump is compared in the response's own precision, as numpy compares an array with a Python float.
     min_jump = response.dtype.type(min_step / step_height_scale(sigma))
     return crossings.strong_crossings(response, min_jump)
+
+
+def zero_crossings_in(
+    response: np.ndarray, sigma: float, min_step: float, rectangles: list[tuple[int, int, int, int]]
+) -> np.ndarray:
+    """:func:`zero_crossings` inside the rectangles, 0 elsewhere.
+
+    Each rectangle ``(row0, row1, col0, col1)`` (ends excluded) is cut out of
+    the response with one more pixel each side where the frame has one, so
+    that the pixels inside see the same four neighbours as in the whole
+    frame and get the same value.
+
+    Parameters
+    ----------
+    response, sigma, min_step
+        As :func:`zero_crossings`.
+    rectangles : list of tuple of int
+        Where the edge image is wanted
+        (:meth:`trackbench_hough.window.SearchWindow.voting_strips`).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``uint8`` image of shape ``(H, W)``.
+
+    References
+    ----------
+    seeds/000, section 2.1.
+    """
+    response = _floating(response)
+    height, width = response.shape
+    min_jump = response.dtype.type(min_step / step_height_scale(sigma))
+    edges = np.zeros((height, width), np.uint8)
+    for row0, row1, col0, col1 in rectangles:
+        top, left = max(row0 - 1, 0), max(col0 - 1, 0)
+        cut = np.ascontiguousarray(response[top : min(row1 + 1, height), left : min(col1 + 1, width)])
+        found = crossings.strong_crossings(cut, min_jump)
+        edges[row0:row1, col0:col1] = found[row0 - top : row1 - top, col0 - left : col1 - left]
+    return edges
 
 
 def edge_image(image: np.ndarray, sigma: float, min_step: float) -> np.ndarray:

@@ -6,10 +6,19 @@ and the standard Hough transform (``HoughLinesWithAccumulator``) over the
 angle intervals of its search window (seeds/000, section 2.1; Balasuriya's
 limited parameter space).  The bound makes exactly those calls, with the
 tracker's sigma, accumulator steps and vote threshold, on the tracker's own
-edge image and window of each frame; both are found once, untimed, by a
-shadow tracker stepped over the same frames (:class:`benchmark.speed.bounds.PerFrame`).
+edge image (:meth:`trackbench_hough.tracker.HoughTracker.edge_image`, which
+while tracking holds zero crossings only near the window's borders) and
+window of each frame; both are found once, untimed, by a shadow tracker
+stepped over the same frames (:class:`benchmark.speed.bounds.PerFrame`).
+OpenCV does not write to the edge image, so it is passed without a copy,
+as the tracker passes it.
 What it leaves out, the zero crossings, the window's admission, duplicate
 suppression and pairing, is the tracker's own work.  Goal: issue 34's.
+
+The LoG stays frame-wide in both: "the LoG filter still has to be applied
+on the whole image" (seeds/000, section 2.1), and the tracker's threshold is
+a statistic of the whole frame's zero crossings
+(:mod:`trackbench_hough.thresholds`).
 """
 
 from __future__ import annotations
@@ -23,9 +32,8 @@ import numpy as np
 from benchmark import hookimpl
 from benchmark.model import Frame, SequenceInfo
 from benchmark.speed.bounds import BoundContext, PerFrame, RatioAtMost, SpeedBound, SpeedBounds
-from trackbench_hough.edges import log_response, zero_crossings
+from trackbench_hough.edges import log_response
 from trackbench_hough.sizes import FrameSizes
-from trackbench_hough.thresholds import EDGE_THRESHOLDS
 from trackbench_hough.tracker import HoughTracker
 
 DATASET = "camera/S1"
@@ -48,10 +56,9 @@ class OpenCVInWindow:
         image = np.asarray(frame.observation)
         height, width = image.shape
         sizes = FrameSizes.for_frame(p, (width, height))
+        edges = self.shadow.edge_image(image)
         window = getattr(self.shadow, "_window", None)  # the window this frame is searched in; None: everywhere
         intervals = window.theta_intervals() if window is not None else [(0.0, math.pi)]
-        response = log_response(image, p.log_sigma)
-        edges = zero_crossings(response, p.log_sigma, EDGE_THRESHOLDS[p.edge_rule](response, p.log_sigma, p))
         self.shadow.step(frame)
         return edges, intervals, sizes.rho_step, sizes.theta_step, int(sizes.min_votes)
 
@@ -67,7 +74,7 @@ class OpenCVInWindow:
             if high - low < theta_step:
                 low, high = max(0.0, 0.5 * (low + high) - theta_step), min(math.pi, 0.5 * (low + high) + theta_step)
             lines = cv2.HoughLinesWithAccumulator(
-                edges.copy(), rho_step, theta_step, min_votes, min_theta=float(low), max_theta=float(high)
+                edges, rho_step, theta_step, min_votes, min_theta=float(low), max_theta=float(high)
             )
             found += 0 if lines is None else len(lines)
         return found

@@ -10,7 +10,7 @@ that threshold, a step height in grey levels
     reading the benchmark started from, kept for ``hough-paper``;
 ``"median"``
     ``edge_ratio`` times the median step of the frame's own zero crossings
-    (:func:`trackbench_hough.edges.crossing_steps`).  Most zero crossings
+    (:func:`trackbench_hough.edges.median_crossing_step`).  Most zero crossings
     of a frame belong to sensor noise and seabed texture, so their median
     says how strong an unremarkable edge of this frame is, and a border
     survives when it stands out of them.  Scaling a frame's grey levels
@@ -27,7 +27,7 @@ from collections.abc import Callable, Mapping
 
 import numpy as np
 
-from trackbench_hough.edges import crossing_steps
+from trackbench_hough.edges import median_crossing_step
 from trackbench_hough.params import EdgeRule, HoughParams
 
 MEDIAN_STRIDE = 4
@@ -70,8 +70,8 @@ def median_step(response: np.ndarray, sigma: float, params: HoughParams) -> floa
     ----------
     seeds/000, section 2.1 (LoG zero crossings, thresholded to keep strong borders).
     """
-    steps = crossing_steps(response, sigma, MEDIAN_STRIDE)
-    return params.edge_ratio * float(np.median(steps)) if steps.size else 0.0
+    median = median_crossing_step(response, sigma, MEDIAN_STRIDE)
+    return 0.0 if median is None else params.edge_ratio * median
 
 
 EDGE_THRESHOLDS: Mapping[EdgeRule, EdgeThreshold] = {"step": fixed_step, "median": median_step}

@@ -41,7 +41,7 @@ from benchmark.modalities.camera.geometry import ImageSize, Line, cable_borders
 from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTruth
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
-from trackbench_hough.edges import compile_kernels, log_response, zero_crossings
+from trackbench_hough.edges import compile_kernels, log_response, zero_crossings, zero_crossings_in
 from trackbench_hough.lines import HoughLine, accumulator_maxima, suppress_duplicates
 from trackbench_hough.pairing import choose_pair, compatible_pairs
 from trackbench_hough.params import HoughParams
@@ -115,6 +115,29 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
             )
             self._init_borders = None
 
+    def edge_image(self, image: np.ndarray) -> np.ndarray:
+        """The binary edge image the next :meth:`step` votes from, for a grey ``uint8`` image of shape ``(H, W)``.
+
+        The LoG and the threshold are the whole frame's; while tracking, the
+        zero crossings are found only where a pixel can vote for a line the
+        window admits (:meth:`trackbench_hough.window.SearchWindow.voting_strips`),
+        which changes no admitted line.
+
+        References
+        ----------
+        seeds/000, section 2.1 (LoG zero crossings, thresholded; the limited search space).
+        """
+        p = self.params
+        height, width = image.shape
+        sizes = self._sizes_for((width, height))
+        self._start_window(sizes)
+        response = log_response(image, p.log_sigma)
+        min_step = EDGE_THRESHOLDS[p.edge_rule](response, p.log_sigma, p)
+        if self._window is None:
+            return zero_crossings(response, p.log_sigma, min_step)
+        strips = self._window.voting_strips(sizes.size, sizes.rho_step, sizes.theta_step)
+        return zero_crossings_in(response, p.log_sigma, min_step, strips)
+
     def step(self, frame: CameraFrame) -> CableState | None:
         """Detect the cable borders in one frame.
 
@@ -143,9 +166,7 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
         p = self.params
         height, width = image.shape
         sizes = self._sizes_for((width, height))
-        self._start_window(sizes)
-        response = log_response(image, p.log_sigma)
-        edges = zero_crossings(response, p.log_sigma, EDGE_THRESHOLDS[p.edge_rule](response, p.log_sigma, p))
+        edges = self.edge_image(image)
         window = self._searched = self._window
         raw = accumulator_maxima(
             edges,

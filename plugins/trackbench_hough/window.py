@@ -13,14 +13,24 @@ the two borders (:meth:`SearchWindow.theta_intervals`) and then admits only
 lines within the distance range (:meth:`SearchWindow.admits`).  A new pair
 must have one border in the window of each previous border
 (:meth:`SearchWindow.deviation`).
+
+Only edge pixels near the two borders can vote for a line the window
+admits, so the edge image is needed only there
+(:meth:`SearchWindow.voting_strips`).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from benchmark.modalities.camera.geometry import Line
 from trackbench_hough.lines import HoughLine, normal_form, theta_intervals, wrap_half_turn
+
+
+STRIP_ROWS = 60
+"""Rows of one strip of :meth:`SearchWindow.voting_strips`: on 640 x 480 frames, eight strips follow a slanted
+cable closely enough, and each costs one call of the zero-crossing loop."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -112,3 +122,79 @@ class SearchWindow:
             worst = max(*fit_a, *fit_b)
             best = worst if best is None else min(best, worst)
         return best
+
+    def voting_strips(
+        self, size: tuple[int, int], rho_step: float, theta_step: float
+    ) -> list[tuple[int, int, int, int]]:
+        """Rectangles ``(row0, row1, col0, col1)``, ends excluded, holding every pixel that can vote for a line admitted.
+
+        HoughLines keeps an accumulator cell when it beats its four
+        neighbours, so the pixels that matter are those that vote for an
+        admitted cell (:meth:`admits`) or a neighbour of one: a pixel ``p``
+        (centred coordinates) votes for cell ``(r', phi')`` when
+        ``|p . n(phi') - r'| <= rho_step / 2``, and such a cell has
+        ``|r' - r| <= r_half + rho_step + c theta_step`` and
+        ``|phi' - phi| <= phi_half + theta_step`` for a border ``(r, phi)``,
+        where ``c`` is the half diagonal (a neighbour in angle keeps OpenCV's
+        ``rho``, which moves the centred ``r`` by at most ``c theta_step``).  Since
+        ``|p . (n(phi) - n(phi'))| <= |p| |phi - phi'|`` and ``|p| <= c``,
+        every such pixel lies within
+
+            D = r_half + 1.5 rho_step + c theta_step + 1 + c (phi_half + theta_step)
+
+        of a border line (1 px more for rounding).  Each strip of
+        :data:`STRIP_ROWS` rows is the columns of its rows within ``D`` of
+        either border, plus one column each side.
+
+        Parameters
+        ----------
+        size : tuple of int
+            ``(W, H)`` of the frame, px.
+        rho_step, theta_step : float
+            The accumulator's steps, px and rad.
+
+        Returns
+        -------
+        list of tuple of int
+            Non-empty rectangles, top to bottom.
+
+        References
+        ----------
+        seeds/000, section 2.1: the transform is computed only for a small
+        range of angles and distances around the previous result.
+        """
+        width, height = size
+        cu, cv = (width - 1) / 2.0, (height - 1) / 2.0
+        half_diagonal = math.hypot(cu, cv)
+        reach = (
+            self.r_half
+            + 1.5 * rho_step
+            + half_diagonal * theta_step
+            + 1.0
+            + half_diagonal * (self.phi_half + theta_step)
+        )
+        # Per border, the columns within reach of its line at pixel row v are an interval whose ends are
+        # linear in v (cos(phi) > 0), so a strip's extremes are at its first and last rows.
+        spans = []
+        for r, phi in self.borders:
+            cos_phi, sin_phi = math.cos(phi), math.sin(phi)
+            spans.append((r, sin_phi, cos_phi if cos_phi > 1e-6 else 0.0))
+        strips = []
+        for row0 in range(0, height, STRIP_ROWS):
+            row1 = min(row0 + STRIP_ROWS, height)
+            lowest, highest = math.inf, -math.inf
+            for r, sin_phi, cos_phi in spans:
+                offsets = [r - (cv - v) * sin_phi for v in (row0, row1 - 1)]
+                if cos_phi:
+                    ends = [(offset + side * reach) / cos_phi + cu for offset in offsets for side in (-1, 1)]
+                    lowest, highest = min(lowest, *ends), max(highest, *ends)
+                elif min(offsets) <= reach + 1.0 and max(offsets) >= -reach - 1.0:
+                    # A horizontal border: whole rows are near it.
+                    lowest, highest = -math.inf, math.inf
+            if lowest > highest:
+                continue
+            col0 = max(0, math.floor(lowest) - 1) if math.isfinite(lowest) else 0
+            col1 = min(width, math.ceil(highest) + 2) if math.isfinite(highest) else width
+            if col0 < col1:
+                strips.append((row0, row1, col0, col1))
+        return strips

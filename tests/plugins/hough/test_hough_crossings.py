@@ -1,4 +1,5 @@
-"""The compiled zero-crossing loops give, bit for bit, what the array formulation they replace gave."""
+"""The compiled zero-crossing loops, the median by counting and the edges in rectangles give, bit for bit,
+what the array formulations they replace gave."""
 
 from __future__ import annotations
 
@@ -6,7 +7,14 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
-from trackbench_hough.edges import crossing_steps, step_height_scale, zero_crossings
+from trackbench_hough.crossings import order_statistics
+from trackbench_hough.edges import (
+    crossing_steps,
+    median_crossing_step,
+    step_height_scale,
+    zero_crossings,
+    zero_crossings_in,
+)
 
 # Values near zero of both signs (signed zeros included), repeated values (ties in |a| <= |b|) and large jumps.
 values = st.sampled_from([0.0, -0.0, 1e-6, -1e-6, 0.25, -0.25, 0.5, -0.5, 3.0, -3.0, 7.5, -40.0]) | st.floats(
@@ -50,6 +58,9 @@ def test_zero_crossings_match_the_array_formulation(response, sigma, min_step):
     found = zero_crossings(response, sigma, min_step)
     assert found.dtype == np.uint8
     np.testing.assert_array_equal(found, expected)
+    wide = response.astype(np.float64)
+    expected_wide = zero_crossings_by_arrays(wide, sigma, min_step)
+    np.testing.assert_array_equal(zero_crossings(wide, sigma, min_step), expected_wide)
 
 
 @settings(max_examples=150, deadline=None)
@@ -69,3 +80,46 @@ def test_a_threshold_on_a_float32_boundary_compares_as_the_arrays_did():
     np.testing.assert_array_equal(
         zero_crossings(response, sigma, min_step), zero_crossings_by_arrays(response, sigma, min_step)
     )
+
+
+@settings(max_examples=150, deadline=None)
+@given(response=responses, sigma=st.sampled_from([1.5, 2.0, 3.0]), stride=st.integers(1, 5))
+def test_median_crossing_step_is_numpys_median_of_the_steps(response, sigma, stride):
+    steps = crossing_steps_by_arrays(response, sigma, stride)
+    found = median_crossing_step(response, sigma, stride)
+    if steps.size == 0:
+        assert found is None
+    else:
+        assert found == float(np.median(steps))
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    values=hnp.arrays(
+        np.float32, st.integers(2, 3000), elements=st.floats(0.0, 1e4, width=32) | st.sampled_from([0.0, 1.0, 2.0])
+    ),
+)
+def test_order_statistics_are_those_of_the_sorted_values(values):
+    rank = values.size // 2
+    expected = np.sort(values)
+    assert order_statistics(values, rank) == (expected[rank - 1], expected[rank])
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    response=responses,
+    min_step=st.floats(0.0, 400.0),
+    corners=st.lists(st.tuples(*[st.integers(0, 12)] * 4), max_size=3),
+)
+def test_zero_crossings_in_rectangles_are_those_of_the_whole_frame(response, min_step, corners):
+    height, width = response.shape
+    rectangles = [
+        (min(a, b), min(max(a, b) + 1, height), min(c, d), min(max(c, d) + 1, width))
+        for a, b, c, d in corners
+        if min(a, b) < height and min(c, d) < width
+    ]
+    expected = np.zeros((height, width), np.uint8)
+    whole = zero_crossings_by_arrays(response, 2.0, min_step)
+    for row0, row1, col0, col1 in rectangles:
+        expected[row0:row1, col0:col1] = whole[row0:row1, col0:col1]
+    np.testing.assert_array_equal(zero_crossings_in(response, 2.0, min_step, rectangles), expected)

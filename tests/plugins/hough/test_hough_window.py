@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from trackbench_hough.lines import HoughLine
 from trackbench_hough.window import SearchWindow
 
@@ -49,3 +52,59 @@ def test_deviation_matches_borders_in_either_order():
     assert math.isclose(window.deviation(line(-10.0, 0.0), line(15.0, 0.0)), 0.5)
     assert window.deviation(line(-15.0, 0.0), line(-16.0, 0.0)) is None
     assert window.deviation(line(-15.0, 0.0), line(40.0, 0.0)) is None
+
+
+# The edge image outside the voting strips cannot change the lines the window admits.
+border_angles = st.floats(-math.pi / 2 + 1e-3, math.pi / 2)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    size=st.sampled_from([(64, 48), (96, 72), (80, 80)]),
+    r=st.floats(-40.0, 40.0),
+    phi=border_angles,
+    width=st.floats(3.0, 30.0),
+    skew=st.floats(-0.1, 0.1),
+    r_half=st.floats(2.0, 12.0),
+    phi_half_deg=st.floats(1.0, 8.0),
+    density=st.floats(0.01, 0.2),
+    seed=st.integers(0, 2**32 - 1),
+)
+def test_edges_outside_the_voting_strips_change_no_admitted_line(
+    size, r, phi, width, skew, r_half, phi_half_deg, density, seed
+):
+    from trackbench_hough.lines import accumulator_maxima, wrap_half_turn
+
+    window = SearchWindow(((r, phi), (r + width, wrap_half_turn(phi + skew))), r_half, math.radians(phi_half_deg))
+    rho_step, theta_step, min_votes = 1.0, math.radians(1.0), 3
+    rng = np.random.default_rng(seed)
+    edges = np.where(rng.random((size[1], size[0])) < density, 255, 0).astype(np.uint8)
+    # Pixels on the borders' lines, so that the window has lines to admit.
+    for border_r, border_phi in window.borders:
+        v, u = np.mgrid[0 : size[1], 0 : size[0]]
+        x, y = u - (size[0] - 1) / 2.0, (size[1] - 1) / 2.0 - v
+        edges[np.abs(x * math.cos(border_phi) + y * math.sin(border_phi) - border_r) < 0.5] = 255
+    masked = np.zeros_like(edges)
+    for row0, row1, col0, col1 in window.voting_strips(size, rho_step, theta_step):
+        masked[row0:row1, col0:col1] = edges[row0:row1, col0:col1]
+
+    def admitted(image):
+        found = accumulator_maxima(image, rho_step, theta_step, min_votes, window.theta_intervals())
+        lines = (HoughLine.from_opencv(rho, theta, votes, size) for rho, theta, votes in found.tolist())
+        return [line for line in lines if window.admits(line)]
+
+    assert admitted(masked) == admitted(edges)
+
+
+def test_voting_strips_cover_the_rows_near_a_horizontal_border():
+    window = SearchWindow(((0.0, math.pi / 2), (10.0, math.pi / 2)), 2.0, math.radians(1.0))
+    strips = window.voting_strips((640, 480), 1.0, math.radians(0.5))
+    assert strips and all(col0 == 0 and col1 == 640 for _, _, col0, col1 in strips)
+    assert all(row0 > 0 and row1 < 480 for row0, row1, _, _ in strips)  # but not the far rows
+
+
+def test_voting_strips_follow_a_vertical_border():
+    window = SearchWindow(((0.0, 0.0), (20.0, 0.0)), 5.0, math.radians(1.0))
+    strips = window.voting_strips((640, 480), 1.0, math.radians(0.5))
+    assert [(row0, row1) for row0, row1, _, _ in strips] == [(row0, row0 + 60) for row0 in range(0, 480, 60)]
+    assert all(100 < col0 < 319.5 < 339.5 < col1 < 540 for _, _, col0, col1 in strips)
