@@ -170,6 +170,97 @@ def _robust_fit(
 
 
 @numba.njit(cache=True, nogil=True)
+def _seabed_design(
+    x: np.ndarray,
+    z: np.ndarray,
+    c: float,
+    sigma: float,
+    first: int,
+    n: int,
+    half_width: float,
+    reach: float,
+    relief_widths: float,
+    design: np.ndarray,
+    target: np.ndarray,
+) -> bool:  # pragma: no cover - compiled
+    """The seafloor's three columns and the depths of the window ``x[first:first + n]`` about ``c``.
+
+    Returns False, filling nothing, where the window holds no return beyond the pipe's span on one side.
+    """
+    port = False
+    starboard = False
+    for j in range(n):
+        u = x[first + j] - c
+        port |= u <= -half_width
+        starboard |= u >= half_width
+    if not (port and starboard):
+        return False
+    relief = relief_widths * math.hypot(half_width, sigma)
+    for j in range(n):
+        u = x[first + j] - c
+        design[0, j] = 1.0
+        design[1, j] = u / reach
+        design[2, j] = math.exp(-0.5 * (u / relief) ** 2)
+        target[j] = z[first + j]
+    return True
+
+
+@numba.njit(cache=True, nogil=True)
+def _pipe_design(
+    x: np.ndarray,
+    c: float,
+    sigma: float,
+    first: int,
+    n: int,
+    half_width: float,
+    half_height: float,
+    table: np.ndarray,
+    first_offset: float,
+    offset_step: float,
+    sigma_step: float,
+    table_reach: float,
+    design: np.ndarray,
+    target: np.ndarray,
+    raised: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """The pipe's span as seen (the fourth column) and the depths raised by its arc as seen."""
+    r = sigma / half_width
+    row_position = min(max(r / sigma_step, 0.0), table.shape[0] - 1.000001)
+    row = int(row_position)
+    row_share = row_position - row
+    for j in range(n):
+        v = (x[first + j] - c) / half_width
+        design[3, j] = -_smoothed_box(v, r)
+        raised[j] = target[j] + half_height * _semicircle(
+            v, row, row_share, table, first_offset, offset_step, table_reach
+        )
+
+
+@numba.njit(cache=True, nogil=True)
+def _pipe_fit(
+    design: np.ndarray,
+    raised: np.ndarray,
+    n: int,
+    floor_cost: float,
+    robust_scale: float,
+    noise: float,
+    iterations: int,
+    coefficients: np.ndarray,
+    normal: np.ndarray,
+    weights: np.ndarray,
+) -> tuple[float, float]:  # pragma: no cover - compiled
+    """The evidence ``E`` (floored at 0, 0 if not finite) and the pedestal ``s`` of a candidate whose seafloor costs ``floor_cost``."""
+    pipe_cost = _robust_fit(design, raised, n, 4, robust_scale, iterations, coefficients, normal, weights)
+    height = coefficients[3]
+    if not height >= 0.0:
+        # s < 0 would put the pipe's centre below the seafloor: fit it resting at s = 0 instead.
+        pipe_cost = _robust_fit(design, raised, n, 3, robust_scale, iterations, coefficients, normal, weights)
+        height = 0.0
+    value = max((floor_cost - pipe_cost) / (noise * noise), 0.0)
+    return (value if math.isfinite(value) else 0.0), height
+
+
+@numba.njit(cache=True, nogil=True)
 def footprint_evidence(
     x: np.ndarray,
     z: np.ndarray,
@@ -227,54 +318,197 @@ def footprint_evidence(
     evidence = np.zeros(count)
     pedestal = np.full(count, np.nan)
     scored = np.zeros(count, dtype=np.bool_)
-    widest = 0
+    widest = 1
     for i in range(count):
         widest = max(widest, high[i] - low[i])
-    design = np.empty((4, max(widest, 1)))
-    target = np.empty(max(widest, 1))
-    raised = np.empty(max(widest, 1))
+    design = np.empty((4, widest))
+    target = np.empty(widest)
+    raised = np.empty(widest)
     coefficients = np.zeros(4)
     normal = np.empty((4, 5))
-    weights = np.empty(max(widest, 1))
-    rows = table.shape[0]
+    weights = np.empty(widest)
     for i in range(count):
         n = high[i] - low[i]
         if n < min_returns:
             continue
-        c = centre[i]
-        port = False
-        starboard = False
-        for j in range(n):
-            u = x[low[i] + j] - c
-            port |= u <= -half_width
-            starboard |= u >= half_width
-        if not (port and starboard):
+        if not _seabed_design(x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target):
             continue
         scored[i] = True
-        r = sigma[i] / half_width
-        relief = relief_widths * math.hypot(half_width, sigma[i])
-        row_position = min(max(r / sigma_step, 0.0), rows - 1.000001)
-        row = int(row_position)
-        row_share = row_position - row
-        for j in range(n):
-            u = x[low[i] + j] - c
-            v = u / half_width
-            design[0, j] = 1.0
-            design[1, j] = u / reach
-            design[2, j] = math.exp(-0.5 * (u / relief) ** 2)
-            design[3, j] = -_smoothed_box(v, r)
-            target[j] = z[low[i] + j]
-            raised[j] = target[j] + half_height * _semicircle(
-                v, row, row_share, table, first_offset, offset_step, table_reach
-            )
         floor_cost = _robust_fit(design, target, n, 3, robust_scale, iterations, coefficients, normal, weights)
-        pipe_cost = _robust_fit(design, raised, n, 4, robust_scale, iterations, coefficients, normal, weights)
-        height = coefficients[3]
-        if not height >= 0.0:
-            # s < 0 would put the pipe's centre below the seafloor: fit it resting at s = 0 instead.
-            pipe_cost = _robust_fit(design, raised, n, 3, robust_scale, iterations, coefficients, normal, weights)
-            height = 0.0
-        value = max((floor_cost - pipe_cost) / (noise * noise), 0.0)
-        evidence[i] = value if math.isfinite(value) else 0.0
-        pedestal[i] = height
+        _pipe_design(
+            x, centre[i], sigma[i], low[i], n, half_width, half_height, table, first_offset, offset_step,
+            sigma_step, table_reach, design, target, raised,
+        )
+        evidence[i], pedestal[i] = _pipe_fit(
+            design, raised, n, floor_cost, robust_scale, noise, iterations, coefficients, normal, weights
+        )
     return evidence, pedestal, scored
+
+
+@numba.njit(cache=True, nogil=True)
+def seabed_costs(
+    x: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+    settings: np.ndarray,
+) -> np.ndarray:  # pragma: no cover - compiled
+    """The seafloor's robust cost of every candidate, as :func:`footprint_evidence` fits it (``nan``: not scored).
+
+    ``settings`` holds :func:`footprint_evidence`'s numbers in the order of :data:`SETTINGS`.  The cost
+    bounds the evidence from above: ``E = max((C_floor - C_pipe) / sigma^2, 0)`` with ``C_pipe >= 0``, and
+    rounding is monotone, so ``E <= max(C_floor / sigma^2, 0)`` to the last bit.
+    """
+    half_width, reach, relief_widths = settings[0], settings[2], settings[3]
+    robust_scale, iterations, min_returns = settings[4], int(settings[6]), int(settings[7])
+    count = centre.size
+    floor = np.full(count, np.nan)
+    widest = 1
+    for i in range(count):
+        widest = max(widest, high[i] - low[i])
+    design = np.empty((4, widest))
+    target = np.empty(widest)
+    coefficients = np.zeros(4)
+    normal = np.empty((4, 5))
+    weights = np.empty(widest)
+    for i in range(count):
+        n = high[i] - low[i]
+        if n < min_returns:
+            continue
+        if _seabed_design(x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target):
+            floor[i] = _robust_fit(design, target, n, 3, robust_scale, iterations, coefficients, normal, weights)
+    return floor
+
+
+@numba.njit(cache=True, nogil=True)
+def evidence_at(
+    wanted: np.ndarray,
+    x: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+    floor: np.ndarray,
+    settings: np.ndarray,
+    table: np.ndarray,
+    values: np.ndarray,
+    known: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """:func:`footprint_evidence`'s ``E`` of the candidates ``wanted`` not yet ``known``, into ``values``.
+
+    ``floor`` is :func:`seabed_costs`'s; indices outside the candidates are ignored.
+    """
+    count = centre.size
+    widest = 1
+    for k in range(wanted.size):
+        i = wanted[k]
+        if 0 <= i < count and not known[i]:
+            widest = max(widest, high[i] - low[i])
+    design = np.empty((4, widest))
+    target = np.empty(widest)
+    raised = np.empty(widest)
+    coefficients = np.zeros(4)
+    normal = np.empty((4, 5))
+    weights = np.empty(widest)
+    for k in range(wanted.size):
+        i = wanted[k]
+        if not 0 <= i < count or known[i]:
+            continue
+        _candidate(
+            i, x, z, centre, sigma, low, high, floor, settings, table, values, known,
+            design, target, raised, coefficients, normal, weights,
+        )
+
+
+@numba.njit(cache=True, nogil=True)
+def _candidate(
+    i: int,
+    x: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+    floor: np.ndarray,
+    settings: np.ndarray,
+    table: np.ndarray,
+    values: np.ndarray,
+    known: np.ndarray,
+    design: np.ndarray,
+    target: np.ndarray,
+    raised: np.ndarray,
+    coefficients: np.ndarray,
+    normal: np.ndarray,
+    weights: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """Candidate ``i``'s ``E`` into ``values[i]``: 0 where its seafloor cost is not finite, as :func:`_pipe_fit` gives it."""
+    known[i] = True
+    floor_cost = floor[i]
+    if not math.isfinite(floor_cost):
+        values[i] = 0.0
+        return
+    n = high[i] - low[i]
+    half_width, half_height, reach, relief_widths = settings[0], settings[1], settings[2], settings[3]
+    robust_scale, noise, iterations = settings[4], settings[5], int(settings[6])
+    _seabed_design(x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target)
+    _pipe_design(
+        x, centre[i], sigma[i], low[i], n, half_width, half_height, table, settings[8], settings[9],
+        settings[10], settings[11], design, target, raised,
+    )
+    values[i] = _pipe_fit(design, raised, n, floor_cost, robust_scale, noise, iterations, coefficients, normal, weights)[0]
+
+
+@numba.njit(cache=True, nogil=True)
+def evidence_maximum(
+    x: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+    floor: np.ndarray,
+    settings: np.ndarray,
+    table: np.ndarray,
+    values: np.ndarray,
+    known: np.ndarray,
+) -> int:  # pragma: no cover - compiled
+    """The first candidate of largest ``E`` (-1 when every ``E`` is 0), evaluating only those that can be it.
+
+    Candidates are taken in decreasing order of their bound ``C_floor / sigma^2`` (:func:`seabed_costs`; 0
+    where that cost is not finite, whose ``E`` is then 0); once the bound falls below the largest ``E``
+    found, no candidate left can reach it.  Every candidate evaluated is left in ``values`` and ``known``.
+    """
+    count = centre.size
+    noise = settings[5]
+    scale = noise * noise
+    bound = np.zeros(count)
+    widest = 1
+    for i in range(count):
+        widest = max(widest, high[i] - low[i])
+        if math.isfinite(floor[i]):
+            bound[i] = floor[i] / scale
+    design = np.empty((4, widest))
+    target = np.empty(widest)
+    raised = np.empty(widest)
+    coefficients = np.zeros(4)
+    normal = np.empty((4, 5))
+    weights = np.empty(widest)
+    best = 0.0
+    for i in np.argsort(-bound):
+        if not (bound[i] > 0.0 and bound[i] >= best):
+            break
+        if not known[i]:
+            _candidate(
+                i, x, z, centre, sigma, low, high, floor, settings, table, values, known,
+                design, target, raised, coefficients, normal, weights,
+            )
+        best = max(best, values[i])
+    if not best > 0.0:
+        return -1
+    for i in range(count):
+        if known[i] and values[i] == best:
+            return i
+    return -1

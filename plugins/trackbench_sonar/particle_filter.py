@@ -151,7 +151,7 @@ def injection_rate(fraction: float, lost_ratio: float, scan: LikelihoodScan, pos
     ----------
     seeds/003, section 3.4 ("generating some rate J of new random samples").
     """
-    threshold = lost_ratio * float(scan.values.max())
+    threshold = lost_ratio * scan.maximum()
     if not threshold > 0.0:
         return fraction
     here = float(scan.at(positions).max(initial=0.0))
