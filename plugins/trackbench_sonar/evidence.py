@@ -275,6 +275,7 @@ class EvidenceScan:
         self._values = np.zeros(count)
         self._known = np.zeros(count, dtype=bool)
         self._best: int | None = None
+        self._floor: np.ndarray | None = None
         x = profile.returns_across_m
         if x.size < MIN_RETURNS:
             self._known[:] = True
@@ -321,9 +322,11 @@ class EvidenceScan:
     def at(self, across_m: np.ndarray) -> np.ndarray:
         """The evidence at arbitrary positions, as :meth:`LikelihoodScan.at <trackbench_sonar.likelihood.LikelihoodScan.at>` reads it."""
         across = np.asarray(across_m, dtype=float)
-        cells = np.clip((across[np.isfinite(across)] - self.positions[0]) / self._spacing, -2.0, self.positions.size)
-        base = np.floor(cells).astype(np.int64)
-        self._evaluate(np.clip((base[:, None] + np.arange(-1, 3)).ravel(), 0, self.positions.size - 1))
+        if self._floor is not None:
+            evidence_kernel.evidence_around(
+                across.ravel(), float(self.positions[0]), self._spacing, *self._arrays, self._floor,
+                self._settings, self._table, self._values, self._known,
+            )
         return interpolate(self.positions, self._values, across)
 
     def peak(self, refine: bool = False) -> float | None:
