@@ -304,6 +304,11 @@ class EvidenceScan:
         return self._best
 
     @property
+    def evaluated(self) -> int:
+        """Grid positions whose evidence is computed so far."""
+        return int(np.count_nonzero(self._known))
+
+    @property
     def values(self) -> np.ndarray:
         """The evidence at every grid position (all of it computed)."""
         self._evaluate(np.flatnonzero(~self._known))
