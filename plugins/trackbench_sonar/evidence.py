@@ -68,11 +68,11 @@ import numpy as np
 from benchmark.lazy import lazy_module
 from trackbench_sonar.cross_section import CrossSection
 from trackbench_sonar.footprint import (
+    FWHM_PER_SIGMA,
     TABLE_OFFSET_STEP,
     TABLE_REACH,
     TABLE_SIGMA_STEP,
     semicircle_table,
-    footprint_sigma,
 )
 from trackbench_sonar.likelihood import LikelihoodScan, interpolate, peak_position
 from trackbench_sonar.profile import Profile
@@ -210,11 +210,19 @@ class FootprintLikelihood:
         return self.section.half_width_m + self.seabed_widths * self.section.major_m
 
     def windows(self, profile: Profile) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Each grid position's window of returns, ``returns[low:high]``, and the footprint's sigma there, m."""
-        centre, x = profile.across_m, profile.returns_across_m
-        low = np.searchsorted(x, centre - self.reach_m, side="left")
-        high = np.searchsorted(x, centre + self.reach_m, side="right")
-        return low, high, footprint_sigma(centre, profile.depth_m, self.beam_width)
+        """Each grid position's window of returns, ``returns[low:high]``, and the footprint's sigma there, m.
+
+        In one compiled call (:func:`~trackbench_sonar.evidence_kernel.candidate_windows`), to the last bit
+        what :func:`numpy.searchsorted` and :func:`~trackbench_sonar.footprint.footprint_sigma` give.
+        """
+        return evidence_kernel.candidate_windows(
+            profile.returns_across_m,
+            profile.across_m,
+            profile.depth_m,
+            self.reach_m,
+            float(self.beam_width),
+            FWHM_PER_SIGMA,
+        )
 
     @cached_property
     def settings(self) -> np.ndarray:

@@ -538,3 +538,23 @@ def _fused_fit(
                 a33 += w3 * d3
                 b3 += w3 * t
     return k * k * cost
+
+
+@numba.njit(cache=True, nogil=True)
+def candidate_windows(
+    x: np.ndarray, centre: np.ndarray, depth: np.ndarray, reach: float, beam_width: float, fwhm_per_sigma: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover - compiled
+    """Each candidate's window of returns ``x[low:high]`` within ``reach`` and the footprint's sigma there.
+
+    As :meth:`~trackbench_sonar.evidence.FootprintLikelihood.windows` gives them: the binary searches of
+    ``numpy.searchsorted`` and :func:`~trackbench_sonar.footprint.footprint_sigma`'s arithmetic, ``(c^2 +
+    z^2) phi / z`` over ``fwhm_per_sigma`` (``inf`` at or above the transducer, 0 for rays).
+    """
+    low = np.searchsorted(x, centre - reach, side="left")
+    high = np.searchsorted(x, centre + reach, side="right")
+    sigma = np.zeros(centre.size)
+    if beam_width > 0.0:
+        for i in range(centre.size):
+            c, z = centre[i], depth[i]
+            sigma[i] = ((c * c + z * z) * beam_width / z if z > 0.0 else math.inf) / fwhm_per_sigma
+    return low, high, sigma

@@ -24,6 +24,7 @@ from hypothesis.extra.numpy import arrays
 from trackbench_sonar import evidence_kernel
 from trackbench_sonar.cross_section import CrossSection
 from trackbench_sonar.evidence import MIN_RETURNS, EvidenceScan, FootprintLikelihood
+from trackbench_sonar.footprint import FWHM_PER_SIGMA, footprint_sigma
 from trackbench_sonar.likelihood import LikelihoodScan
 from trackbench_sonar.profile import resample_swath
 
@@ -206,3 +207,21 @@ def test_too_few_returns_give_an_empty_scan():
     scan = EvidenceScan(FootprintLikelihood(CrossSection(0.5, 0.5), 0.02), profile)
     assert scan.is_empty and scan.peak() is None and scan.maximum() == 0.0
     assert not np.any(scan.values) and not np.any(scan.at(np.array([0.0, 0.5])))
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    arrays(float, st.integers(0, 60), elements=st.floats(-30, 30)),
+    arrays(float, st.integers(1, 60), elements=st.floats(-30, 30)),
+    st.floats(-1.0, 60.0) | st.just(math.nan),
+    st.floats(0.0, 5.0),
+    st.floats(0.0, 0.05),
+)
+def test_the_compiled_windows_are_the_array_form(returns, centre, depth, reach, beam_width):
+    x = np.sort(returns)
+    centre = np.sort(centre)
+    depths = np.full(centre.size, depth)
+    low, high, sigma = evidence_kernel.candidate_windows(x, centre, depths, reach, beam_width, FWHM_PER_SIGMA)
+    np.testing.assert_array_equal(low, np.searchsorted(x, centre - reach, side="left"))
+    np.testing.assert_array_equal(high, np.searchsorted(x, centre + reach, side="right"))
+    np.testing.assert_array_equal(bits(sigma), bits(footprint_sigma(centre, depths, beam_width)))
