@@ -54,7 +54,11 @@ see it; a spoil berm is explained by the seafloor's mound.  A candidate
 whose window holds fewer than :data:`MIN_RETURNS` returns, or none beyond
 the pipe's span on one side, scores 0.
 
-The scan (Fig. 2 of the paper) holds ``E`` at every grid position.
+The scan (Fig. 2 of the paper) holds ``E`` at every grid position.  It is
+computed where it is read (:class:`EvidenceScan`): the seafloor's fit
+about every candidate bounds that candidate's evidence, so the scan's
+maximum needs the pipe fitted only where the bound reaches it, and a
+particle filter's weights only where its particles are.
 """
 
 from __future__ import annotations

@@ -69,12 +69,45 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
 from benchmark.modalities.sonar.model import beam_footprint
 from trackbench_sonar.cross_section import CrossSection
 from trackbench_sonar.profile import Profile
+
+
+class Scan(Protocol):
+    """What the trackers read of a likelihood scan: :class:`LikelihoodScan`, or one computed where read.
+
+    :class:`trackbench_sonar.evidence.EvidenceScan` computes its values only
+    where they are read; both give the same readings to the last bit.
+    """
+
+    positions: np.ndarray
+
+    @property
+    def values(self) -> np.ndarray:
+        """``L`` at every position."""
+        ...
+
+    @property
+    def is_empty(self) -> bool:
+        """True when the scan has no positions or no positive value."""
+        ...
+
+    def maximum(self) -> float:
+        """The largest value, 0 for a scan without positions."""
+        ...
+
+    def at(self, across_m: np.ndarray) -> np.ndarray:
+        """``L`` at arbitrary positions: linear between grid positions, 0 outside the scan."""
+        ...
+
+    def peak(self, refine: bool = False) -> float | None:
+        """The most likely position, or None for an empty scan (first of equal maxima)."""
+        ...
 
 
 @dataclass(frozen=True, eq=False)
