@@ -35,7 +35,7 @@ from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
 from trackbench_sonar.cross_section import CrossSection
 from trackbench_sonar.evidence import FootprintLikelihood, WidestEvidence
-from trackbench_sonar.likelihood import LikelihoodScan, PipeLikelihood
+from trackbench_sonar.likelihood import PipeLikelihood, Scan
 from trackbench_sonar.params import DetectorParams
 from trackbench_sonar.profile import Profile, resample_swath
 
@@ -48,7 +48,7 @@ class ScanModel(Protocol):
 
     section: CrossSection
 
-    def scan(self, profile: Profile) -> LikelihoodScan:
+    def scan(self, profile: Profile) -> Scan:
         """The likelihood over the profile's grid."""
         ...
 
@@ -236,7 +236,7 @@ class SwathDetector:
         except DataError as exc:
             raise DataError(f"{self.tracker}: frame {index}: {exc}") from exc
 
-    def scan(self, frame: SonarFrame) -> tuple[Profile, LikelihoodScan]:
+    def scan(self, frame: SonarFrame) -> tuple[Profile, Scan]:
         """The frame's resampled profile and its likelihood scan (empty without enough returns).
 
         Raises
@@ -257,7 +257,7 @@ class ScanTracker(Tracker[SonarTruth, PipeEstimate]):
 
     Attributes
     ----------
-    last_scan : LikelihoodScan or None
+    last_scan : Scan or None
         The likelihood scan of the last ping.
     """
 
@@ -266,7 +266,7 @@ class ScanTracker(Tracker[SonarTruth, PipeEstimate]):
     def __init__(self, params: DetectorParams | None = None) -> None:
         super().__init__(params)
         self._detector: SwathDetector | None = None
-        self.last_scan: LikelihoodScan | None = None
+        self.last_scan: Scan | None = None
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: SonarTruth | None = None) -> None:
         """Set the detector up for the sequence's pipe and sonar.
@@ -293,7 +293,7 @@ class ScanTracker(Tracker[SonarTruth, PipeEstimate]):
             raise RuntimeError(f"{self.name}: step() called before reset()")
         return self._detector
 
-    def scan(self, frame: SonarFrame) -> tuple[Profile, LikelihoodScan]:
+    def scan(self, frame: SonarFrame) -> tuple[Profile, Scan]:
         """The frame's resampled profile and likelihood scan, kept as :attr:`last_scan`.
 
         Raises

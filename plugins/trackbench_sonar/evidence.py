@@ -54,26 +54,31 @@ see it; a spoil berm is explained by the seafloor's mound.  A candidate
 whose window holds fewer than :data:`MIN_RETURNS` returns, or none beyond
 the pipe's span on one side, scores 0.
 
-The scan (Fig. 2 of the paper) holds ``E`` at every grid position.
+The scan (Fig. 2 of the paper) holds ``E`` at every grid position.  It is
+computed where it is read (:class:`EvidenceScan`): the seafloor's fit
+about every candidate bounds that candidate's evidence, so the scan's
+maximum needs the pipe fitted only where the bound reaches it, and a
+particle filter's weights only where its particles are.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
 from benchmark.lazy import lazy_module
 from trackbench_sonar.cross_section import CrossSection
 from trackbench_sonar.footprint import (
+    FWHM_PER_SIGMA,
     TABLE_OFFSET_STEP,
     TABLE_REACH,
     TABLE_SIGMA_STEP,
     semicircle_table,
-    footprint_sigma,
 )
-from trackbench_sonar.likelihood import LikelihoodScan
+from trackbench_sonar.likelihood import LikelihoodScan, interpolate, peak_position
 from trackbench_sonar.profile import Profile
 
 evidence_kernel = lazy_module("trackbench_sonar.evidence_kernel")
@@ -178,10 +183,7 @@ class FootprintLikelihood:
         if count == 0 or x.size < MIN_RETURNS:
             nothing = np.zeros(count)
             return Evidence(centre, nothing, np.full(count, np.nan), nothing.astype(np.int64), nothing.astype(bool))
-        reach = self.section.half_width_m + self.seabed_widths * self.section.major_m
-        low = np.searchsorted(x, centre - reach, side="left")
-        high = np.searchsorted(x, centre + reach, side="right")
-        sigma_f = footprint_sigma(centre, profile.depth_m, self.beam_width)
+        low, high, sigma_f = self.windows(profile)
         offsets, sigmas, table = semicircle_table()
         evidence, pedestal, scored = evidence_kernel.footprint_evidence(
             x,
@@ -192,7 +194,7 @@ class FootprintLikelihood:
             high,
             self.section.half_width_m,
             self.section.half_height_m,
-            reach,
+            self.reach_m,
             self.relief_widths,
             self.robust_sigmas * self.sigma_m,
             self.sigma_m,
@@ -206,11 +208,151 @@ class FootprintLikelihood:
         )
         return Evidence(centre, evidence, pedestal, high - low, scored)
 
-    def scan(self, profile: Profile) -> LikelihoodScan:
-        """The evidence over the profile's grid (seeds/003, Fig. 2); empty for an empty profile."""
+    @property
+    def reach_m(self) -> float:
+        """Half-width of a candidate's window: the pipe's half-width and ``seabed_widths`` widths ``M_a``, m."""
+        return self.section.half_width_m + self.seabed_widths * self.section.major_m
+
+    def windows(self, profile: Profile) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Each grid position's window of returns, ``returns[low:high]``, and the footprint's sigma there, m.
+
+        In one compiled call (:func:`~trackbench_sonar.evidence_kernel.candidate_windows`), to the last bit
+        what :func:`numpy.searchsorted` and :func:`~trackbench_sonar.footprint.footprint_sigma` give.
+        """
+        return evidence_kernel.candidate_windows(
+            profile.returns_across_m,
+            profile.across_m,
+            profile.depth_m,
+            self.reach_m,
+            float(self.beam_width),
+            FWHM_PER_SIGMA,
+        )
+
+    @cached_property
+    def settings(self) -> np.ndarray:
+        """The numbers of :func:`~trackbench_sonar.evidence_kernel.footprint_evidence`, as :func:`~trackbench_sonar.evidence_kernel.seabed_costs` takes them."""
+        offsets, _, _ = semicircle_table()
+        numbers = (
+            self.section.half_width_m,
+            self.section.half_height_m,
+            self.reach_m,
+            self.relief_widths,
+            self.robust_sigmas * self.sigma_m,
+            self.sigma_m,
+            self.iterations,
+            MIN_RETURNS,
+            float(offsets[0]),
+            TABLE_OFFSET_STEP,
+            TABLE_SIGMA_STEP,
+            TABLE_REACH,
+        )
+        return np.array(numbers, dtype=float)
+
+    def scan(self, profile: Profile) -> EvidenceScan | LikelihoodScan:
+        """The evidence over the profile's grid (seeds/003, Fig. 2), computed where read; empty for an empty profile."""
         if profile.is_empty:
             return LikelihoodScan.empty()
-        return LikelihoodScan(profile.across_m, self.candidates(profile).evidence)
+        return EvidenceScan(self, profile)
+
+
+class EvidenceScan:
+    """The evidence of a :class:`FootprintLikelihood` over a profile's grid, candidate by candidate where it is read.
+
+    A :class:`~trackbench_sonar.likelihood.LikelihoodScan` whose values are
+    computed when asked for: every candidate's seafloor is fitted at once
+    (:func:`~trackbench_sonar.evidence_kernel.seabed_costs`, a third of
+    the work), and its cost bounds the candidate's evidence, so that the
+    scan's maximum (:meth:`maximum`, :meth:`peak`) needs the pipe fitted
+    only where that bound reaches the best evidence found, and the values
+    at a few positions (:meth:`at`, a particle filter's weights) only at
+    the grid positions either side of them.  Every value is the one
+    :meth:`FootprintLikelihood.candidates` gives, to the last bit.
+
+    Parameters
+    ----------
+    model : FootprintLikelihood
+        The pipe and the sonar.
+    profile : Profile
+        A profile with points.
+
+    References
+    ----------
+    seeds/003, section 2, eq. (1) and Fig. 2.
+    """
+
+    def __init__(self, model: FootprintLikelihood, profile: Profile) -> None:
+        self.positions = profile.across_m
+        self._spacing = profile.spacing_m
+        count = self.positions.size
+        self._values = np.zeros(count)
+        self._known = np.zeros(count, dtype=bool)
+        self._best: int | None = None
+        self._floor: np.ndarray | None = None
+        x = profile.returns_across_m
+        if x.size < MIN_RETURNS:
+            self._known[:] = True
+            self._best = -1
+            return
+        low, high, sigma_f = model.windows(profile)
+        self._table = semicircle_table()[2]
+        self._settings = model.settings
+        self._arrays = (x, profile.returns_depth_m, self.positions, sigma_f, low, high)
+        self._floor = evidence_kernel.seabed_costs(*self._arrays, self._settings)
+
+    def _evaluate(self, wanted: np.ndarray) -> None:
+        if not np.all(self._known[wanted]):
+            evidence_kernel.evidence_at(
+                wanted, *self._arrays, self._floor, self._settings, self._table, self._values, self._known
+            )
+
+    def _strongest(self) -> int:
+        """The first grid index of the largest value, -1 when every value is 0."""
+        if self._best is None:
+            self._best = int(
+                evidence_kernel.evidence_maximum(
+                    *self._arrays, self._floor, self._settings, self._table, self._values, self._known
+                )
+            )
+        return self._best
+
+    @property
+    def evaluated(self) -> int:
+        """Grid positions whose evidence is computed so far."""
+        return int(np.count_nonzero(self._known))
+
+    @property
+    def values(self) -> np.ndarray:
+        """The evidence at every grid position (all of it computed)."""
+        self._evaluate(np.flatnonzero(~self._known))
+        return self._values
+
+    @property
+    def is_empty(self) -> bool:
+        """True when no value is positive."""
+        return self._strongest() < 0
+
+    def maximum(self) -> float:
+        """The largest value."""
+        best = self._strongest()
+        return 0.0 if best < 0 else float(self._values[best])
+
+    def at(self, across_m: np.ndarray) -> np.ndarray:
+        """The evidence at arbitrary positions, as :meth:`LikelihoodScan.at <trackbench_sonar.likelihood.LikelihoodScan.at>` reads it."""
+        across = np.asarray(across_m, dtype=float)
+        if self._floor is not None:
+            evidence_kernel.evidence_around(
+                across.ravel(), float(self.positions[0]), self._spacing, *self._arrays, self._floor,
+                self._settings, self._table, self._values, self._known,
+            )
+        return interpolate(self.positions, self._values, across)
+
+    def peak(self, refine: bool = False) -> float | None:
+        """The most likely position (first of equal maxima), as :meth:`LikelihoodScan.peak <trackbench_sonar.likelihood.LikelihoodScan.peak>` finds it."""
+        best = self._strongest()
+        if best < 0:
+            return None
+        self._evaluate(np.arange(max(best - 1, 0), min(best + 2, self.positions.size)))
+        return peak_position(self.positions, self._values, best, refine)
 
 
 @dataclass(frozen=True)
@@ -243,7 +385,7 @@ class WidestEvidence:
         """The pipe's axes (the same in every model)."""
         return self.models[0].section
 
-    def scan(self, profile: Profile) -> LikelihoodScan:
+    def scan(self, profile: Profile) -> EvidenceScan | LikelihoodScan:
         """The scan, among the models', whose maximum is largest (the first of equals)."""
         scans = [model.scan(profile) for model in self.models]
-        return max(scans, key=lambda scan: float(scan.values.max(initial=0.0)))
+        return max(scans, key=lambda scan: scan.maximum())

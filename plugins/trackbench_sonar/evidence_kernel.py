@@ -71,102 +71,133 @@ def _semicircle(
 
 
 @numba.njit(cache=True, nogil=True)
-def _normal_equations(
-    design: np.ndarray, weights: np.ndarray, target: np.ndarray, n: int, pipe: bool, normal: np.ndarray
-) -> None:  # pragma: no cover - compiled
-    """The weighted normal equations of the seabed's three columns (and the pipe's fourth) into ``normal``."""
-    a00 = a01 = a02 = a03 = a11 = a12 = a13 = a22 = a23 = a33 = 0.0
-    b0 = b1 = b2 = b3 = 0.0
-    for j in range(n):
-        d0, d1, d2, t = design[0, j], design[1, j], design[2, j], target[j]
-        w0, w1, w2 = weights[j] * d0, weights[j] * d1, weights[j] * d2
-        a00 += w0 * d0
-        a01 += w0 * d1
-        a02 += w0 * d2
-        a11 += w1 * d1
-        a12 += w1 * d2
-        a22 += w2 * d2
-        b0 += w0 * t
-        b1 += w1 * t
-        b2 += w2 * t
-        if pipe:
-            d3 = design[3, j]
-            w3 = weights[j] * d3
-            a03 += w0 * d3
-            a13 += w1 * d3
-            a23 += w2 * d3
-            a33 += w3 * d3
-            b3 += w3 * t
-    columns = 4 if pipe else 3
-    normal[0, 0], normal[0, 1], normal[0, 2] = a00, a01, a02
-    normal[1, 1], normal[1, 2], normal[2, 2] = a11, a12, a22
-    if pipe:
-        normal[0, 3], normal[1, 3], normal[2, 3], normal[3, 3] = a03, a13, a23, a33
-        normal[3, columns] = b3
-    normal[0, columns], normal[1, columns], normal[2, columns] = b0, b1, b2
+def _solve(normal: np.ndarray, columns: int, coefficients: np.ndarray) -> None:  # pragma: no cover - compiled
+    """Solve the normal equations (upper triangle and right-hand side in ``normal``) with a small ridge."""
+    trace = 0.0
+    for p in range(columns):
+        trace += normal[p, p]
+        for q in range(p):
+            normal[p, q] = normal[q, p]
+    ridge = 1e-12 * max(trace, 1.0)
+    for p in range(columns):
+        normal[p, p] += ridge
+    # Gaussian elimination with partial pivoting on the augmented matrix.
+    for p in range(columns):
+        pivot = p
+        for q in range(p + 1, columns):
+            if abs(normal[q, p]) > abs(normal[pivot, p]):
+                pivot = q
+        if pivot != p:
+            for c in range(columns + 1):
+                normal[p, c], normal[pivot, c] = normal[pivot, c], normal[p, c]
+        for q in range(p + 1, columns):
+            factor = normal[q, p] / normal[p, p]
+            for c in range(p, columns + 1):
+                normal[q, c] -= factor * normal[p, c]
+    for p in range(columns - 1, -1, -1):
+        total = normal[p, columns]
+        for c in range(p + 1, columns):
+            total -= normal[p, c] * coefficients[c]
+        coefficients[p] = total / normal[p, p]
 
 
 @numba.njit(cache=True, nogil=True)
-def _robust_fit(
+def _seabed_design(
+    x: np.ndarray,
+    z: np.ndarray,
+    c: float,
+    sigma: float,
+    first: int,
+    n: int,
+    half_width: float,
+    reach: float,
+    relief_widths: float,
     design: np.ndarray,
     target: np.ndarray,
+) -> bool:  # pragma: no cover - compiled
+    """The seafloor's three columns and the depths of the window ``x[first:first + n]`` about ``c``.
+
+    Returns False, filling nothing, where the window holds no return beyond the pipe's span on one side.
+    """
+    port = False
+    starboard = False
+    for j in range(n):
+        u = x[first + j] - c
+        port |= u <= -half_width
+        starboard |= u >= half_width
+    if not (port and starboard):
+        return False
+    relief = relief_widths * math.hypot(half_width, sigma)
+    for j in range(n):
+        u = x[first + j] - c
+        design[0, j] = 1.0
+        design[1, j] = u / reach
+        design[2, j] = math.exp(-0.5 * (u / relief) ** 2)
+        target[j] = z[first + j]
+    return True
+
+
+@numba.njit(cache=True, nogil=True)
+def _pipe_design(
+    x: np.ndarray,
+    c: float,
+    sigma: float,
+    first: int,
     n: int,
-    columns: int,
-    k: float,
+    half_width: float,
+    half_height: float,
+    table: np.ndarray,
+    first_offset: float,
+    offset_step: float,
+    sigma_step: float,
+    table_reach: float,
+    design: np.ndarray,
+    target: np.ndarray,
+    raised: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """The pipe's span as seen (the fourth column) and the depths raised by its arc as seen."""
+    r = sigma / half_width
+    row_position = min(max(r / sigma_step, 0.0), table.shape[0] - 1.000001)
+    row = int(row_position)
+    row_share = row_position - row
+    for j in range(n):
+        v = (x[first + j] - c) / half_width
+        design[3, j] = -_smoothed_box(v, r)
+        raised[j] = target[j] + half_height * _semicircle(
+            v, row, row_share, table, first_offset, offset_step, table_reach
+        )
+
+
+@numba.njit(cache=True, nogil=True)
+def _pipe_fit(
+    design: np.ndarray,
+    raised: np.ndarray,
+    n: int,
+    floor_cost: float,
+    robust_scale: float,
+    noise: float,
     iterations: int,
     coefficients: np.ndarray,
     normal: np.ndarray,
-    weights: np.ndarray,
-) -> float:  # pragma: no cover - compiled
-    """IRLS with the Cauchy loss of scale ``k`` on the first ``columns`` rows of ``design``; the cost times ``sigma^2``.
+) -> tuple[float, float]:  # pragma: no cover - compiled
+    """The evidence ``E`` (floored at 0, 0 if not finite) and the pedestal ``s`` of a candidate whose seafloor costs ``floor_cost``."""
+    pipe_cost = _fused_fit(design, raised, n, 4, robust_scale, iterations, coefficients, normal)
+    height = coefficients[3]
+    if not height >= 0.0:
+        # s < 0 would put the pipe's centre below the seafloor: fit it resting at s = 0 instead.
+        pipe_cost = _fused_fit(design, raised, n, 3, robust_scale, iterations, coefficients, normal)
+        height = 0.0
+    value = max((floor_cost - pipe_cost) / (noise * noise), 0.0)
+    return (value if math.isfinite(value) else 0.0), height
 
-    The fitted coefficients are left in ``coefficients``; ``normal`` (4 x 5) and ``weights`` are work space.
-    """
-    weights[:n] = 1.0
-    inverse = 1.0 / k
-    cost = 0.0
-    for iteration in range(iterations):
-        _normal_equations(design, weights, target, n, columns == 4, normal)
-        trace = 0.0
-        for p in range(columns):
-            trace += normal[p, p]
-            for q in range(p):
-                normal[p, q] = normal[q, p]
-        ridge = 1e-12 * max(trace, 1.0)
-        for p in range(columns):
-            normal[p, p] += ridge
-        # Gaussian elimination with partial pivoting on the augmented matrix.
-        for p in range(columns):
-            pivot = p
-            for q in range(p + 1, columns):
-                if abs(normal[q, p]) > abs(normal[pivot, p]):
-                    pivot = q
-            if pivot != p:
-                for c in range(columns + 1):
-                    normal[p, c], normal[pivot, c] = normal[pivot, c], normal[p, c]
-            for q in range(p + 1, columns):
-                factor = normal[q, p] / normal[p, p]
-                for c in range(p, columns + 1):
-                    normal[q, c] -= factor * normal[p, c]
-        for p in range(columns - 1, -1, -1):
-            total = normal[p, columns]
-            for c in range(p + 1, columns):
-                total -= normal[p, c] * coefficients[c]
-            coefficients[p] = total / normal[p, p]
-        last = iteration == iterations - 1
-        c0, c1, c2 = coefficients[0], coefficients[1], coefficients[2]
-        c3 = coefficients[3] if columns == 4 else 0.0
-        for j in range(n):
-            fitted = c0 * design[0, j] + c1 * design[1, j] + c2 * design[2, j]
-            if columns == 4:
-                fitted += c3 * design[3, j]
-            scaled = (target[j] - fitted) * inverse
-            scaled *= scaled
-            if last:
-                cost += math.log1p(scaled)
-            else:
-                weights[j] = 1.0 / (1.0 + scaled)
-    return k * k * cost
+
+@numba.njit(cache=True, nogil=True)
+def _work(low: np.ndarray, high: np.ndarray) -> tuple:  # pragma: no cover - compiled
+    """Work space for the widest window: design, target, raised, coefficients, normal equations."""
+    widest = 1
+    for i in range(low.size):
+        widest = max(widest, high[i] - low[i])
+    return np.empty((4, widest)), np.empty(widest), np.empty(widest), np.zeros(4), np.empty((4, 5))
 
 
 @numba.njit(cache=True, nogil=True)
@@ -227,54 +258,303 @@ def footprint_evidence(
     evidence = np.zeros(count)
     pedestal = np.full(count, np.nan)
     scored = np.zeros(count, dtype=np.bool_)
-    widest = 0
-    for i in range(count):
-        widest = max(widest, high[i] - low[i])
-    design = np.empty((4, max(widest, 1)))
-    target = np.empty(max(widest, 1))
-    raised = np.empty(max(widest, 1))
-    coefficients = np.zeros(4)
-    normal = np.empty((4, 5))
-    weights = np.empty(max(widest, 1))
-    rows = table.shape[0]
+    design, target, raised, coefficients, normal = _work(low, high)
     for i in range(count):
         n = high[i] - low[i]
         if n < min_returns:
             continue
-        c = centre[i]
-        port = False
-        starboard = False
-        for j in range(n):
-            u = x[low[i] + j] - c
-            port |= u <= -half_width
-            starboard |= u >= half_width
-        if not (port and starboard):
+        if not _seabed_design(x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target):
             continue
         scored[i] = True
-        r = sigma[i] / half_width
-        relief = relief_widths * math.hypot(half_width, sigma[i])
-        row_position = min(max(r / sigma_step, 0.0), rows - 1.000001)
-        row = int(row_position)
-        row_share = row_position - row
-        for j in range(n):
-            u = x[low[i] + j] - c
-            v = u / half_width
-            design[0, j] = 1.0
-            design[1, j] = u / reach
-            design[2, j] = math.exp(-0.5 * (u / relief) ** 2)
-            design[3, j] = -_smoothed_box(v, r)
-            target[j] = z[low[i] + j]
-            raised[j] = target[j] + half_height * _semicircle(
-                v, row, row_share, table, first_offset, offset_step, table_reach
-            )
-        floor_cost = _robust_fit(design, target, n, 3, robust_scale, iterations, coefficients, normal, weights)
-        pipe_cost = _robust_fit(design, raised, n, 4, robust_scale, iterations, coefficients, normal, weights)
-        height = coefficients[3]
-        if not height >= 0.0:
-            # s < 0 would put the pipe's centre below the seafloor: fit it resting at s = 0 instead.
-            pipe_cost = _robust_fit(design, raised, n, 3, robust_scale, iterations, coefficients, normal, weights)
-            height = 0.0
-        value = max((floor_cost - pipe_cost) / (noise * noise), 0.0)
-        evidence[i] = value if math.isfinite(value) else 0.0
-        pedestal[i] = height
+        floor_cost = _fused_fit(design, target, n, 3, robust_scale, iterations, coefficients, normal)
+        _pipe_design(
+            x, centre[i], sigma[i], low[i], n, half_width, half_height, table, first_offset, offset_step,
+            sigma_step, table_reach, design, target, raised,
+        )
+        evidence[i], pedestal[i] = _pipe_fit(design, raised, n, floor_cost, robust_scale, noise, iterations, coefficients, normal)
     return evidence, pedestal, scored
+
+
+@numba.njit(cache=True, nogil=True)
+def seabed_costs(
+    x: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+    settings: np.ndarray,
+) -> np.ndarray:  # pragma: no cover - compiled
+    """The seafloor's robust cost ``C_floor`` of every candidate, as :func:`footprint_evidence` fits it (``nan``: not scored).
+
+    ``settings`` holds :func:`footprint_evidence`'s numbers: ``half_width, half_height, reach,
+    relief_widths, robust_scale, noise, iterations, min_returns, first_offset, offset_step, sigma_step,
+    table_reach``.  The cost bounds the evidence from above: ``E = max((C_floor - C_pipe) / sigma^2, 0)``
+    with ``C_pipe >= 0``, and rounding is monotone, so ``E <= max(C_floor / sigma^2, 0)`` to the last bit;
+    where ``C_floor`` is not finite, ``E`` is 0.
+    """
+    half_width, reach, relief_widths = settings[0], settings[2], settings[3]
+    robust_scale, iterations, min_returns = settings[4], int(settings[6]), int(settings[7])
+    count = centre.size
+    floor = np.full(count, np.nan)
+    design, target, _, coefficients, normal = _work(low, high)
+    for i in range(count):
+        n = high[i] - low[i]
+        if n >= min_returns and _seabed_design(
+            x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target
+        ):
+            floor[i] = _fused_fit(design, target, n, 3, robust_scale, iterations, coefficients, normal)
+    return floor
+
+
+@numba.njit(cache=True, nogil=True)
+def _candidate(
+    i: int,
+    x: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+    floor: np.ndarray,
+    settings: np.ndarray,
+    table: np.ndarray,
+    values: np.ndarray,
+    known: np.ndarray,
+    work: tuple,
+) -> None:  # pragma: no cover - compiled
+    """Candidate ``i``'s ``E`` into ``values[i]``, as :func:`footprint_evidence` gives it, from its seafloor cost ``floor[i]``."""
+    known[i] = True
+    floor_cost = floor[i]
+    if not math.isfinite(floor_cost):
+        values[i] = 0.0
+        return
+    design, target, raised, coefficients, normal = work
+    n = high[i] - low[i]
+    half_width, half_height, reach, relief_widths = settings[0], settings[1], settings[2], settings[3]
+    _seabed_design(x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target)
+    _pipe_design(
+        x, centre[i], sigma[i], low[i], n, half_width, half_height, table, settings[8], settings[9],
+        settings[10], settings[11], design, target, raised,
+    )
+    values[i] = _pipe_fit(
+        design, raised, n, floor_cost, settings[4], settings[5], int(settings[6]), coefficients, normal
+    )[0]
+
+
+@numba.njit(cache=True, nogil=True)
+def evidence_at(
+    wanted: np.ndarray,
+    x: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+    floor: np.ndarray,
+    settings: np.ndarray,
+    table: np.ndarray,
+    values: np.ndarray,
+    known: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """``E`` of the candidates ``wanted`` not yet ``known`` into ``values`` (``floor``: :func:`seabed_costs`'s)."""
+    work = _work(low, high)
+    for i in wanted:
+        if not known[i]:
+            _candidate(i, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
+
+
+@numba.njit(cache=True, nogil=True)
+def evidence_around(
+    across: np.ndarray,
+    first_position: float,
+    spacing: float,
+    x: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+    floor: np.ndarray,
+    settings: np.ndarray,
+    table: np.ndarray,
+    values: np.ndarray,
+    known: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """:func:`evidence_at` of the grid positions about each finite position of ``across``.
+
+    For each, the cells ``k - 1 .. k + 2`` with ``k = floor((across - first_position) / spacing)``,
+    clipped into the grid: the two cells interpolation reads lie among them whatever the rounding.
+    """
+    count = centre.size
+    work = _work(low, high)
+    for a in across:
+        if not math.isfinite(a):
+            continue
+        cell = int(math.floor(min(max((a - first_position) / spacing, -2.0), float(count))))
+        for i in range(max(cell - 1, 0), min(cell + 3, count)):
+            if not known[i]:
+                _candidate(i, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
+
+
+@numba.njit(cache=True, nogil=True)
+def _sift_down(heap: np.ndarray, start: int, size: int, key: np.ndarray) -> None:  # pragma: no cover - compiled
+    """Restore the max-heap of indices ``heap[:size]`` ordered by ``key`` below ``start``."""
+    parent = start
+    while True:
+        child = 2 * parent + 1
+        if child >= size:
+            return
+        if child + 1 < size and key[heap[child + 1]] > key[heap[child]]:
+            child += 1
+        if not key[heap[child]] > key[heap[parent]]:
+            return
+        heap[parent], heap[child] = heap[child], heap[parent]
+        parent = child
+
+
+@numba.njit(cache=True, nogil=True)
+def evidence_maximum(
+    x: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+    floor: np.ndarray,
+    settings: np.ndarray,
+    table: np.ndarray,
+    values: np.ndarray,
+    known: np.ndarray,
+) -> int:  # pragma: no cover - compiled
+    """The first candidate of largest ``E`` (-1 when every ``E`` is 0), evaluating only those that can be it.
+
+    Candidates are taken in decreasing order of their bound ``C_floor / sigma^2`` (:func:`seabed_costs`; 0
+    where that cost is not finite), the largest first and then off a heap of those whose bound reaches
+    its evidence; once the bound falls below the largest ``E`` found, no candidate left can reach it.
+    Every candidate evaluated is left in ``values`` and ``known``.
+    """
+    count = centre.size
+    scale = settings[5] * settings[5]
+    bound = np.zeros(count)
+    top = 0
+    for i in range(count):
+        if math.isfinite(floor[i]):
+            bound[i] = floor[i] / scale
+        if bound[i] > bound[top]:
+            top = i
+    if not bound[top] > 0.0:
+        return -1
+    work = _work(low, high)
+    if not known[top]:
+        _candidate(top, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
+    best = values[top]
+    heap = np.flatnonzero((bound > 0.0) & (bound >= best))
+    size = heap.size
+    for start in range(size // 2 - 1, -1, -1):
+        _sift_down(heap, start, size, bound)
+    while size > 0 and bound[heap[0]] >= best:
+        i = heap[0]
+        size -= 1
+        heap[0] = heap[size]
+        _sift_down(heap, 0, size, bound)
+        if not known[i]:
+            _candidate(i, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
+        best = max(best, values[i])
+    if not best > 0.0:
+        return -1
+    for i in range(count):
+        if known[i] and values[i] == best:
+            return i
+    return -1
+
+
+@numba.njit(cache=True, nogil=True)
+def _fused_fit(
+    design: np.ndarray,
+    target: np.ndarray,
+    n: int,
+    columns: int,
+    k: float,
+    iterations: int,
+    coefficients: np.ndarray,
+    normal: np.ndarray,
+) -> float:  # pragma: no cover - compiled
+    """:func:`_robust_fit` in fewer passes over the returns, to the last bit.
+
+    The same products summed in the same order, with the column of ones (``design[0]``, not read)
+    multiplied out, which is exact, and each round's reweighting summed straight into the next round's
+    normal equations.
+    """
+    pipe = columns == 4
+    inverse = 1.0 / k
+    cost = 0.0
+    c0 = c1 = c2 = c3 = 0.0
+    a00 = a01 = a02 = a03 = a11 = a12 = a13 = a22 = a23 = a33 = 0.0
+    b0 = b1 = b2 = b3 = 0.0
+    for iteration in range(iterations + 1):
+        if iteration > 0:
+            normal[0, 0], normal[0, 1], normal[0, 2] = a00, a01, a02
+            normal[1, 1], normal[1, 2], normal[2, 2] = a11, a12, a22
+            if pipe:
+                normal[0, 3], normal[1, 3], normal[2, 3], normal[3, 3] = a03, a13, a23, a33
+                normal[3, columns] = b3
+            normal[0, columns], normal[1, columns], normal[2, columns] = b0, b1, b2
+            _solve(normal, columns, coefficients)
+            c0, c1, c2 = coefficients[0], coefficients[1], coefficients[2]
+            c3 = coefficients[3] if pipe else 0.0
+        last = iteration == iterations
+        a00 = a01 = a02 = a03 = a11 = a12 = a13 = a22 = a23 = a33 = 0.0
+        b0 = b1 = b2 = b3 = 0.0
+        for j in range(n):
+            d1, d2, t = design[1, j], design[2, j], target[j]
+            w = 1.0
+            if iteration > 0:
+                fitted = c0 + c1 * d1 + c2 * d2
+                if pipe:
+                    fitted += c3 * design[3, j]
+                scaled = (t - fitted) * inverse
+                scaled *= scaled
+                if last:
+                    cost += math.log1p(scaled)
+                    continue
+                w = 1.0 / (1.0 + scaled)
+            w1, w2 = w * d1, w * d2
+            a00 += w
+            a01 += w * d1
+            a02 += w * d2
+            a11 += w1 * d1
+            a12 += w1 * d2
+            a22 += w2 * d2
+            b0 += w * t
+            b1 += w1 * t
+            b2 += w2 * t
+            if pipe:
+                d3 = design[3, j]
+                w3 = w * d3
+                a03 += w * d3
+                a13 += w1 * d3
+                a23 += w2 * d3
+                a33 += w3 * d3
+                b3 += w3 * t
+    return k * k * cost
+
+
+@numba.njit(cache=True, nogil=True)
+def candidate_windows(
+    x: np.ndarray, centre: np.ndarray, depth: np.ndarray, reach: float, beam_width: float, fwhm_per_sigma: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover - compiled
+    """Each candidate's window of returns ``x[low:high]`` within ``reach`` and the footprint's sigma there.
+
+    As :meth:`~trackbench_sonar.evidence.FootprintLikelihood.windows` gives them: the binary searches of
+    ``numpy.searchsorted`` and :func:`~trackbench_sonar.footprint.footprint_sigma`'s arithmetic, ``(c^2 +
+    z^2) phi / z`` over ``fwhm_per_sigma`` (``inf`` at or above the transducer, 0 for rays).
+    """
+    low = np.searchsorted(x, centre - reach, side="left")
+    high = np.searchsorted(x, centre + reach, side="right")
+    sigma = np.zeros(centre.size)
+    if beam_width > 0.0:
+        for i in range(centre.size):
+            c, z = centre[i], depth[i]
+            sigma[i] = ((c * c + z * z) * beam_width / z if z > 0.0 else math.inf) / fwhm_per_sigma
+    return low, high, sigma

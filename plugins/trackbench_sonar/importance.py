@@ -30,6 +30,7 @@ of the swath it injects over, so the filter makes one for each ping.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -47,6 +48,12 @@ def uniform_positions(count: int, extent: tuple[float, float], rng: np.random.Ge
     """
     low, high = extent
     return rng.uniform(low, high, size=(count, 1))
+
+
+@functools.lru_cache(maxsize=16)
+def _diffusion(walk_sigma_m: float) -> LinearDriftDiffusion:
+    """The walk of one dimension, made (and checked) once per standard deviation: the filter makes a movement each ping."""
+    return LinearDriftDiffusion(np.eye(1), np.array([walk_sigma_m]))
 
 
 @dataclass(frozen=True)
@@ -83,7 +90,7 @@ class RandomWalkInjection:
             raise ValueError(f"inject_fraction must be in [0, 1], got {self.inject_fraction!r}")
         if not np.isfinite(self.drift_m):
             raise ValueError(f"drift_m must be finite, got {self.drift_m!r}")
-        object.__setattr__(self, "_walk", LinearDriftDiffusion(np.eye(1), np.array([self.walk_sigma_m])))
+        object.__setattr__(self, "_walk", _diffusion(self.walk_sigma_m))
 
     def injected_count(self, n: int) -> int:
         """Particles re-drawn among ``n``: ``round(J n)``, at least one when ``J > 0``."""

@@ -69,12 +69,45 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
 from benchmark.modalities.sonar.model import beam_footprint
 from trackbench_sonar.cross_section import CrossSection
 from trackbench_sonar.profile import Profile
+
+
+class Scan(Protocol):
+    """What the trackers read of a likelihood scan: :class:`LikelihoodScan`, or one computed where read.
+
+    :class:`trackbench_sonar.evidence.EvidenceScan` computes its values only
+    where they are read; both give the same readings to the last bit.
+    """
+
+    positions: np.ndarray
+
+    @property
+    def values(self) -> np.ndarray:
+        """``L`` at every position."""
+        ...
+
+    @property
+    def is_empty(self) -> bool:
+        """True when the scan has no positions or no positive value."""
+        ...
+
+    def maximum(self) -> float:
+        """The largest value, 0 for a scan without positions."""
+        ...
+
+    def at(self, across_m: np.ndarray) -> np.ndarray:
+        """``L`` at arbitrary positions: linear between grid positions, 0 outside the scan."""
+        ...
+
+    def peak(self, refine: bool = False) -> float | None:
+        """The most likely position, or None for an empty scan (first of equal maxima)."""
+        ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -112,6 +145,10 @@ class LikelihoodScan:
         """True when the scan has no positions or no positive value."""
         return self.values.size == 0 or not self.values.max() > 0.0
 
+    def maximum(self) -> float:
+        """The scan's largest value, 0 for a scan without positions."""
+        return float(self.values.max(initial=0.0))
+
     def at(self, across_m: np.ndarray) -> np.ndarray:
         """``L`` at arbitrary positions: linear between grid positions, 0 outside the scan.
 
@@ -126,12 +163,7 @@ class LikelihoodScan:
             Finite, non-negative values of the shape of ``across_m``
             (0 at non-finite positions).
         """
-        across = np.asarray(across_m, dtype=float)
-        if self.values.size == 0:
-            return np.zeros(across.shape)
-        finite = np.isfinite(across)
-        values = np.interp(np.where(finite, across, self.positions[0] - 1.0), self.positions, self.values, 0.0, 0.0)
-        return np.where(finite, values, 0.0)
+        return interpolate(self.positions, self.values, across_m)
 
     def peak(self, refine: bool = False) -> float | None:
         """The most likely position, or None for an empty scan (first of equal maxima).
@@ -145,16 +177,33 @@ class LikelihoodScan:
         """
         if self.is_empty:
             return None
-        best = int(np.argmax(self.values))
-        position = float(self.positions[best])
-        if not refine or not 0 < best < self.values.size - 1:
-            return position
-        left, top, right = self.values[best - 1 : best + 2]
-        curvature = left - 2.0 * top + right
-        if not curvature < 0.0:
-            return position
-        step = float(self.positions[best + 1] - self.positions[best])
-        return position + float(np.clip(0.5 * (left - right) / curvature, -0.5, 0.5)) * step
+        return peak_position(self.positions, self.values, int(np.argmax(self.values)), refine)
+
+
+def interpolate(positions: np.ndarray, values: np.ndarray, across_m: np.ndarray) -> np.ndarray:
+    """A scan's ``values`` over ``positions`` at arbitrary positions (:meth:`LikelihoodScan.at`).
+
+    Reads ``values`` only on both sides of each finite position within the scan.
+    """
+    across = np.asarray(across_m, dtype=float)
+    if values.size == 0:
+        return np.zeros(across.shape)
+    finite = np.isfinite(across)
+    inside = np.interp(np.where(finite, across, positions[0] - 1.0), positions, values, 0.0, 0.0)
+    return np.where(finite, inside, 0.0)
+
+
+def peak_position(positions: np.ndarray, values: np.ndarray, best: int, refine: bool) -> float:
+    """The position of the scan's maximum ``values[best]`` (:meth:`LikelihoodScan.peak`), read with its neighbours."""
+    position = float(positions[best])
+    if not refine or not 0 < best < values.size - 1:
+        return position
+    left, top, right = values[best - 1 : best + 2]
+    curvature = left - 2.0 * top + right
+    if not curvature < 0.0:
+        return position
+    step = float(positions[best + 1] - positions[best])
+    return position + float(np.clip(0.5 * (left - right) / curvature, -0.5, 0.5)) * step
 
 
 @dataclass(frozen=True, eq=False)

@@ -60,7 +60,7 @@ from benchmark.model import SequenceInfo
 from trackbench_sonar.detection import ScanTracker
 from trackbench_sonar.estimate import peak_mean
 from trackbench_sonar.importance import RandomWalkInjection, uniform_positions
-from trackbench_sonar.likelihood import LikelihoodScan
+from trackbench_sonar.likelihood import Scan
 from trackbench_sonar.params import ParticleFilterParams
 
 
@@ -87,7 +87,7 @@ class ScanWeights:
     floor: float
     exponent: float = 1.0
 
-    def likelihood(self, states: np.ndarray, observation: LikelihoodScan) -> np.ndarray:
+    def likelihood(self, states: np.ndarray, observation: Scan) -> np.ndarray:
         """``max(L_k^i ^ gamma, floor * max_j L_k^j ^ gamma)`` for every particle of ``states`` (shape ``(N, 1)``)."""
         values = observation.at(np.asarray(states, dtype=float)[:, 0]) ** self.exponent
         return np.maximum(values, self.floor * values.max(initial=0.0))
@@ -129,7 +129,7 @@ class AcrossTrackRate:
         self.last_m = estimate_m
 
 
-def injection_rate(fraction: float, lost_ratio: float, scan: LikelihoodScan, positions: np.ndarray) -> float:
+def injection_rate(fraction: float, lost_ratio: float, scan: Scan, positions: np.ndarray) -> float:
     """The share of particles re-drawn this ping: ``J max(0, 1 - r / lost_ratio)``.
 
     ``r`` is the scan's best value at ``positions`` (the particles where the
@@ -142,7 +142,7 @@ def injection_rate(fraction: float, lost_ratio: float, scan: LikelihoodScan, pos
         ``J``, the rate of a lost filter (section 3.4).
     lost_ratio : float
         ``r`` at and above which nothing is injected; 0 injects ``J`` always.
-    scan : LikelihoodScan
+    scan : Scan
         This ping's scan, not empty.
     positions : numpy.ndarray
         The particles' positions.
@@ -151,7 +151,7 @@ def injection_rate(fraction: float, lost_ratio: float, scan: LikelihoodScan, pos
     ----------
     seeds/003, section 3.4 ("generating some rate J of new random samples").
     """
-    threshold = lost_ratio * float(scan.values.max())
+    threshold = lost_ratio * scan.maximum()
     if not threshold > 0.0:
         return fraction
     here = float(scan.at(positions).max(initial=0.0))

@@ -193,33 +193,29 @@ def resample_swath(
     seeds/003, section 2 ("re-sampling of the data is required as the data
     sampling rate is not constant").
     """
-    valid = swath.valid
-    across = swath.across_m[valid]
-    depth = swath.depth_m[valid]
-    keep = spike_mask(across, depth, spike_window, spike_m)
-    across, depth = across[keep], depth[keep]
+    if spike_window % 2 == 0 and spike_window >= 3:
+        valid = swath.valid
+        across, depth = swath.across_m[valid], swath.depth_m[valid]
+        keep = spike_mask(across, depth, spike_window, spike_m)
+        across, depth = across[keep], depth[keep]
+    else:
+        across, depth = envelope_kernel.clean_returns(swath.across_m, swath.depth_m, int(spike_window), float(spike_m))
     if across.size < max(min_beams, 2):
         return Profile.empty(grid_m)
-    ends = np.array([across.min(), across.max()]) / grid_m
-    if not (np.all(np.isfinite(ends)) and ends[1] - ends[0] <= MAX_GRID_POINTS):
+    low, high = float(across.min()) / grid_m, float(across.max()) / grid_m
+    if not (math.isfinite(low) and math.isfinite(high) and high - low <= MAX_GRID_POINTS):
         raise DataError(
             f"swath returns span {across.min():.6g} .. {across.max():.6g} m across track: "
             f"more than {MAX_GRID_POINTS} points at {grid_m:g} m"
         )
-    first = math.ceil(ends[0])
-    last = math.floor(ends[1])
+    first = math.ceil(low)
+    last = math.floor(high)
     if last - first < 2:
         return Profile.empty(grid_m)
-    envelope, segment = upper_envelope(across, depth, grid_m, first, last)
-    order = np.argsort(across, kind="stable")
-    return Profile(
-        np.arange(first, last + 1) * grid_m,
-        envelope,
-        grid_m,
-        np.abs(np.diff(across))[segment],
-        across[order],
-        depth[order],
+    grid, envelope, gap, sorted_across, sorted_depth = envelope_kernel.profile_arrays(
+        across, depth, float(grid_m), first, last
     )
+    return Profile(grid, envelope, grid_m, gap, sorted_across, sorted_depth)
 
 
 def upper_envelope(
