@@ -116,9 +116,15 @@ class Sequence(ABC):
         The frames are a pure function of :attr:`identity` and worth keeping
         once produced (simulated scenes): a run reads them through its frame
         cache (:mod:`benchmark.frame_cache`).  False for data read from files.
+    closed_loop : bool
+        The frames depend on the estimates: after each frame is scored the
+        runner hands the tracker's estimate to :meth:`steer`, and the next
+        frame is made from where it steered the vehicle
+        (:mod:`benchmark.closedloop`).  Such frames are never cached.
     """
 
     cache_frames: ClassVar[bool] = False
+    closed_loop: ClassVar[bool] = False
 
     @property
     @abstractmethod
@@ -142,6 +148,9 @@ class Sequence(ABC):
         info = self.info
         generator = f"{type(self).__module__}.{type(self).__qualname__}"
         return DatasetIdentity(info.name, info.modality, source=generator, fingerprint=digest(info.name))
+
+    def steer(self, estimate: Any) -> None:
+        """Take the estimate of the frame :meth:`frames` yielded last; only a :attr:`closed_loop` sequence uses it."""
 
     def lacks(self, needs: Iterable[str]) -> dict[str, str]:
         """Of the :class:`SequenceInfo` fields ``needs`` (a tracker's :attr:`~benchmark.tracker.Tracker.needs`), those the sequence does not give.

@@ -364,6 +364,8 @@ def _play(
     while True:
         index = frame.index
         estimate = Call.of(lambda: _step(cell, tracker, frame, info, progress), f"frame {index}", index).value()
+        if cell.sequence.closed_loop:
+            Call.of(lambda: cell.sequence.steer(estimate), f"steering after frame {index}", index).value()
         if observer is not None:
             score = progress.scores[-1]
             Call.of(lambda: observer(tracker, frame, estimate, score), f"observing frame {index}", index).value()

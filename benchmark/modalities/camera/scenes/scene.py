@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from benchmark.errors import DataError
-from benchmark.modalities.camera.model import CameraCalibration, CameraTruth, VehicleSpeeds
+from benchmark.modalities.camera.model import CameraCalibration, CameraPose, CameraTruth, VehicleSpeeds
 from benchmark.modalities.camera.scenes.burial import sand_level, visible_fraction
 from benchmark.modalities.camera.scenes.motion import Trajectory, build_trajectory, vehicle_speeds
 from benchmark.modalities.camera.scenes.overgrowth import overgrowth_layer
@@ -204,21 +204,31 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
 
     def truth(self, index: int) -> CameraTruth:
         """Ground truth of frame ``index``, without rendering it."""
+        return self.truth_from(self._state().trajectory.pose(self._check(index)))
+
+    def truth_from(self, pose: CameraPose) -> CameraTruth:
+        """The ground truth of the scene seen from any ``pose``: the cable's projection and the visible share."""
         spec, state = self._spec, self._state()
-        pose = state.trajectory.pose(self._check(index))
         cable = cable_truth(pose, spec.radius, spec.focal_px, spec.frame_size)
         visible = visible_fraction(pose, spec.radius, spec.focal_px, spec.frame_size, state.sand_z, state.sand_y)
         return CameraTruth(cable=cable, pose=pose, visible_fraction=visible)
 
     def render(self, index: int) -> np.ndarray:
         """The image of frame ``index`` alone (identical to the one :meth:`frames` yields)."""
-        pose = self._state().trajectory.pose(self._check(index))
-        return self._renderer().render(pose, self._stream(_FRAMES, index), self._time(index))
+        return self.render_from(self._state().trajectory.pose(self._check(index)), index)
 
     def render_clean(self, index: int) -> np.ndarray:
         """Frame ``index`` before the sensor's noise, quantisation and compression: ``float32`` grey levels."""
-        pose = self._state().trajectory.pose(self._check(index))
-        return self._renderer().render(pose, self._stream(_FRAMES, index), self._time(index), clean=True)
+        return self.render_from(self._state().trajectory.pose(self._check(index)), index, clean=True)
+
+    def render_from(self, pose: CameraPose, index: int, clean: bool = False) -> np.ndarray:
+        """The scene seen from any ``pose`` at frame ``index``'s time, with that frame's sensor noise.
+
+        A closed-loop run (:mod:`benchmark.closedloop`) renders its frames
+        this way, from the poses its vehicle reaches; the seabed is textured
+        over what the spec's own trajectory sees.
+        """
+        return self._renderer().render(pose, self._stream(_FRAMES, index), self._time(index), clean=clean)
 
     def _time(self, index: int) -> float:
         return index * self._spec.frame_interval_s
