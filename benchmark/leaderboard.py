@@ -49,7 +49,7 @@ from typing import TYPE_CHECKING
 import pandas as pd
 
 from benchmark.intervals import seed_intervals
-from benchmark.metrics import CORE, KINDS, Metric, Metrics
+from benchmark.metrics import CORE, KINDS, Metric, Metrics, columns_with_values
 from benchmark.modality import Modality
 from benchmark.results import summarise
 
@@ -86,8 +86,13 @@ def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str,
 def board_metrics(
     metrics: Metrics, modality_name: str, modality: Modality | None, frames: pd.DataFrame
 ) -> tuple[Metric, ...]:
-    """The metrics of the board of a modality (registered or not: :func:`error_columns`), in board order."""
-    return metrics.for_board(modality_name, error_columns(modality, frames))
+    """The metrics of the board of a modality (registered or not: :func:`error_columns`), in board order.
+
+    A metric that requires frame columns none of ``frames`` fills (the
+    closed-loop metrics on open-loop frames) is not on the board
+    (:attr:`benchmark.metrics.Metric.requires`).
+    """
+    return metrics.for_board(modality_name, error_columns(modality, frames), columns_with_values(frames))
 
 
 def board_columns(metrics: Sequence[Metric]) -> list[str]:

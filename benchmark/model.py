@@ -21,9 +21,12 @@ import enum
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any, ClassVar, Generic, TypeVar
+from typing import TYPE_CHECKING, Any, ClassVar, Generic, TypeVar
 
 from benchmark.identity import DatasetIdentity, digest
+
+if TYPE_CHECKING:
+    from benchmark.results import LoopValues
 
 
 class Outcome(enum.StrEnum):
@@ -149,8 +152,17 @@ class Sequence(ABC):
         generator = f"{type(self).__module__}.{type(self).__qualname__}"
         return DatasetIdentity(info.name, info.modality, source=generator, fingerprint=digest(info.name))
 
-    def steer(self, estimate: Any) -> None:
-        """Take the estimate of the frame :meth:`frames` yielded last; only a :attr:`closed_loop` sequence uses it."""
+    def steer(self, estimate: Any) -> LoopValues | None:
+        """Take the estimate of the frame :meth:`frames` yielded last; only a :attr:`closed_loop` sequence uses it.
+
+        Returns
+        -------
+        LoopValues or None
+            A closed-loop sequence gives the vehicle's values at that frame
+            (:class:`benchmark.results.LoopValues`), which the runner adds to
+            the frame's score; None otherwise.
+        """
+        return None
 
     def lacks(self, needs: Iterable[str]) -> dict[str, str]:
         """Of the :class:`SequenceInfo` fields ``needs`` (a tracker's :attr:`~benchmark.tracker.Tracker.needs`), those the sequence does not give.

@@ -272,7 +272,10 @@ def run_cell(
         Status ``"ok"`` with all frames scored, or ``"error"`` /
         ``"timeout"`` with the frames scored before; with the pictures of
         the first frame of each run of false or missed frames (a run ends
-        where the outcome changes), at most :data:`MAX_PICTURES`.
+        where the outcome changes), at most :data:`MAX_PICTURES`.  On a
+        closed-loop sequence each frame's score also holds the vehicle's
+        values that steering after it gave
+        (:meth:`benchmark.model.Sequence.steer`).
 
     References
     ----------
@@ -365,7 +368,9 @@ def _play(
         index = frame.index
         estimate = Call.of(lambda: _step(cell, tracker, frame, info, progress), f"frame {index}", index).value()
         if cell.sequence.closed_loop:
-            Call.of(lambda: cell.sequence.steer(estimate), f"steering after frame {index}", index).value()
+            loop = Call.of(lambda: cell.sequence.steer(estimate), f"steering after frame {index}", index).value()
+            if loop is not None:
+                progress.scores[-1] = dataclasses.replace(progress.scores[-1], loop=loop)
         if observer is not None:
             score = progress.scores[-1]
             Call.of(lambda: observer(tracker, frame, estimate, score), f"observing frame {index}", index).value()

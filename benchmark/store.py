@@ -395,7 +395,7 @@ class ResultStore:
             errors = [
                 (cell_id, position, name, float(value))
                 for position, score in enumerate(result.scores)
-                for name, value in score.errors.items()
+                for name, value in (*score.errors.items(), *(() if score.loop is None else score.loop.columns().items()))
                 if math.isfinite(float(value))
             ]
             pictures = [(cell_id, int(shot.frame), str(shot.outcome), bytes(shot.png)) for shot in result.pictures]

@@ -6,7 +6,10 @@ frames depend on the tracker: the runner hands it every estimate through
 :class:`~benchmark.closedloop.loop.Loop` turns it into a command and moves
 the vehicle, and the next frame is rendered from the new pose.  So its
 frames never go to the frame cache (``cache_frames`` is False), and each
-cell renders its own.
+cell renders its own.  Steering answers with the vehicle's
+:class:`~benchmark.results.LoopValues` at the frame just seen, which the
+runner keeps in the frame's score for the following metrics
+(:mod:`benchmark.metrics.closed_loop`).
 
 Its spec, :class:`ClosedLoopSpec`, declares the route, the vehicle, the
 camera's mount and the controller's gains beside the look of a camera
@@ -40,6 +43,8 @@ from benchmark.closedloop.route import Leg, Route, RouteSpec
 from benchmark.closedloop.vehicle import Kinematics, VehicleState
 from benchmark.identity import DatasetIdentity, digest, generator_source
 from benchmark.modalities.camera.model import CableState, CameraCalibration, VehicleSpeeds
+from benchmark.modalities.camera.geometry import Line
+from benchmark.modalities.camera.scenes.burial import image_chord
 from benchmark.modalities.camera.scenes.scene import CameraScene
 from benchmark.modalities.camera.scenes.spec import (
     Burial,
@@ -51,6 +56,7 @@ from benchmark.modalities.camera.scenes.spec import (
     SeabedSpec,
 )
 from benchmark.model import Frame, Sequence, SequenceInfo
+from benchmark.results import LoopValues
 from benchmark.scenes.draws import Conditions, resolve_draws
 from benchmark.scenes.signal import Signal, Wave
 from benchmark.scenes.spec import SPEC_CONFIG, Finite, Integer, Name, Number, Positive, TableSpec, Text
@@ -162,6 +168,7 @@ class ClosedLoopScene(Sequence):
         self._spec = spec
         self._conditions: Conditions = dict(conditions or {})
         self._loop: Loop | None = None
+        self._seen: Frame | None = None
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> ClosedLoopScene:
@@ -232,16 +239,35 @@ class ClosedLoopScene(Sequence):
                 return
             pose = loop.pose()
             state = loop.state
-            yield Frame(
+            self._seen = Frame(
                 index=index,
                 observation=look.render_from(pose, index),
                 truth=look.truth_from(pose),
                 navigation=VehicleSpeeds(lateral=state.sway_mps, vertical=0.0, frontal=spec.kinematics.surge_mps),
                 time_s=index * spec.frame_interval_s,
             )
+            yield self._seen
 
-    def steer(self, estimate: Any) -> None:
-        """Take the estimate of the frame just yielded; the next frame is seen from where it steers the vehicle."""
-        if self._loop is None:
+    def steer(self, estimate: Any) -> LoopValues:
+        """Take the estimate of the frame just yielded; the next frame is seen from where it steers the vehicle.
+
+        Returns
+        -------
+        LoopValues
+            The vehicle when it took that frame: its offset and heading
+            error against the cable, how far along the route, the frame's
+            time, and whether the cable's centreline crossed the image.
+        """
+        loop, seen = self._loop, self._seen
+        if loop is None or seen is None:
             raise RuntimeError(f"{self._spec.name}: steered before its first frame")
-        self._loop.steer(estimate if isinstance(estimate, CableState) else None)
+        place, cable = loop.place, seen.truth.cable
+        in_view = cable.is_known and image_chord(Line.from_normal(cable.d, cable.alpha), self._spec.frame_size) is not None
+        loop.steer(estimate if isinstance(estimate, CableState) else None)
+        return LoopValues(
+            offset_m=place.offset_m,
+            heading_error_deg=math.degrees(place.heading_error),
+            along_m=place.s_m,
+            time_s=seen.time_s,
+            in_view=in_view,
+        )

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
 import pytest
 
 from benchmark.closedloop.scene import ClosedLoopScene
+from benchmark.metrics import CORE
+from benchmark.metrics.closed_loop import METRICS
 from benchmark.modalities.camera.model import CableState, CameraTruth
 from benchmark.model import Frame, SequenceInfo
 from benchmark.registry import TrackerEntry
@@ -46,8 +49,9 @@ class Biased(Oracle):
     bias_px = 6.0  # the 20 px of a 320 px frame, in a 96 px one
 
 
-def drive(tracker: type[Tracker]) -> tuple[Any, ClosedLoopScene]:
-    scene = ClosedLoopScene.from_dict(ROUTE)
+@functools.cache
+def drive(tracker: type[Tracker], start_offset_m: float = ROUTE["start_offset_m"]) -> tuple[Any, ClosedLoopScene]:
+    scene = ClosedLoopScene.from_dict({**ROUTE, "start_offset_m": start_offset_m})
     return run_cell(make_cell(TrackerEntry(tracker.name, tracker, tracker.make_params()), scene)), scene
 
 
@@ -72,3 +76,47 @@ def test_its_frames_are_never_cached_and_its_identity_is_its_spec() -> None:
     assert scene.closed_loop and not scene.cache_frames
     assert scene.identity == ClosedLoopScene.from_dict(ROUTE).identity
     assert scene.identity != ClosedLoopScene.from_dict({**ROUTE, "start_offset_m": 0.2}).identity
+
+
+def following(result: Any) -> dict[str, float]:
+    metrics = CORE
+    for metric in METRICS:
+        metrics = metrics.adding(metric)
+    return result.summary(metrics)
+
+
+def test_each_frame_s_score_holds_where_the_vehicle_stood_when_it_was_taken() -> None:
+    result, scene = drive(Oracle)
+    places = scene.track.places
+    loops = [score.loop for score in result.scores]
+    assert [loop.along_m for loop in loops] == [place.s_m for place in places]
+    assert [loop.offset_m for loop in loops] == [place.offset_m for place in places]
+    assert [loop.heading_error_deg for loop in loops] == pytest.approx([np.degrees(p.heading_error) for p in places])
+    assert [loop.time_s for loop in loops] == pytest.approx([0.04 * i for i in range(len(loops))])
+    assert all(loop.in_view for loop in loops)
+
+
+def test_the_oracle_follows_the_whole_route_closely() -> None:
+    result, scene = drive(Oracle)
+    summary = following(result)
+    assert summary["followed_m"] == pytest.approx(scene.spec.route.length_m, abs=0.05)
+    assert summary["offset_max_m"] == pytest.approx(ROUTE["start_offset_m"], rel=0.02)  # where it started
+    assert summary["offset_mean_m"] < scene.spec.pipe_diameter_m / 2
+    on_cable = following(drive(Oracle, start_offset_m=0.0)[0])
+    assert on_cable["followed_m"] == pytest.approx(scene.spec.route.length_m, abs=0.05)
+    assert on_cable["offset_max_m"] < 0.02 and on_cable["offset_mean_m"] < 0.01
+    assert on_cable["heading_error_deg"] < 2.0
+
+
+def test_the_biased_tracker_keeps_the_vehicle_off_the_cable() -> None:
+    result, scene = drive(Biased)
+    assert following(result)["offset_mean_m"] > scene.spec.pipe_diameter_m / 2
+
+
+def test_a_cell_of_an_open_loop_scene_has_no_loop_values() -> None:
+    from benchmark.modalities.camera.scenes.scene import CameraScene
+
+    scene = CameraScene.from_dict({"name": "test/open", "n_frames": 2, "frame_size": [48, 36], "focal_px": 57.0})
+    result = run_cell(make_cell(TrackerEntry(Oracle.name, Oracle, Oracle.make_params()), scene))
+    assert result.status == "ok" and all(score.loop is None for score in result.scores)
+    assert not set(following(result)) & {metric.name for metric in METRICS}
