@@ -21,7 +21,10 @@ pictures share their columns with the nightly history's
     pictures(cell_id -> cells, frame, outcome, png BLOB)
     conditions(dataset_key, name, value JSON)
 
-``training`` names the training set of a tracker that learns (empty for
+``frame_errors`` holds a frame's values by name: the scorer's error
+columns, and on a closed-loop cell its ``loop_*`` values
+(:class:`benchmark.results.LoopValues`); a value that is not finite is not
+stored and reads back as NaN.  ``training`` names the training set of a tracker that learns (empty for
 the others; :mod:`benchmark.training`); ``deterministic`` is 1 when the
 tracker declares that it draws no random numbers.  ``problems`` lists, one line each, what went wrong in a run outside any
 cell, such as a plugin that failed to import.  A cell is identified by
@@ -395,7 +398,7 @@ class ResultStore:
             errors = [
                 (cell_id, position, name, float(value))
                 for position, score in enumerate(result.scores)
-                for name, value in (*score.errors.items(), *(() if score.loop is None else score.loop.columns().items()))
+                for name, value in {**score.errors, **({} if score.loop is None else score.loop.columns())}.items()
                 if math.isfinite(float(value))
             ]
             pictures = [(cell_id, int(shot.frame), str(shot.outcome), bytes(shot.png)) for shot in result.pictures]

@@ -32,7 +32,7 @@ import math
 from collections.abc import Iterator, Mapping
 from dataclasses import field
 from functools import cached_property
-from typing import Annotated, Any
+from typing import Annotated, Any, ClassVar
 
 import pydantic
 from annotated_types import Ge, Gt
@@ -161,6 +161,7 @@ class ClosedLoopScene(Sequence):
         The conditions it was drawn under.
     """
 
+    spec_type: ClassVar[type[ClosedLoopSpec]] = ClosedLoopSpec
     cache_frames = False
     closed_loop = True
 
@@ -174,7 +175,7 @@ class ClosedLoopScene(Sequence):
     def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> ClosedLoopScene:
         """A closed-loop scene from a suite file's table, its draws drawn."""
         table, conditions = resolve_draws(data, source)
-        return cls(ClosedLoopSpec.from_dict(table, source), conditions)
+        return cls(cls.spec_type.from_dict(table, source), conditions)
 
     def __getstate__(self) -> dict[str, Any]:
         return {"_spec": self._spec, "_conditions": self._conditions}
@@ -262,7 +263,8 @@ class ClosedLoopScene(Sequence):
         if loop is None or seen is None:
             raise RuntimeError(f"{self._spec.name}: steered before its first frame")
         place, cable = loop.place, seen.truth.cable
-        in_view = cable.is_known and image_chord(Line.from_normal(cable.d, cable.alpha), self._spec.frame_size) is not None
+        centreline = Line.from_normal(cable.d, cable.alpha) if cable.is_known else None
+        in_view = centreline is not None and image_chord(centreline, self._spec.frame_size) is not None
         loop.steer(estimate if isinstance(estimate, CableState) else None)
         return LoopValues(
             offset_m=place.offset_m,

@@ -35,7 +35,10 @@ column ``err_X`` of a modality's scorer is an RMSE ``rmse_X``
 correct rate.  Plugins add others through the ``trackbench_register_metrics``
 hook (:meth:`benchmark.registry.Registry.add_metric`), for every modality or
 for one; trackbench's own robustness metrics are added that way
-(:mod:`benchmark.metrics.robustness`).
+(:mod:`benchmark.metrics.robustness`), and so are the following metrics of
+closed-loop runs (:mod:`benchmark.metrics.closed_loop`), which declare the
+frame columns they need (:attr:`Metric.requires`) so that a board whose
+frames lack them does not show them.
 """
 
 from __future__ import annotations
