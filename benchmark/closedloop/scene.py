@@ -120,6 +120,12 @@ class ClosedLoopSpec(TableSpec):
         nominal = self.route.length_m / (self.kinematics.surge_mps * self.frame_interval_s)
         return int(math.ceil(FRAME_MARGIN * nominal)) + 1
 
+    def loop(self) -> Loop:
+        """A new run's vehicle at the route's start, steered by the route's controller."""
+        follower = CableFollower(self.gains, self.frame_interval_s, self.frame_size[0])
+        start = VehicleState(self.start_offset_m, 0.0, math.radians(self.start_heading_deg))
+        return Loop(self.route, self.kinematics, self.mount, follower, self.frame_interval_s, start)
+
     def look(self) -> CameraSceneSpec:
         """The camera scene that renders the route: the look, and the corridor as its trajectory."""
         frames = self.max_frames
@@ -231,10 +237,7 @@ class ClosedLoopScene(Sequence):
     def frames(self) -> Iterator[Frame]:
         """Render each frame from the vehicle's pose, which the estimates handed to :meth:`steer` move."""
         spec, look = self._spec, self._look
-        follower = CableFollower(spec.gains, spec.frame_interval_s, spec.frame_size[0])
-        start = VehicleState(spec.start_offset_m, 0.0, math.radians(spec.start_heading_deg))
-        loop = Loop(spec.route, spec.kinematics, spec.mount, follower, spec.frame_interval_s, start)
-        self._loop = loop
+        loop = self._loop = spec.loop()
         for index in range(spec.max_frames):
             if loop.ended:
                 return
