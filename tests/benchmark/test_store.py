@@ -391,7 +391,7 @@ def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, resul
         new_id = store.add_cell(store.start_run([], {}), dataclasses.replace(results["noisy"], pictures=PICTURES))
         assert store.pictures([old_id, new_id]) == {new_id: list(PICTURES)}
     connection = sqlite3.connect(path)
-    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 7
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 8
     columns = [(row[1], row[2], row[5]) for row in connection.execute("PRAGMA table_info(pictures)")]
     connection.close()
     assert columns == [("cell_id", "INTEGER", 1), ("frame", "INTEGER", 2), ("outcome", "VARCHAR(16)", 0), ("png", "BLOB", 0)]
