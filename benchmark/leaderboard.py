@@ -89,6 +89,11 @@ REAL_TIME_BOARD = "{modality}, real time"
 """Name of the board of a modality's cells run in real time."""
 
 
+def board_modality(board_name: str) -> str:
+    """The modality a board of :func:`leaderboards` ranks: its name, less the ending of a real-time board's."""
+    return board_name.removesuffix(REAL_TIME_BOARD.format(modality=""))
+
+
 def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str, ...]:
     """The error columns of a modality; those found in ``frames`` for a modality not registered here."""
     if modality is not None:

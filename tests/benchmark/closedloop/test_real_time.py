@@ -27,6 +27,7 @@ from benchmark.modalities.camera.model import CableState
 from benchmark.modalities.camera.scenes.scene import CameraScene
 from benchmark.modalities.camera.scenes.silhouette import cable_truth
 from benchmark.registry import TrackerEntry
+from benchmark.report.summary import summary_text
 from benchmark.results import CellResult
 from benchmark.runner import run_cell
 from benchmark.selection import SelectionError, in_real_time
@@ -186,6 +187,9 @@ def test_real_time_cells_get_a_board_of_their_own_that_names_each_step_time_sour
     assert list(board.columns[board.columns.get_loc("init") :][:2]) == ["init", "real_time"]
     alone = leaderboards(cells[cells["real_time"] == ""], frames, {})["camera"]
     pd.testing.assert_frame_equal(boards["camera"], alone)
+    summary = summary_text(boards, width=200)
+    assert f"camera, real time: 2 trackers over 1 dataset; step time declared 100 ms; {MEASURED_SOURCE}" in summary
+    assert "camera: 1 tracker over 1 dataset\n" in summary
 
 
 def test_one_tracker_under_two_sources_gets_a_row_for_each() -> None:
