@@ -23,8 +23,8 @@ time with a fast tracker equals its ordinary run.
 
 The step time ``t`` is either declared (:attr:`RealTime.declared_ms`:
 the same on every machine, so a seed gives the same frames and results)
-or measured: the running median of the thread CPU times of the cell's
-steps so far (:class:`StepClock`), which the runner measures for every
+or measured: the running (lower) median of the thread CPU times of the
+cell's steps so far (:class:`StepClock`), which the runner measures for every
 frame anyway (:mod:`benchmark.runner`).  A running median rather than one
 measured on the first frames: it needs no extra pass over a route whose
 frames depend on the run itself, it uses only steps already done (as a
@@ -94,9 +94,12 @@ class StepClock:
     def busy_s(self, step_s: float) -> float:
         """How long the tracker was busy with the frame just stepped, whose measured step took ``step_s``.
 
-        Declared: the declared figure.  Measured: the median of the steps so
-        far, this one included, the cell's first left out (module
-        docstring); 0 after the first step.
+        Declared: the declared figure.  Measured: the lower median (the
+        smaller middle value of an even count) of the steps so far, this one
+        included, the cell's first left out (module docstring); 0 after the
+        first step.  The lower median, so that one slow step among the
+        first two (a branch compiled when first taken) is not taken for the
+        tracker's pace.
         """
         self._steps += 1
         if self.real_time.declared_ms is not None:
@@ -104,8 +107,7 @@ class StepClock:
         if self._steps == 1:
             return 0.0
         bisect.insort(self._sorted_s, float(step_s))
-        values, middle = self._sorted_s, len(self._sorted_s) // 2
-        return values[middle] if len(values) % 2 else 0.5 * (values[middle - 1] + values[middle])
+        return self._sorted_s[(len(self._sorted_s) - 1) // 2]
 
 
 def intervals_until_next(busy_s: float, interval_s: float) -> int:
