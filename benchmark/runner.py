@@ -148,7 +148,7 @@ class Cell:
 
     @property
     def tracker_key(self) -> str:
-        """The tracker's cache key, joined by the training's key for a tracker that learns and by the real-time mode's."""
+        """The tracker's cache key, joined by the training's key for a tracker that learns, and by a real-time mode's."""
         key = self.tracker.cache_key
         key = key if self.training is None else f"{key}+{self.training.key}"
         return key if self.real_time is None else f"{key}+{self.real_time.key}"

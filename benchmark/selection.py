@@ -431,7 +431,8 @@ def in_real_time(cells: Iterable[Cell], step_times: Iterable[str] = ()) -> list[
     stray = sorted(set(declared) - selected)
     if stray:
         raise ParameterError(
-            f"--step-time names tracker {', '.join(map(repr, stray))}, which is not selected (selected: {_known(selected)})"
+            f"--step-time names tracker {', '.join(map(repr, stray))}, which is not selected "
+            f"(selected: {_known(selected)})"
         )
     return [dataclasses.replace(cell, real_time=RealTime(declared.get(cell.tracker.name))) for cell in cells]
 

@@ -27,7 +27,10 @@ columns, and on a closed-loop cell its ``loop_*`` values
 stored and reads back as NaN.  ``training`` names the training set of a tracker that learns (empty for
 the others; :mod:`benchmark.training`); ``deterministic`` is 1 when the
 tracker declares that it draws no random numbers; ``real_time`` is the
-step time's source of a cell run in real time, empty for the others.  ``problems`` lists, one line each, what went wrong in a run outside any
+step time's source of a cell run in real time, empty for the others
+(:mod:`benchmark.closedloop.real_time`; the mode is also in its
+``tracker_key``, so that the two modes are never taken for one cell).
+``problems`` lists, one line each, what went wrong in a run outside any
 cell, such as a plugin that failed to import.  A cell is identified by
 ``(tracker_key, dataset_key, seed, init)`` (:class:`benchmark.results.CellKey`):
 ``dataset_key`` is the key of the dataset's identity

@@ -1,4 +1,4 @@
-"""Real-time mode: frames arrive at the route's frame rate, and a tracker busy with one misses those that arrive meanwhile.
+"""Real-time mode: frames arrive at the route's frame rate; a tracker busy with one misses those arriving meanwhile.
 
 In the ordinary closed-loop run (:mod:`benchmark.closedloop.scene`) the
 vehicle waits for the tracker: every frame is seen, however long a step

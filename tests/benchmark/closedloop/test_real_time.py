@@ -119,7 +119,8 @@ def test_a_tracker_faster_than_the_frame_rate_sees_every_frame_as_in_the_ordinar
 
 def test_the_same_seed_and_declared_step_time_give_the_same_frames_and_results() -> None:
     first = drive(Slow, 100.0)
-    again = run_cell(dataclasses.replace(make_cell(entry(Slow), ClosedLoopScene.from_dict(ROUTE)), real_time=RealTime(100.0)))
+    cell = make_cell(entry(Slow), ClosedLoopScene.from_dict(ROUTE))
+    again = run_cell(dataclasses.replace(cell, real_time=RealTime(100.0)))
     assert loop_values(again) == loop_values(first)
     assert loop_values(drive(Slow, 70.0)) != loop_values(first)  # two intervals, not three
 
@@ -127,7 +128,8 @@ def test_the_same_seed_and_declared_step_time_give_the_same_frames_and_results()
 def test_the_vehicle_holds_the_last_command_over_the_skipped_frames_and_obeys_the_new_over_the_last() -> None:
     interval_s, size = 0.2, (320, 240)
     follower = CableFollower(FollowerGains(), interval_s, size[0])
-    loop = Loop(Route(RouteSpec((Leg(20.0),))), Kinematics(), CameraMount(), follower, interval_s, VehicleState(0.3, 0.0, 0.0))
+    start = VehicleState(0.3, 0.0, 0.0)
+    loop = Loop(Route(RouteSpec((Leg(20.0),))), Kinematics(), CameraMount(), follower, interval_s, start)
 
     def estimate() -> CableState:
         truth = cable_truth(loop.pose(), 0.1, 380.0, size)
@@ -172,7 +174,8 @@ def test_step_times_are_declared_per_selected_tracker() -> None:
     cells = [make_cell(entry(tracker), ClosedLoopScene.from_dict(ROUTE)) for tracker in (Oracle, Slow)]
     paced = in_real_time(cells, ["slow=100"])
     assert [cell.real_time for cell in paced] == [RealTime(), RealTime(100.0)]
-    for word, message in [("slow", "TRACKER=MS"), ("slow=-3", "positive"), ("=4", "TRACKER=MS"), ("x=4", "not selected")]:
+    words = [("slow", "TRACKER=MS"), ("slow=-3", "positive"), ("=4", "TRACKER=MS"), ("x=4", "not selected")]
+    for word, message in words:
         with pytest.raises(ParameterError, match=message):
             in_real_time(cells, [word])
 
@@ -215,7 +218,9 @@ def test_one_tracker_under_two_sources_gets_a_row_for_each() -> None:
             "real_time": ["declared 100 ms", MEASURED_SOURCE],
         }
     )
-    frames = pd.DataFrame({"cell_id": [1, 2], "frame": [0, 0], "outcome": ["correct", "missed"], "step_ms": [1.0, 1.0], "wall_ms": [1.0, 1.0]})
+    frames = pd.DataFrame(
+        {"cell_id": [1, 2], "frame": [0, 0], "outcome": ["correct", "missed"], "step_ms": [1.0] * 2, "wall_ms": [1.0] * 2}
+    )
     board = leaderboards(cells, frames, {})[REAL_TIME_BOARD.format(modality="camera")]
     rows = board[board["dataset"] == "routes/test"].set_index("tracker")["real_time"]
     assert rows.to_dict() == {"slow (declared 100 ms)": "declared 100 ms", f"slow ({MEASURED_SOURCE})": MEASURED_SOURCE}
