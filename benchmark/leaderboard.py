@@ -34,7 +34,14 @@ learns (:mod:`benchmark.training`), empty for the others.  Rows whose cells fail
 after every row that ran cleanly, since their rates cover only the frames
 before the failure.
 
-There is one board per modality, as the modalities score different things.
+There is one board per modality, as the modalities score different things,
+and a board of its own for the closed-loop cells a modality ran in real
+time (:mod:`benchmark.closedloop.real_time`), named ``MODALITY, real time``,
+so that a run that saw every frame is never ranked or pooled with one that
+skipped frames.  Its ``real_time`` column says where each row's step time
+came from (``declared 17 ms``, or ``measured median, this machine``: a
+figure of the machine that ran it); a tracker run under several sources
+gets a row per source, labelled ``name (source)``.
 Numeric column names carry their units (``conventions.md`` section 4).
 Boards keep full precision; :mod:`benchmark.report` writes them out.
 """
@@ -74,6 +81,17 @@ def is_pooled(dataset: str) -> bool:
     return dataset == ALL_DATASETS or dataset.endswith(SUITE_POOL)
 
 LEADING_COLUMNS = ("rank", "tracker", "dataset", "init", "training", "seeds", "frames")
+
+REAL_TIME_COLUMN = "real_time"
+"""Column of a real-time board, after ``init``: the source of each row's step time."""
+
+REAL_TIME_BOARD = "{modality}, real time"
+"""Name of the board of a modality's cells run in real time."""
+
+
+def board_modality(board_name: str) -> str:
+    """The modality a board of :func:`leaderboards` ranks: its name, less the ending of a real-time board's."""
+    return board_name.removesuffix(REAL_TIME_BOARD.format(modality=""))
 
 
 def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str, ...]:
@@ -275,11 +293,38 @@ def leaderboards(
         Modality name to board, in alphabetical order of modality.
     """
     boards: dict[str, pd.DataFrame] = {}
-    for modality, group in cells.groupby("modality", sort=True):
-        part = frames[frames["cell_id"].isin(group["id"])] if "cell_id" in frames.columns else frames
+    sources = cells[REAL_TIME_COLUMN].fillna("") if REAL_TIME_COLUMN in cells else pd.Series("", index=cells.index)
+    for modality, of_modality in cells.groupby("modality", sort=True):
         name = str(modality)
-        boards[name] = modality_board(group, part, board_metrics(metrics, name, modalities.get(name), part))
+        real_time = sources[of_modality.index] != ""
+        for group, board_name in ((of_modality[~real_time], name), (of_modality[real_time], None)):
+            if group.empty:
+                continue
+            if board_name is None:
+                board_name = REAL_TIME_BOARD.format(modality=name)
+                group = group.assign(tracker=_source_labels(group["tracker"], sources[group.index]))
+            part = frames[frames["cell_id"].isin(group["id"])] if "cell_id" in frames.columns else frames
+            board = modality_board(group, part, board_metrics(metrics, name, modalities.get(name), part))
+            if board_name != name:
+                board = _with_sources(board, group, sources[group.index])
+            boards[board_name] = board
     return boards
+
+
+def _source_labels(trackers: pd.Series, sources: pd.Series) -> pd.Series:
+    """The tracker names, each followed by ``(source)`` where one name ran under several step-time sources."""
+    several = sources.groupby(trackers).transform("nunique") > 1
+    return trackers.where(~several, trackers + " (" + sources + ")")
+
+
+def _with_sources(board: pd.DataFrame, cells: pd.DataFrame, sources: pd.Series) -> pd.DataFrame:
+    """``board`` of real-time cells with the :data:`REAL_TIME_COLUMN` after ``init``: each row's step-time sources."""
+    labels = key_labels(cells, "tracker", "tracker_key")
+    by_label = sources.groupby(labels).agg(lambda values: ", ".join(sorted(set(values))))
+    at = board.columns.get_loc("init") + 1
+    return board.assign(**{REAL_TIME_COLUMN: board["tracker"].map(by_label)})[
+        [*board.columns[:at], REAL_TIME_COLUMN, *board.columns[at:]]
+    ]
 
 
 def load_leaderboards(

@@ -152,8 +152,11 @@ class Sequence(ABC):
         generator = f"{type(self).__module__}.{type(self).__qualname__}"
         return DatasetIdentity(info.name, info.modality, source=generator, fingerprint=digest(info.name))
 
-    def steer(self, estimate: Any) -> LoopValues | None:
+    def steer(self, estimate: Any, busy_s: float = 0.0) -> LoopValues | None:
         """Take the estimate of the frame :meth:`frames` yielded last; only a :attr:`closed_loop` sequence uses it.
+
+        ``busy_s`` is how long the tracker was busy with that frame in
+        real-time mode (:mod:`benchmark.closedloop.real_time`), 0 otherwise.
 
         Returns
         -------

@@ -245,6 +245,10 @@ class CellResult:
         The tracker declares that it draws no random numbers
         (:attr:`benchmark.tracker.Tracker.deterministic`), which the
         conformance kit verifies; only then may a board call it deterministic.
+    real_time : str
+        Empty for an ordinary cell; for a closed-loop cell run in real time
+        (:mod:`benchmark.closedloop.real_time`), the source of its step
+        time: ``"declared 17 ms"`` or ``"measured median, this machine"``.
     """
 
     tracker: str
@@ -266,6 +270,7 @@ class CellResult:
     read_s: float = 0.0
     pictures: tuple[Picture, ...] = ()
     deterministic: bool = False
+    real_time: str = ""
 
     @property
     def key(self) -> CellKey:

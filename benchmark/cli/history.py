@@ -125,7 +125,8 @@ def nightly(
     session: Session = ctx.obj
     registry = session.registry
     selection = Selection(options["trackers"], options["suites"], options["datasets"], options["params"],
-                          options["seeds"], options["init"], options["train"])
+                          options["seeds"], options["init"], options["train"], options["real_time"],
+                          options["step_times"])
     replays = ReplayPlan(replay_budget, lambda: select_cells(registry, selection),
                          None if options["no_cache"] else FrameCache(options["cache"]))
     with Meter("site pages") as pages:

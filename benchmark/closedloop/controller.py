@@ -19,8 +19,10 @@ leans left asks for a turn to the left:
     sway     = k_e e + k_de de/dt
     yaw rate = -(k_a alpha + k_da dalpha/dt)
 
-The derivatives are differences of consecutive estimates over the frame
-interval, and restart after a frame without one.  Without an estimate the
+The derivatives are differences of consecutive estimates over the time
+between their frames (the frame interval, or more when a tracker in
+real time skips frames: :mod:`benchmark.closedloop.real_time`), and
+restart after a frame without one.  Without an estimate the
 controller holds its last command for ``hold_s``; then it searches: it
 stops turning and sways towards the side it last saw the cable at
 ``search_sway_mps``.  The gains belong to the route suite, never to a
@@ -117,13 +119,18 @@ class CableFollower:
         """Whether the cable has been unseen for longer than the hold."""
         return self._unseen_s > self.gains.hold_s
 
-    def command(self, estimate: CableState | None) -> Command:
-        """The command after a frame whose estimate is ``estimate`` (None: the tracker saw nothing)."""
+    def command(self, estimate: CableState | None, elapsed_s: float | None = None) -> Command:
+        """The command after a frame whose estimate is ``estimate`` (None: the tracker saw nothing).
+
+        ``elapsed_s`` is the time since the previous frame the tracker saw;
+        by default the frame interval.
+        """
         gains = self.gains
+        elapsed_s = self.interval_s if elapsed_s is None else elapsed_s
         seen = Seen.of(estimate, self.width_px) if estimate is not None else None
         if seen is None:
             self._previous = None
-            self._unseen_s += self.interval_s
+            self._unseen_s += elapsed_s
             if self.searching:
                 side = 0.0 if self._last_seen is None else math.copysign(1.0, self._last_seen.offset)
                 self._command = Command(side * gains.search_sway_mps, 0.0)
@@ -131,8 +138,8 @@ class CableFollower:
         self._unseen_s = 0.0
         offset_rate = angle_rate = 0.0
         if self._previous is not None:
-            offset_rate = (seen.offset - self._previous.offset) / self.interval_s
-            angle_rate = (seen.angle - self._previous.angle) / self.interval_s
+            offset_rate = (seen.offset - self._previous.offset) / elapsed_s
+            angle_rate = (seen.angle - self._previous.angle) / elapsed_s
         self._previous = self._last_seen = seen
         self._command = Command(
             gains.k_offset_mps * seen.offset + gains.k_offset_rate_m * offset_rate,

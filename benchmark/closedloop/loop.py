@@ -5,6 +5,9 @@ mount and the controller.  Every frame it gives the camera's pose for the
 scene to render (:meth:`Loop.pose`), takes the tracker's estimate of that
 frame (:meth:`Loop.steer`), turns it into a command and moves the vehicle
 by one frame interval, and keeps a :class:`Track` of where the vehicle was.
+In real time (:mod:`benchmark.closedloop.real_time`) the next frame the
+tracker sees may be several intervals later: the vehicle moves under the
+previous command until the last of them, and under the new one over it.
 
 The camera scenes render a straight cylinder along ``Z`` (seeds/004,
 section II).  The pose handed to them is the vehicle's pose in the frame
@@ -117,6 +120,8 @@ class Loop:
         self.state = start or VehicleState(0.0, 0.0, 0.0)
         self.place = route.locate(self.state.x, self.state.z, self.state.psi)
         self.track = Track()
+        self._command = Command()
+        self._since_seen_s = interval_s
 
     @property
     def ended(self) -> bool:
@@ -127,13 +132,33 @@ class Loop:
         """The camera's pose now, for the scene to render."""
         return self.mount.pose(self.place)
 
-    def steer(self, estimate: CableState | None) -> Command:
-        """Take the estimate of the frame seen from :meth:`pose`, and move the vehicle one interval."""
-        command = self.follower.command(estimate)
+    def steer(self, estimate: CableState | None, intervals: int = 1) -> Command:
+        """Take the estimate of the frame seen from :meth:`pose`, and move the vehicle to the next frame seen.
+
+        Parameters
+        ----------
+        estimate : CableState or None
+            The tracker's estimate of the frame; None when it gave none.
+        intervals : int
+            Frame intervals to the next frame the tracker sees (1 but in
+            real time): the vehicle holds the previous command over all but
+            the last, and obeys this estimate's command over the last
+            (:mod:`benchmark.closedloop.real_time`).
+
+        Returns
+        -------
+        Command
+            The command this estimate gave.
+        """
+        if intervals < 1:
+            raise ValueError(f"the next frame is at least 1 interval later, got {intervals}")
+        command = self.follower.command(estimate, self._since_seen_s)
         self.track.places.append(self.place)
         self.track.states.append(self.state)
         self.track.commands.append(command)
         self.track.searching.append(self.follower.searching)
-        self.state = self.kinematics.advance(self.state, command, self.interval_s)
-        self.place = self.route.locate(self.state.x, self.state.z, self.state.psi, near_s_m=self.place.s_m)
+        for held in [self._command] * (intervals - 1) + [command]:
+            self.state = self.kinematics.advance(self.state, held, self.interval_s)
+            self.place = self.route.locate(self.state.x, self.state.z, self.state.psi, near_s_m=self.place.s_m)
+        self._command, self._since_seen_s = command, intervals * self.interval_s
         return command

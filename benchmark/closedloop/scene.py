@@ -23,7 +23,10 @@ overgrowth are placed along the route's arc length, the pipe frame's
 ``Z`` (:mod:`benchmark.closedloop.loop`).
 
 The run ends when the vehicle passes the route's end, or after
-:attr:`ClosedLoopSpec.max_frames` frames.
+:attr:`ClosedLoopSpec.max_frames` frames.  In real-time mode
+(:mod:`benchmark.closedloop.real_time`) the frames a busy tracker skips
+are neither rendered nor yielded; the frames it sees keep their own index
+and time.
 """
 
 from __future__ import annotations
@@ -39,6 +42,7 @@ from annotated_types import Ge, Gt
 
 from benchmark.closedloop.controller import CableFollower, FollowerGains
 from benchmark.closedloop.loop import CameraMount, Loop, Track
+from benchmark.closedloop.real_time import intervals_until_next
 from benchmark.closedloop.route import Leg, Route, RouteSpec
 from benchmark.closedloop.vehicle import Kinematics, VehicleState
 from benchmark.identity import DatasetIdentity, digest, generator_source
@@ -176,6 +180,7 @@ class ClosedLoopScene(Sequence):
         self._conditions: Conditions = dict(conditions or {})
         self._loop: Loop | None = None
         self._seen: Frame | None = None
+        self._intervals = 1
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> ClosedLoopScene:
@@ -238,9 +243,8 @@ class ClosedLoopScene(Sequence):
         """Render each frame from the vehicle's pose, which the estimates handed to :meth:`steer` move."""
         spec, look = self._spec, self._look
         loop = self._loop = spec.loop()
-        for index in range(spec.max_frames):
-            if loop.ended:
-                return
+        index = 0
+        while index < spec.max_frames and not loop.ended:
             pose = loop.pose()
             state = loop.state
             self._seen = Frame(
@@ -250,10 +254,17 @@ class ClosedLoopScene(Sequence):
                 navigation=VehicleSpeeds(lateral=state.sway_mps, vertical=0.0, frontal=spec.kinematics.surge_mps),
                 time_s=index * spec.frame_interval_s,
             )
+            self._intervals = 1
             yield self._seen
+            index += self._intervals
 
-    def steer(self, estimate: Any) -> LoopValues:
+    def steer(self, estimate: Any, busy_s: float = 0.0) -> LoopValues:
         """Take the estimate of the frame just yielded; the next frame is seen from where it steers the vehicle.
+
+        ``busy_s`` is how long the tracker was busy with the frame, 0 but in
+        real-time mode (:mod:`benchmark.closedloop.real_time`): the frames
+        that arrive meanwhile are skipped, the vehicle moving on under the
+        previous command, and :meth:`frames` yields the first frame after.
 
         Returns
         -------
@@ -268,7 +279,8 @@ class ClosedLoopScene(Sequence):
         place, cable = loop.place, seen.truth.cable
         centreline = Line.from_normal(cable.d, cable.alpha) if cable.is_known else None
         in_view = centreline is not None and image_chord(centreline, self._spec.frame_size) is not None
-        loop.steer(estimate if isinstance(estimate, CableState) else None)
+        self._intervals = intervals_until_next(busy_s, self._spec.frame_interval_s)
+        loop.steer(estimate if isinstance(estimate, CableState) else None, self._intervals)
         return LoopValues(
             offset_m=place.offset_m,
             heading_error_deg=math.degrees(place.heading_error),

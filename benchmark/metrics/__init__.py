@@ -496,7 +496,10 @@ class Metrics:
 
 
 RESERVED_COLUMNS = frozenset(
-    {"rank", "tracker", "dataset", "init", "training", "seeds", "frames", "deterministic", "status", "message"}
+    {
+        "rank", "tracker", "dataset", "init", "real_time", "training", "seeds", "frames", "deterministic", "status",
+        "message",
+    }
 )
 """Board and history columns that are not metrics."""
 

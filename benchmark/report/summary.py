@@ -23,7 +23,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from benchmark.leaderboard import ALL_DATASETS, failed_cells, is_pooled
+from benchmark.leaderboard import ALL_DATASETS, REAL_TIME_COLUMN, board_modality, failed_cells, is_pooled
 from benchmark.metrics import CORE, Metric, Metrics, error_columns_of
 from benchmark.report.display import format_value
 from benchmark.text import counted, one_line, printable, shortened
@@ -82,7 +82,7 @@ def board_summary(board: pd.DataFrame, modality: str, width: int, metrics: Metri
     def shown(metric: Metric) -> tuple[str, list[str]]:
         return metric.name, [format_value(metric.name, value, metrics) for value in pooled[metric.name]]
 
-    chosen = summary_metrics(board, modality, metrics)
+    chosen = summary_metrics(board, board_modality(modality), metrics)
     first = [metric for metric in chosen if metric.ranks or metric.kind == "speed"]
     failed = [
         f"{failed_cells(status)}/{cells_of.get((tracker, init), 0)}"
@@ -99,8 +99,11 @@ def board_summary(board: pd.DataFrame, modality: str, width: int, metrics: Metri
     if kept <= len(first):  # shorten the names rather than leave out a ranking metric, a speed or the failures
         kept = _fitting(widths, min(longest, MIN_NAME_WIDTH), width)
     name_width = max(1, min(longest, width - sum(len(GAP) + w for w in widths[:kept])))
+    title = f"{modality}: {counted(len(names), 'tracker')} over {counted(datasets, 'dataset')}"
+    if REAL_TIME_COLUMN in board:  # a real-time board says where its step times came from
+        title += "; step time " + "; ".join(sorted(set(pooled[REAL_TIME_COLUMN].dropna())))
     lines = [
-        shortened(f"{modality}: {counted(len(names), 'tracker')} over {counted(datasets, 'dataset')}", width),
+        shortened(title, width),
         "tracker".ljust(name_width)
         + "".join(GAP + title.rjust(w) for (title, _), w in zip(columns[:kept], widths[:kept])),
     ]

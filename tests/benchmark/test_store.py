@@ -382,6 +382,18 @@ def test_a_version_2_database_gets_an_empty_training_column(tmp_path: Path, resu
     connection.close()
 
 
+def test_a_version_7_database_gets_an_empty_real_time_column(tmp_path: Path, results: dict[str, CellResult]) -> None:
+    path, _ = older_database(tmp_path, results["noisy"], 7, "ALTER TABLE cells DROP COLUMN real_time;")
+    paced = dataclasses.replace(results["noisy"], tracker_key="key+real-time:measured-median", real_time="measured")
+    with ResultStore(path) as store:
+        assert store.cells(all_runs=True)["real_time"].tolist() == [""]
+        store.add_cell(store.start_run([], {}), paced)
+        assert store.cells(all_runs=True)["real_time"].tolist() == ["", "measured"]
+    connection = sqlite3.connect(path)
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 8
+    connection.close()
+
+
 def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, results: dict[str, CellResult]) -> None:
     path, old_id = older_database(tmp_path, results["noisy"], 3, "DROP TABLE pictures; ALTER TABLE cells DROP COLUMN deterministic;")
     with ResultStore(path) as store:
@@ -391,7 +403,7 @@ def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, resul
         new_id = store.add_cell(store.start_run([], {}), dataclasses.replace(results["noisy"], pictures=PICTURES))
         assert store.pictures([old_id, new_id]) == {new_id: list(PICTURES)}
     connection = sqlite3.connect(path)
-    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 7
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 8
     columns = [(row[1], row[2], row[5]) for row in connection.execute("PRAGMA table_info(pictures)")]
     connection.close()
     assert columns == [("cell_id", "INTEGER", 1), ("frame", "INTEGER", 2), ("outcome", "VARCHAR(16)", 0), ("png", "BLOB", 0)]
