@@ -34,7 +34,15 @@ learns (:mod:`benchmark.training`), empty for the others.  Rows whose cells fail
 after every row that ran cleanly, since their rates cover only the frames
 before the failure.
 
-There is one board per modality, as the modalities score different things.
+There is one board per modality, as the modalities score different things,
+and one per suite of closed-loop cells (:mod:`benchmark.closedloop`), named
+``SUITE (closed loop)``: a closed-loop cell's frames depend on its tracker,
+so its rows are not read against open-loop ones.  A dataset is closed-loop
+when any of its cells' frames holds the vehicle's values (the ``loop_*``
+columns, :class:`benchmark.results.LoopValues`); a closed-loop board's
+columns put the following metrics first (:data:`benchmark.metrics.CLOSED_LOOP_KINDS`),
+then the open-loop metrics of the frames the vehicle saw, and rank by the
+distance followed, then the mean offset, before the correct rate.
 Numeric column names carry their units (``conventions.md`` section 4).
 Boards keep full precision; :mod:`benchmark.report` writes them out.
 """
@@ -44,14 +52,15 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import pandas as pd
 
 from benchmark.intervals import seed_intervals
-from benchmark.metrics import CORE, KINDS, Metric, Metrics, columns_with_values
+from benchmark.metrics import CLOSED_LOOP_KINDS, CORE, KINDS, Kind, Metric, Metrics, columns_with_values
 from benchmark.modality import Modality
-from benchmark.results import summarise
+from benchmark.results import LOOP_PREFIX, summarise
 
 if TYPE_CHECKING:
     from benchmark.store import ResultStore
@@ -76,6 +85,55 @@ def is_pooled(dataset: str) -> bool:
 LEADING_COLUMNS = ("rank", "tracker", "dataset", "init", "training", "seeds", "frames")
 
 
+@dataclass(frozen=True)
+class BoardLayout:
+    """How a kind of board is named and in which order of metric kinds its columns stand.
+
+    Attributes
+    ----------
+    title : str
+        The board's name, formatted with its cells' ``modality`` and ``suite``.
+    kinds : tuple of str
+        The kinds of metric in board order (:meth:`benchmark.metrics.Metrics.for_board`).
+    """
+
+    title: str
+    kinds: tuple[Kind, ...]
+
+    def name(self, modality: str, suite: str) -> str:
+        """The board's name for cells of ``modality`` and ``suite``."""
+        return self.title.format(modality=modality, suite=suite)
+
+
+CLOSED_LOOP_BOARD = " (closed loop)"
+"""Ending of the name of a closed-loop board: ``routes (closed loop)``."""
+
+LAYOUTS: dict[bool, BoardLayout] = {
+    False: BoardLayout("{modality}", KINDS),
+    True: BoardLayout("{suite}" + CLOSED_LOOP_BOARD, CLOSED_LOOP_KINDS),
+}
+"""The layout of an open-loop board (one per modality) and of a closed-loop one (one per suite), by closed loop."""
+
+
+def closed_loop_datasets(cells: pd.DataFrame, frames: pd.DataFrame) -> frozenset[str]:
+    """The dataset keys of ``cells`` of which any cell's frames hold a ``loop_*`` value: the closed-loop datasets."""
+    loop_columns = [column for column in frames.columns if str(column).startswith(LOOP_PREFIX)]
+    if not loop_columns or "cell_id" not in frames.columns:
+        return frozenset()
+    with_values = frames.loc[frames[loop_columns].notna().any(axis=1), "cell_id"].unique()
+    return frozenset(cells.loc[cells["id"].isin(with_values), "dataset_key"].astype(str))
+
+
+def board_layouts(cells: pd.DataFrame, frames: pd.DataFrame) -> pd.DataFrame:
+    """Each cell's board: ``board`` (its name) and ``closed_loop``, in the order of ``cells``."""
+    closed = cells["dataset_key"].astype(str).isin(closed_loop_datasets(cells, frames))
+    names = [
+        LAYOUTS[bool(loop)].name(str(modality), suite_of(str(dataset)))
+        for modality, dataset, loop in zip(cells["modality"], cells["dataset"], closed, strict=True)
+    ]
+    return pd.DataFrame({"board": names, "closed_loop": closed.to_numpy()}, index=cells.index)
+
+
 def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str, ...]:
     """The error columns of a modality; those found in ``frames`` for a modality not registered here."""
     if modality is not None:
@@ -84,22 +142,31 @@ def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str,
 
 
 def board_metrics(
-    metrics: Metrics, modality_name: str, modality: Modality | None, frames: pd.DataFrame
+    metrics: Metrics,
+    modality_name: str,
+    modality: Modality | None,
+    frames: pd.DataFrame,
+    kinds: Sequence[Kind] = KINDS,
 ) -> tuple[Metric, ...]:
     """The metrics of the board of a modality (registered or not: :func:`error_columns`), in board order.
 
     A metric that requires frame columns none of ``frames`` fills (the
     closed-loop metrics on open-loop frames) is not on the board
-    (:attr:`benchmark.metrics.Metric.requires`).
+    (:attr:`benchmark.metrics.Metric.requires`).  ``kinds`` orders them
+    (:attr:`BoardLayout.kinds`).
     """
-    return metrics.for_board(modality_name, error_columns(modality, frames), columns_with_values(frames))
+    return metrics.for_board(modality_name, error_columns(modality, frames), columns_with_values(frames), kinds)
 
 
 def board_columns(metrics: Sequence[Metric]) -> list[str]:
-    """Columns of a board of ``metrics``: each kind's metrics then their spreads, ``deterministic``, intervals."""
+    """Columns of a board of ``metrics``: each kind's metrics then their spreads, ``deterministic``, intervals.
+
+    Kinds stand in the order of ``metrics`` (board order).
+    """
+    kinds = list(dict.fromkeys(metric.kind for metric in metrics))
     values = [
         column
-        for kind in KINDS
+        for kind in kinds
         for column in [
             *(m.name for m in metrics if m.kind == kind),
             *(m.spread_column for m in metrics if m.kind == kind and m.spread),
@@ -272,13 +339,19 @@ def leaderboards(
     Returns
     -------
     dict
-        Modality name to board, in alphabetical order of modality.
+        Board name to board: the open-loop boards by modality name, then
+        the closed-loop boards (``SUITE (closed loop)``, :data:`LAYOUTS`),
+        each in alphabetical order.
     """
     boards: dict[str, pd.DataFrame] = {}
-    for modality, group in cells.groupby("modality", sort=True):
+    if cells.empty:
+        return boards
+    grouped = cells.join(board_layouts(cells, frames)).groupby(["closed_loop", "board", "modality"], sort=True)
+    for (closed_loop, name, modality), group in grouped:
         part = frames[frames["cell_id"].isin(group["id"])] if "cell_id" in frames.columns else frames
-        name = str(modality)
-        boards[name] = modality_board(group, part, board_metrics(metrics, name, modalities.get(name), part))
+        of_board = board_metrics(metrics, str(modality), modalities.get(str(modality)), part,
+                                 LAYOUTS[bool(closed_loop)].kinds)
+        boards[str(name)] = modality_board(group.drop(columns=["board", "closed_loop"]), part, of_board)
     return boards
 
 
