@@ -22,13 +22,22 @@ from benchmark.cli.run import run_benchmark
 from benchmark.cli.session import EXIT_FAILED, Session
 
 if TYPE_CHECKING:
+    from benchmark.closedloop.route import Route
     from benchmark.harness import RunSummary
+    from benchmark.registry import Registry
     from benchmark.runner import Cell
 
 EXIT_REGRESSION = 3
 """``nightly`` found an accuracy regression (after storing the run and writing the site)."""
 EXIT_SPEED_REGRESSION = 4
 """``nightly --fail-on-speed`` found a speed regression, held on a repeat, and no accuracy regression."""
+
+def registry_routes(registry: Registry) -> dict[str, Route]:
+    """The routes of the registry's closed-loop datasets by dataset key, for the site's top views."""
+    from benchmark.closedloop.topview import routes_by_dataset
+
+    return routes_by_dataset(sequence for suite in registry.suites.values() for sequence in suite.sequences)
+
 
 BYTE_UNITS = {"": 1, "b": 1, "kb": 10**3, "mb": 10**6, "gb": 10**9, "kib": 2**10, "mib": 2**20, "gib": 2**30}
 """The units a size may be given in (case ignored)."""
@@ -142,6 +151,7 @@ def nightly(
             report=pages,
             replays=replays,
             log=lambda line: click.echo(line, err=True),
+            routes=registry_routes(registry),
         )
     if kept.repeat is not None:
         repeated = kept.repeat.statuses.total()
@@ -235,5 +245,6 @@ def report_command(
                 thresholds=thresholds(min_effects, window, min_step_s),
                 metrics=session.registry.metrics,
                 report=pages,
+                routes=registry_routes(session.registry),
             )
     click.echo(f"wrote {index}")
