@@ -233,9 +233,11 @@ OUT_OF_VIEW_COLOUR = "#c62828"
 def top_view_figure(view: TopView) -> tuple[Figure, int]:
     """A closed-loop cell from above: the route's centreline, the vehicle's path, the frames the cable was out of view.
 
-    Both axes are metres at one scale (``x`` to the right of the route's
-    first heading, ``z`` along it, :mod:`benchmark.closedloop.route`), so
-    that an offset of a few centimetres shows as it is against the route.
+    Both axes are metres (``x`` to the right of the route's first
+    heading, ``z`` along it, :mod:`benchmark.closedloop.route`), each
+    fitted to the plot on its own: drawn at one scale, the offsets of a few
+    centimetres that tell trackers apart would vanish beside a route of
+    tens of metres, so the lateral axis is stretched (the page says so).
 
     Parameters
     ----------
@@ -262,7 +264,7 @@ def top_view_figure(view: TopView) -> tuple[Figure, int]:
     layout = {
         "xaxis": {"title": {"text": "x (m)", "font": {"size": 11}}, "gridcolor": "#e0e0e0", "zeroline": False},
         "yaxis": {"title": {"text": "z along the route's start (m)", "font": {"size": 11}}, "gridcolor": "#e0e0e0",
-                  "zeroline": False, "scaleanchor": "x", "scaleratio": 1},
+                  "zeroline": False},
         "hovermode": "closest", "font": _FONT, "plot_bgcolor": "white",
         "margin": {"l": 70, "r": 20, "t": 30, "b": 50},
         "legend": {"orientation": "h", "x": 0, "y": 1.0, "yanchor": "bottom"},

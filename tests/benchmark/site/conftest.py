@@ -154,20 +154,26 @@ SHORT_ROUTE = {
 """A closed-loop route of about 60 tiny frames."""
 
 
-@pytest.fixture(scope="session")
-def closed_loop_night(fakes: types.ModuleType, tmp_path_factory: pytest.TempPathFactory) -> Site:
-    """One run of a tracker that reports the truth, steering the vehicle along :data:`SHORT_ROUTE`, and its site."""
+def route_registry(fakes: types.ModuleType) -> Registry:
+    """The fake registry of ``perfect`` with a suite ``routes`` of :data:`SHORT_ROUTE` (not scored) and the following metrics."""
     from benchmark.closedloop.scene import ClosedLoopScene
-    from benchmark.closedloop.topview import routes_by_dataset
-    from benchmark.leaderboard import load_leaderboards
     from benchmark.metrics.closed_loop import METRICS
 
     registry = fakes.make_registry((fakes.Perfect,))
-    scene = ClosedLoopScene.from_dict(SHORT_ROUTE)
     with registry.acting_for(fakes.ORIGIN):
-        registry.add_suite("routes", [scene], scored=False)
+        registry.add_suite("routes", [ClosedLoopScene.from_dict(SHORT_ROUTE)], scored=False)
         for metric in METRICS:
             registry.add_metric(metric)
+    return registry
+
+
+@pytest.fixture(scope="session")
+def closed_loop_night(fakes: types.ModuleType, tmp_path_factory: pytest.TempPathFactory) -> Site:
+    """One run of a tracker that reports the truth, steering the vehicle along :data:`SHORT_ROUTE`, and its site."""
+    from benchmark.closedloop.topview import routes_by_dataset
+    from benchmark.leaderboard import load_leaderboards
+
+    registry = route_registry(fakes)
     folder = tmp_path_factory.mktemp("closed-loop")
     history = History(folder / "history.sqlite")
     selection = Selection(trackers=("perfect",), suites=("routes", "fake"))
@@ -182,6 +188,6 @@ def closed_loop_night(fakes: types.ModuleType, tmp_path_factory: pytest.TempPath
         commit="0123456789abcdef", machine={"cpu": "test cpu", "cores": 2}, machine_key="m", argv=[], seeds=1,
         metrics=registry.metrics, boards=boards,
     )
-    routes = routes_by_dataset([scene])
+    routes = routes_by_dataset(registry.suites["routes"].sequences)
     return Site(history, folder / "site",
                 build_site(history, folder / "site", registry.modalities, metrics=registry.metrics, routes=routes))
