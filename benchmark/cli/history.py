@@ -99,7 +99,11 @@ def nightly(
 ) -> None:
     """Run the benchmark, add the run to the history, report its changes and rewrite the site.
 
-    Takes every option of run.  Speed is the CPU time of the trackers'
+    Takes every option of run; like run, it leaves out the suites that
+    are not scored unless named, so the closed-loop routes run when named
+    (--suite camera --suite routes): their frames depend on the tracker,
+    so every cell renders its own.  The site then shows their closed-loop
+    board and each run's path over its route.  Speed is the CPU time of the trackers'
     steps (cpu_fps; wall_fps is shown, not judged); a speed change counts
     when it exceeds the series' noise over the earlier runs on this machine
     and holds when its cells run once more into OUT/repeat.
