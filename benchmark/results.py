@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal, NamedTuple
 
 import numpy as np
-from pydantic import FiniteFloat
+from pydantic import FiniteFloat, PositiveFloat
 from pydantic.dataclasses import dataclass as pydantic_dataclass
 
 from benchmark.metrics import CORE, Metric, Metrics, columns_with_values
@@ -65,6 +65,10 @@ class LoopValues:
     in_view : bool
         Whether the cable's centreline crosses the image (a cable buried
         under sand counts as in view: the camera looks at it).
+    route_m : float or None
+        The route's whole length, m (``loop_route_m``), so that the share
+        of the route followed can be told from the frames alone; None
+        where the sequence does not say it, and then no column.
     """
 
     offset_m: FiniteFloat
@@ -72,6 +76,7 @@ class LoopValues:
     along_m: FiniteFloat
     time_s: FiniteFloat
     in_view: bool
+    route_m: PositiveFloat | None = None
 
     @staticmethod
     def column(field_name: str) -> str:
@@ -79,8 +84,9 @@ class LoopValues:
         return LOOP_PREFIX + field_name
 
     def columns(self) -> dict[str, float]:
-        """The values by frame-table column, as floats (``in_view`` as 1.0 or 0.0)."""
-        return {self.column(name): float(getattr(self, name)) for name in self.__dataclass_fields__}
+        """The values by frame-table column, as floats (``in_view`` as 1.0 or 0.0); a value that is None has none."""
+        values = {name: getattr(self, name) for name in self.__dataclass_fields__}
+        return {self.column(name): float(value) for name, value in values.items() if value is not None}
 
 
 @dataclass(frozen=True)

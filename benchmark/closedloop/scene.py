@@ -287,4 +287,5 @@ class ClosedLoopScene(Sequence):
             along_m=place.s_m,
             time_s=seen.time_s,
             in_view=in_view,
+            route_m=loop.route.length_m,
         )

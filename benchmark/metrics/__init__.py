@@ -62,6 +62,10 @@ Kind = Literal["detection", "accuracy", "speed", "robustness", "following"]
 KINDS: tuple[Kind, ...] = ("detection", "accuracy", "speed", "robustness", "following")
 """The kinds of metric, in the order their columns stand on a board."""
 
+CLOSED_LOOP_KINDS: tuple[Kind, ...] = ("following", "detection", "accuracy", "speed", "robustness")
+"""The order of a closed-loop board (:mod:`benchmark.leaderboard`): how the vehicle followed the cable first,
+then the open-loop metrics of the frames it saw."""
+
 NAME_PATTERN = r"^[a-z][a-z0-9]*(_[a-z0-9]+)*$"
 """A metric's name: lower-case words joined by ``_``, the unit last (``rmse_d_px``)."""
 
@@ -461,11 +465,17 @@ class Metrics:
         yield from self.added
 
     def for_board(
-        self, modality: str | None, error_columns: Sequence[str], present: Collection[str] | None = None
+        self,
+        modality: str | None,
+        error_columns: Sequence[str],
+        present: Collection[str] | None = None,
+        kinds: Sequence[Kind] = KINDS,
     ) -> tuple[Metric, ...]:
         """The metrics of a board of ``modality`` whose scorer has ``error_columns``, in board order.
 
-        Board order is by kind (:data:`KINDS`), then the rates, the RMSEs
+        Board order is by kind (``kinds``, :data:`KINDS` by default; a
+        closed-loop board puts the following metrics first,
+        :data:`CLOSED_LOOP_KINDS`), then the rates, the RMSEs
         in the scorer's order, the speeds (CPU, then wall) and the added
         metrics in the order they were added.  Given the frame-table
         columns ``present`` with a value (:func:`columns_with_values`), an
@@ -478,7 +488,7 @@ class Metrics:
             if (scope is None or scope == modality) and (present is None or metric.feeds_on(present))
         ]
         ordered = [*RATES, *errors, SPEED, WALL_SPEED, *added]
-        return tuple(sorted(ordered, key=lambda metric: KINDS.index(metric.kind)))
+        return tuple(sorted(ordered, key=lambda metric: kinds.index(metric.kind)))
 
     def named(self, name: str) -> Metric | None:
         """The metric whose column is ``name``, of any modality (``rmse_X`` for any error ``err_X``); else None."""
@@ -508,6 +518,7 @@ CORE = Metrics()
 
 
 __all__ = [
+    "CLOSED_LOOP_KINDS",
     "CORE",
     "KINDS",
     "RATES",

@@ -48,7 +48,8 @@ def terminal_width() -> int:
 def summary_metrics(board: pd.DataFrame, modality: str, metrics: Metrics = CORE) -> list[Metric]:
     """The metrics a summary row of ``board`` shows: the catalogue's headline metrics and every speed metric.
 
-    In board order, except that the ranking metrics come first, then the
+    In the board's order of columns (a closed-loop board's following
+    metrics first), except that the ranking metrics come first, then the
     speeds, then the rest (left out first when the terminal is narrow).
     """
     shown = [
@@ -56,7 +57,10 @@ def summary_metrics(board: pd.DataFrame, modality: str, metrics: Metrics = CORE)
         for metric in metrics.for_board(modality, error_columns_of(board.columns))
         if (metric.headline or metric.kind == "speed") and metric.name in board.columns
     ]
-    return sorted(shown, key=lambda metric: 0 if metric.ranks else 1 if metric.kind == "speed" else 2)
+    columns = list(board.columns)
+    return sorted(
+        shown, key=lambda metric: (0 if metric.ranks else 1 if metric.kind == "speed" else 2, columns.index(metric.name))
+    )
 
 
 def _fitting(widths: Sequence[int], first: int, width: int) -> int:

@@ -190,16 +190,17 @@ def test_real_time_cells_get_a_board_of_their_own_that_names_each_step_time_sour
         frames = store.frame_tables(cells["id"])
     assert sorted(cells["real_time"]) == ["", "declared 100 ms", MEASURED_SOURCE]
     boards = leaderboards(cells, frames, {})
-    board = boards[REAL_TIME_BOARD.format(modality="camera")]
-    assert "real_time" not in boards["camera"] and set(boards["camera"]["tracker"]) == {"slow"}
+    normal = "camera: routes, closed loop"
+    board = boards[normal + REAL_TIME_BOARD]
+    assert "real_time" not in boards[normal] and set(boards[normal]["tracker"]) == {"slow"}
     sources = board.drop_duplicates("tracker").set_index("tracker")["real_time"]
     assert sources.to_dict() == {"slow": "declared 100 ms", "oracle": MEASURED_SOURCE}
     assert list(board.columns[board.columns.get_loc("init") :][:2]) == ["init", "real_time"]
-    alone = leaderboards(cells[cells["real_time"] == ""], frames, {})["camera"]
-    pd.testing.assert_frame_equal(boards["camera"], alone)
+    alone = leaderboards(cells[cells["real_time"] == ""], frames, {})[normal]
+    pd.testing.assert_frame_equal(boards[normal], alone)
     summary = summary_text(boards, width=200)
-    assert f"camera, real time: 2 trackers over 1 dataset; step time declared 100 ms; {MEASURED_SOURCE}" in summary
-    assert "camera: 1 tracker over 1 dataset\n" in summary
+    assert f"{normal}, real time: 2 trackers over 1 dataset; step time declared 100 ms; {MEASURED_SOURCE}" in summary
+    assert f"{normal}: 1 tracker over 1 dataset\n" in summary
 
 
 def test_one_tracker_under_two_sources_gets_a_row_for_each() -> None:
@@ -221,6 +222,6 @@ def test_one_tracker_under_two_sources_gets_a_row_for_each() -> None:
     frames = pd.DataFrame(
         {"cell_id": [1, 2], "frame": [0, 0], "outcome": ["correct", "missed"], "step_ms": [1.0] * 2, "wall_ms": [1.0] * 2}
     )
-    board = leaderboards(cells, frames, {})[REAL_TIME_BOARD.format(modality="camera")]
+    board = leaderboards(cells, frames, {})["camera" + REAL_TIME_BOARD]  # no vehicle values: an open-loop layout
     rows = board[board["dataset"] == "routes/test"].set_index("tracker")["real_time"]
     assert rows.to_dict() == {"slow (declared 100 ms)": "declared 100 ms", f"slow ({MEASURED_SOURCE})": MEASURED_SOURCE}

@@ -13,6 +13,7 @@ from benchmark.leaderboard import leaderboards
 from benchmark.metrics import CORE, closed_loop
 from benchmark.metrics.closed_loop import (
     FOLLOWED,
+    FOLLOWED_SHARE,
     HEADING_ERROR,
     LOST_S,
     METRICS,
@@ -109,14 +110,16 @@ def test_a_board_shows_them_only_where_its_frames_have_loop_columns() -> None:
         for cell_id, dataset in ((1, "routes/a"), (9, "camera/S1"))
     ]
     loop = loop_frames([1, 1, 1], offsets=[0.1, 0.1, 0.4])
-    names = [metric.name for metric in METRICS]
+    names = [metric.name for metric in METRICS if metric is not FOLLOWED_SHARE]  # the frames do not say the route
     open_only = leaderboards(pd.DataFrame(cells[1:]), open_loop_frames(), {"camera": CAMERA}, metrics)["camera"]
     assert not set(names) & set(open_only.columns)
     both = leaderboards(pd.DataFrame(cells), pd.concat([loop, open_loop_frames()]), {"camera": CAMERA}, metrics)
-    board = both["camera"].set_index("dataset")
+    assert list(both) == ["camera", "camera: routes, closed loop"]
+    assert both["camera"]["dataset"].tolist() == ["(all)", "camera/S1"]
+    assert not set(names) & set(both["camera"].columns)
+    board = both["camera: routes, closed loop"].set_index("dataset")
     assert board.loc["routes/a", names].tolist() == pytest.approx([2.0, 0.2, 0.4, 0.4])
-    assert board.loc["camera/S1", names].isna().all()
-    assert "followed_lo_m" in board.columns
+    assert "followed_lo_m" in board.columns and FOLLOWED_SHARE.name not in board.columns
 
 
 def test_a_metric_requiring_columns_is_kept_off_a_board_without_them() -> None:
@@ -130,7 +133,7 @@ def test_a_metric_requiring_columns_is_kept_off_a_board_without_them() -> None:
 def test_they_are_registered_for_every_modality_through_the_hook() -> None:
     registry = Registry()
     closed_loop.trackbench_register_metrics(registry)
-    assert [m.name for m in registry.metrics.for_board("camera", ())][-4:] == [m.name for m in METRICS]
+    assert [m.name for m in registry.metrics.for_board("camera", ())][-len(METRICS):] == [m.name for m in METRICS]
     assert all(metric.kind == "following" for metric in METRICS)
 
 
