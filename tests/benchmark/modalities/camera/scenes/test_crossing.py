@@ -7,14 +7,17 @@ from typing import Any
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from benchmark.errors import DataError
 from benchmark.identity import digest
 from benchmark.modalities.camera.model import CameraPose
 from benchmark.modalities.camera.scenes.crossing import CrossingCable, crossing_axis_line
-from benchmark.modalities.camera.scenes.projection import project_points, projection_matrix
+from benchmark.modalities.camera.scenes.projection import pixel_rays, pose_axes, project_points, projection_matrix
 from benchmark.modalities.camera.scenes.scene import CameraScene
 from benchmark.modalities.camera.scenes.spec import CameraSceneSpec, Crossing
+from benchmark.modalities.camera.scenes.texture import TextureGrid
 
 SIZE = (96, 72)
 FOCAL = 114.0
@@ -122,3 +125,30 @@ def test_crossing_spec_defaults_take_the_followed_cable(flat_scene) -> None:
     assert cable.radius == spec.radius and cable.look == spec.cable
     assert cable.origin[1] == pytest.approx(0.0)  # resting on the seabed Y = -r, as the pipe
     assert spec.crossing == (Crossing(at_m=1.0, angle_deg=45.0),)
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    angle=st.floats(5.0, 175.0),
+    at=st.floats(-1.0, 4.0),
+    diameter=st.floats(0.05, 0.5),
+    cx=st.floats(-1.5, 1.5),
+    cy=st.floats(0.8, 3.0),
+    theta=st.floats(-30.0, 30.0),
+    phi=st.floats(30.0, 90.0),
+)
+def test_every_hit_lies_on_the_crossing_cylinder_ahead_of_the_camera(
+    angle: float, at: float, diameter: float, cx: float, cy: float, theta: float, phi: float
+) -> None:
+    spec = CameraSceneSpec.from_dict({"name": "t/c", "n_frames": 1, "crossing": [{"at_m": at, "angle_deg": angle, "diameter_m": diameter}]})
+    grid = TextureGrid(x0=-2.56, z0=0.0, cell=0.01, nx=512, nz=64)
+    cable = CrossingCable.build(spec.crossing[0], spec, grid, np.random.default_rng(2))
+    pose = CameraPose(cx=cx, cy=cy, cz=0.0, theta=np.radians(theta), phi=np.radians(phi), xi=0.0)
+    qx, qy = pixel_rays(FOCAL, SIZE)
+    rays = (np.linalg.inv(pose_axes(pose)) @ np.stack((qx.ravel(), qy.ravel(), np.ones(qx.size)))).astype(np.float32)
+    seen = cable.hits(pose, rays, (rays * rays).sum(axis=0))
+    assert np.all(seen.t > 0) and np.all((seen.facing >= 0) & (seen.facing <= 1.001))
+    points = np.array((cx, cy, 0.0))[:, None] + seen.t * rays[:, seen.index].astype(float) - cable.origin[:, None]
+    across = points - np.outer(cable.direction, cable.direction @ points)
+    np.testing.assert_allclose(np.linalg.norm(across, axis=0), cable.radius, rtol=0, atol=1e-3)  # float32, grazing rays
+    assert np.all(points[1] + cable.origin[1] >= -spec.radius - 1e-3)  # on or above the seabed Y = -r
