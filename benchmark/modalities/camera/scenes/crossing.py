@@ -103,7 +103,9 @@ class CrossingCable:
     cell: float
 
     @classmethod
-    def build(cls, crossing: Crossing, spec: CameraSceneSpec, grid: TextureGrid, rng: np.random.Generator) -> CrossingCable:
+    def build(
+        cls, crossing: Crossing, spec: CameraSceneSpec, grid: TextureGrid, rng: np.random.Generator
+    ) -> CrossingCable:
         """The crossing ``crossing`` of the scene ``spec``, its surface map drawn from ``rng`` on the rows of ``grid``.
 
         Parameters
@@ -181,7 +183,8 @@ class CrossingCable:
         py = (f32(w[1]) + t * hy) * inverse_radius
         pz = (f32(w[2]) + t * hz - s * f32(uz)) * inverse_radius
         facing = np.maximum(-(px * hx + py * hy + pz * hz) / np.sqrt(h_norm2), f32(0.0))
-        psi = np.arctan2(px * f32(uz) - pz * f32(ux), py)
+        ex, _, ez = (float(c) for c in self.side)
+        psi = np.arctan2(px * f32(ex) + pz * f32(ez), py)
         col = psi * f32(PSI_CELLS / (2 * math.pi)) + f32(PSI_CELLS / 2)
         row = np.mod(s / f32(self.cell), f32(self.surface.shape[0])).astype(np.float32)
         albedo = remap_flat(self.surface, col.astype(np.float32), row)

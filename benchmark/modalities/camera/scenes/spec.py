@@ -337,9 +337,10 @@ class Overgrowth:
 
 @pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Crossing:
-    """A second cable lying straight on the seabed across the followed one (:mod:`~benchmark.modalities.camera.scenes.crossing`).
+    """A second cable lying straight on the seabed across the followed one.
 
-    It is drawn, never tracked: the ground truth stays the followed cable.
+    It is drawn (:mod:`~benchmark.modalities.camera.scenes.crossing`), never
+    tracked: the ground truth stays the followed cable.
 
     Attributes
     ----------
@@ -565,7 +566,7 @@ class CameraSceneSpec(TableSpec):
 
     def __post_init__(self) -> None:
         if self.crossing and self.optics.water is not None:
-            raise ValueError("a crossing cable is drawn by the haze model only: leave out [optics.water] or the crossing")
+            raise ValueError("a crossing cable is drawn by the haze model only: drop [optics.water] or the crossing")
 
     @property
     def radius(self) -> float:

@@ -140,7 +140,8 @@ def test_crossing_spec_defaults_take_the_followed_cable(flat_scene) -> None:
 def test_every_hit_lies_on_the_crossing_cylinder_ahead_of_the_camera(
     angle: float, at: float, diameter: float, cx: float, cy: float, theta: float, phi: float
 ) -> None:
-    spec = CameraSceneSpec.from_dict({"name": "t/c", "n_frames": 1, "crossing": [{"at_m": at, "angle_deg": angle, "diameter_m": diameter}]})
+    crossing = {"at_m": at, "angle_deg": angle, "diameter_m": diameter}
+    spec = CameraSceneSpec.from_dict({"name": "t/c", "n_frames": 1, "crossing": [crossing]})
     grid = TextureGrid(x0=-2.56, z0=0.0, cell=0.01, nx=512, nz=64)
     cable = CrossingCable.build(spec.crossing[0], spec, grid, np.random.default_rng(2))
     pose = CameraPose(cx=cx, cy=cy, cz=0.0, theta=np.radians(theta), phi=np.radians(phi), xi=0.0)
