@@ -31,7 +31,10 @@ look.  The renderer shades it as it shades the pipe and keeps, in every
 pixel, the surface nearer the camera: the two cylinders interpenetrate
 where they cross, and whichever the ray meets first is seen.  The crossing
 is neither buried by the followed cable's sand nor covered by its
-overgrowth, and it is drawn by the haze model only.
+overgrowth.  The image formation model of the water
+(:mod:`~benchmark.modalities.camera.scenes.formation`) lights it by its
+normal, which unlike the pipe's has a ``Z`` component, and tints it as the
+followed cable.
 
 The image of its axis, :func:`crossing_axis_line`, serves to find it in a
 frame (tests, views); the ground truth stays the followed cable.
@@ -66,12 +69,19 @@ class CrossingHits:
         camera (where the lamp is), at least 0.
     albedo : numpy.ndarray
         Its surface map there.
+    normal : numpy.ndarray
+        Its outward unit normal there, shape ``(3, n)``.
     """
 
     index: np.ndarray
     t: np.ndarray
     facing: np.ndarray
     albedo: np.ndarray
+    normal: np.ndarray
+
+    def where(self, mask: np.ndarray) -> CrossingHits:
+        """The hits of the rays ``mask`` selects."""
+        return CrossingHits(self.index[mask], self.t[mask], self.facing[mask], self.albedo[mask], self.normal[:, mask])
 
 
 @dataclass(frozen=True)
@@ -173,7 +183,7 @@ class CrossingCable:
         index = np.flatnonzero((disc > 0) & (qb < f32(-1e-9)))
         if index.size == 0:
             empty = np.zeros(0, dtype=np.float32)
-            return CrossingHits(index, empty, empty, empty)
+            return CrossingHits(index, empty, empty, empty, np.zeros((3, 0), dtype=np.float32))
         hx, hy, hz, h_along, h_norm2 = dx[index], dy[index], dz[index], along[index], norm2[index]
         t = (-qb[index] - np.sqrt(disc[index])) / qa[index]
         s = f32(along_camera) + t * h_along
@@ -188,7 +198,7 @@ class CrossingCable:
         col = psi * f32(PSI_CELLS / (2 * math.pi)) + f32(PSI_CELLS / 2)
         row = np.mod(s / f32(self.cell), f32(self.surface.shape[0])).astype(np.float32)
         albedo = remap_flat(self.surface, col.astype(np.float32), row)
-        return CrossingHits(index, t, facing.astype(np.float32), albedo)
+        return CrossingHits(index, t, facing.astype(np.float32), albedo, np.stack((px, py, pz)))
 
 
 def crossing_axis_line(cable: CrossingCable, pose: CameraPose, focal_px: float, size: ImageSize) -> np.ndarray:

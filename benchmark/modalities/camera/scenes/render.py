@@ -54,7 +54,7 @@ from benchmark.modalities.camera.scenes.texture import PSI_CELLS, TextureGrid
 from benchmark.scenes.noise import gaussian_table
 
 if TYPE_CHECKING:
-    from benchmark.modalities.camera.scenes.crossing import CrossingCable
+    from benchmark.modalities.camera.scenes.crossing import CrossingCable, CrossingHits
 
 OPAQUE_TRANSMISSION = 1.0 / 1024.0
 """Haze transmission below which the water colour is all that is left."""
@@ -460,13 +460,36 @@ class Renderer:
             lit += self._highlight(facing, specular)
         return lit
 
+    def _crossing_in_front(self, crossing: CrossingCable, pose: CameraPose, depth: np.ndarray) -> CrossingHits:
+        """Where ``crossing`` is nearer than the surface each pixel saw so far; ``depth`` takes its depth there."""
+        seen = crossing.hits(pose, self._work.rays, self._work.norm2)
+        front = seen.where(seen.t < depth[seen.index])
+        depth[front.index] = front.t
+        return front
+
     def _draw_crossing(self, crossing: CrossingCable, pose: CameraPose, lit: np.ndarray, depth: np.ndarray) -> None:
         """Shade, in place, the pixels that see ``crossing`` nearer than what they saw (``depth``, updated too)."""
-        seen = crossing.hits(pose, self._work.rays, self._work.norm2)
-        nearer = seen.t < depth[seen.index]
-        index, t = seen.index[nearer], seen.t[nearer]
-        lit[index] = self._shade_cable(seen.albedo[nearer], seen.facing[nearer], crossing.look.specular)
-        depth[index] = t
+        front = self._crossing_in_front(crossing, pose, depth)
+        lit[front.index] = self._shade_cable(front.albedo, front.facing, crossing.look.specular)
+
+    def _water_crossing(
+        self, crossing: CrossingCable, pose: CameraPose, pipe: PipePixels, depth: np.ndarray
+    ) -> PipePixels:
+        """``pipe``'s pixels for the water model, those where ``crossing`` is nearer taken by it (``depth`` updated)."""
+        front = self._crossing_in_front(crossing, pose, depth)
+        keep = ~np.isin(pipe.index, front.index)
+        specular = crossing.look.specular
+        highlight = self._highlight(front.facing, specular) if specular > 0 else np.zeros_like(front.facing)
+        normal_z = np.zeros_like(pipe.normal_x) if pipe.normal_z is None else pipe.normal_z
+        return PipePixels(
+            np.concatenate((pipe.index[keep], front.index)),
+            np.concatenate((pipe.normal_x[keep], front.normal[0])),
+            np.concatenate((pipe.normal_y[keep], front.normal[1])),
+            np.concatenate((pipe.albedo[keep], front.albedo)),
+            np.concatenate((pipe.cover[keep], np.zeros_like(front.albedo))),
+            np.concatenate((pipe.highlight[keep], highlight)),
+            np.concatenate((normal_z[keep], front.normal[2])),
+        )
 
     def _shade_pipe(
         self, hits: np.ndarray, pose: CameraPose
@@ -527,6 +550,8 @@ class Renderer:
             depth[pipe.index] = surface.t[above]
             if surface.under.any():
                 albedo[hits[surface.under]] *= self._relief(surface)
+        for crossing in self.assets.crossings:
+            pipe = self._water_crossing(crossing, pose, pipe, depth)
         return self._formation.image(
             pose, axes, time_s, work.rays, depth, work.norm, albedo, pipe, self.assets.vignette
         )

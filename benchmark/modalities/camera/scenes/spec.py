@@ -354,7 +354,8 @@ class Crossing:
         Its diameter; None takes the followed cable's.
     look : CableLook or None
         Its surface; None takes the followed cable's (its texture drawn
-        anew).
+        anew).  The water model tints it as the followed cable, whatever
+        its own ``tint``.
     """
 
     at_m: Finite
@@ -544,7 +545,7 @@ class CameraSceneSpec(TableSpec):
         Tilt at which the camera is mounted (``phi_0`` of seeds/004 eq. (12));
         None takes the mean of ``motion.phi_deg``.
     crossing : tuple of Crossing
-        Other cables lying across the pipe; drawn by the haze model only.
+        Other cables lying across the pipe.
     """
 
     name: Name
@@ -563,10 +564,6 @@ class CameraSceneSpec(TableSpec):
     overgrowth: tuple[Overgrowth, ...] = ()
     optics: OpticsSpec = field(default_factory=OpticsSpec)
     crossing: tuple[Crossing, ...] = field(default=(), metadata=OMIT_AT_DEFAULT)
-
-    def __post_init__(self) -> None:
-        if self.crossing and self.optics.water is not None:
-            raise ValueError("a crossing cable is drawn by the haze model only: drop [optics.water] or the crossing")
 
     @property
     def radius(self) -> float:

@@ -113,10 +113,21 @@ def test_a_bad_crossing_is_a_data_error_naming_the_key(flat_scene, crossing: dic
         CameraSceneSpec.from_dict(flat_scene(crossing=[crossing]), "suite.toml")
 
 
-def test_the_water_model_refuses_a_crossing(flat_scene) -> None:
-    optics = {**flat_scene()["optics"], "water": {}}
-    with pytest.raises(DataError, match="haze model"):
-        CameraSceneSpec.from_dict(flat_scene(optics=optics, crossing=[{"at_m": 1.0, "angle_deg": 45.0}]), "suite.toml")
+def test_the_water_model_draws_the_crossing_dark_as_the_pipe(flat_scene) -> None:
+    water = {**flat_scene()["optics"], "water": {"sun": 0.5}}
+    plain = CameraScene.from_dict(flat_scene(frame_size=list(SIZE), focal_px=FOCAL, optics=water))
+    crossed = CameraScene.from_dict(
+        flat_scene(frame_size=list(SIZE), focal_px=FOCAL, optics=water, crossing=[{"at_m": 1.0, "angle_deg": 50.0}])
+    )
+    without, with_it = _image(plain), _image(crossed)
+    cable = CrossingCable.build(crossed.spec.crossing[0], crossed.spec, crossed._state().grid, np.random.default_rng(0))
+    top = cable.origin + np.linspace(-3.0, 3.0, 1201)[:, None] * cable.direction + np.array((0.0, cable.radius, 0.0))
+    rows, cols = _pixels_of(top).T
+    pipe_column = np.abs(cols - np.median(np.argmin(without, axis=1))) < 10
+    darkened = (with_it[rows, cols] / without[rows, cols])[~pipe_column]
+    far = _distance_px(crossing_axis_line(cable, POSE, FOCAL, SIZE)) > 25.0
+    exposure = np.median(with_it[far] / without[far])  # the automatic exposure scales the whole frame
+    assert darkened.size > 40 and np.median(darkened) < 0.4 * exposure
 
 
 def test_crossing_spec_defaults_take_the_followed_cable(flat_scene) -> None:
