@@ -19,8 +19,11 @@ look is rendered by a :class:`~benchmark.modalities.camera.scenes.scene.CameraSc
 whose own trajectory is the corridor the vehicle may use: along the route
 at the surge speed, swaying ``corridor_m`` either side, so that its
 seabed is textured wherever the vehicle may look.  Stretches of burial and
-overgrowth are placed along the route's arc length, the pipe frame's
-``Z`` (:mod:`benchmark.closedloop.loop`).
+overgrowth, and the cables that cross the route
+(:mod:`~benchmark.modalities.camera.scenes.crossing`), are placed along the
+route's arc length, the pipe frame's ``Z`` (:mod:`benchmark.closedloop.loop`):
+a crossing at ``at_m`` crosses the route's tangent there at its angle, and
+is drawn straight in that frame.
 
 The run ends when the vehicle passes the route's end, or after
 :attr:`ClosedLoopSpec.max_frames` frames.  In real-time mode
@@ -45,7 +48,7 @@ from benchmark.closedloop.loop import CameraMount, Loop, Track
 from benchmark.closedloop.real_time import intervals_until_next
 from benchmark.closedloop.route import Leg, Route, RouteSpec
 from benchmark.closedloop.vehicle import Kinematics, VehicleState
-from benchmark.identity import DatasetIdentity, digest, generator_source
+from benchmark.identity import OMIT_AT_DEFAULT, DatasetIdentity, digest, generator_source
 from benchmark.modalities.camera.model import CableState, CameraCalibration, VehicleSpeeds
 from benchmark.modalities.camera.geometry import Line
 from benchmark.modalities.camera.scenes.burial import image_chord
@@ -54,6 +57,7 @@ from benchmark.modalities.camera.scenes.spec import (
     Burial,
     CableLook,
     CameraSceneSpec,
+    Crossing,
     MotionSpec,
     OpticsSpec,
     Overgrowth,
@@ -91,6 +95,8 @@ class ClosedLoopSpec(TableSpec):
         Where the vehicle starts against the cable's start.
     frame_size, frame_interval_s, focal_px, pipe_diameter_m, seabed, cable, burial, overgrowth, optics
         The look, as :class:`~benchmark.modalities.camera.scenes.spec.CameraSceneSpec` declares it.
+    crossing : tuple of Crossing
+        Cables lying across the route, each at an arc length ``at_m`` on it.
     """
 
     name: Name
@@ -112,6 +118,13 @@ class ClosedLoopSpec(TableSpec):
     burial: tuple[Burial, ...] = ()
     overgrowth: tuple[Overgrowth, ...] = ()
     optics: OpticsSpec = field(default_factory=OpticsSpec)
+    crossing: tuple[Crossing, ...] = field(default=(), metadata=OMIT_AT_DEFAULT)
+
+    def __post_init__(self) -> None:
+        length = self.route.length_m
+        for crossing in self.crossing:
+            if not 0.0 <= crossing.at_m <= length:
+                raise ValueError(f"crossing at_m = {crossing.at_m} is not on the route (0 to {length:g} m)")
 
     @property
     def route(self) -> Route:
@@ -157,6 +170,7 @@ class ClosedLoopSpec(TableSpec):
             burial=self.burial,
             overgrowth=self.overgrowth,
             optics=self.optics,
+            crossing=self.crossing,
         )
 
 

@@ -120,3 +120,45 @@ def test_a_cell_of_an_open_loop_scene_has_no_loop_values() -> None:
     result = run_cell(make_cell(TrackerEntry(Oracle.name, Oracle, Oracle.make_params()), scene))
     assert result.status == "ok" and all(score.loop is None for score in result.scores)
     assert not set(following(result)) & {metric.name for metric in METRICS}
+
+
+CROSSED = {**ROUTE, "name": "routes/crossed", "crossing": [{"at_m": 1.2, "angle_deg": 50.0}]}
+
+
+def drive_by_hand(data: dict[str, Any]) -> tuple[list[np.ndarray], list[Any], ClosedLoopScene]:
+    """Frames and truths of a route driven by its true cable, without the runner."""
+    scene = ClosedLoopScene.from_dict(data)
+    images, truths = [], []
+    for frame in scene.frames():
+        images.append(frame.observation)
+        truths.append(frame.truth)
+        scene.steer(frame.truth.cable if frame.truth.cable.is_known else None)
+    return images, truths, scene
+
+
+def test_the_oracle_follows_a_route_with_a_crossing_cable_to_its_end() -> None:
+    scene = ClosedLoopScene.from_dict(CROSSED)
+    assert scene.spec.look().crossing == scene.spec.crossing  # the camera scene draws it
+    result = run_cell(make_cell(TrackerEntry(Oracle.name, Oracle, Oracle.make_params()), scene))
+    summary = following(result)
+    assert result.status == "ok"
+    assert summary["followed_m"] == pytest.approx(scene.spec.route.length_m, abs=0.05)
+    assert summary["offset_mean_m"] < scene.spec.pipe_diameter_m / 2
+
+
+def test_a_crossing_cable_changes_the_frames_where_it_is_seen_but_not_the_truth() -> None:
+    plain_images, plain_truths, plain = drive_by_hand(ROUTE)
+    images, truths, crossed = drive_by_hand(CROSSED)
+    assert truths == plain_truths and crossed.track.places == plain.track.places
+    changed = np.array([np.count_nonzero(a != b) for a, b in zip(images, plain_images, strict=True)])
+    seen_from = [truth.pose.cz for truth in truths]
+    # It is in view from the start (about 1 m ahead) until the camera has passed over it.
+    assert np.all(changed[np.array(seen_from) < 1.0] > 200)
+    assert np.all(changed[np.array(seen_from) > 1.6] == 0)
+
+
+def test_a_crossing_off_the_route_is_a_data_error() -> None:
+    from benchmark.errors import DataError
+
+    with pytest.raises(DataError, match="not on the route"):
+        ClosedLoopScene.from_dict({**ROUTE, "crossing": [{"at_m": 3.0, "angle_deg": 50.0}]})

@@ -36,6 +36,7 @@ import numpy as np
 from benchmark.errors import DataError
 from benchmark.modalities.camera.model import CameraCalibration, CameraPose, CameraTruth, VehicleSpeeds
 from benchmark.modalities.camera.scenes.burial import sand_level, visible_fraction
+from benchmark.modalities.camera.scenes.crossing import CrossingCable
 from benchmark.modalities.camera.scenes.motion import Trajectory, build_trajectory, vehicle_speeds
 from benchmark.modalities.camera.scenes.overgrowth import overgrowth_layer
 from benchmark.modalities.camera.scenes.projection import pixel_rays, pose_axes
@@ -155,6 +156,10 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
             seabed = layer.composite(seabed)
             cover, cover_x0 = layer.pipe_band(spec.radius)
         snow, caustics = self._water_assets(state)
+        crossings = tuple(
+            CrossingCable.build(crossing, spec, grid, self._stream(_TEXTURE, 7, number))
+            for number, crossing in enumerate(spec.crossing)
+        )
         return SceneAssets(
             grid=grid,
             seabed=seabed,
@@ -169,6 +174,7 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
             cover_x0=cover_x0,
             snow=snow,
             caustics=caustics,
+            crossings=crossings,
         )
 
     def _water_assets(self, state: _Cache) -> tuple[SnowCloud | None, CausticWaves | None]:
