@@ -168,14 +168,18 @@ def _cpu_s() -> float:
 
 
 def describe_result(result: CellResult) -> str:
-    """One line on a finished cell: tracker, dataset, seed, status, correct % (or no truth), CPU fps, frames, time."""
+    """One line on a finished cell: tracker, dataset, seed, status, correct % (or no truth), CPU fps, frames, time.
+
+    A cell run in real time says so, with its step time's source, after its seed.
+    """
     summary = result.summary()
     correct = summary.get("correct_pct", math.nan)
     fps = summary.get(SPEED.name, math.nan)
     unscored = result.status == "ok" and result.scores and not summary.get("frames")
     rate = NO_TRUTH if unscored else f"correct {correct:.1f}%"
+    real_time = f"  real time ({result.real_time})" if result.real_time else ""
     line = (
-        f"{result.tracker}  {result.dataset}  seed {result.seed}  {result.status}  "
+        f"{result.tracker}  {result.dataset}  seed {result.seed}{real_time}  {result.status}  "
         f"{rate}  {fps:.0f} cpu fps  ({len(result.scores)} frames, {result.elapsed_s:.1f} s)"
     )
     return printable(f"{line}  {one_line(result.message)}" if result.message else line)

@@ -34,7 +34,22 @@ learns (:mod:`benchmark.training`), empty for the others.  Rows whose cells fail
 after every row that ran cleanly, since their rates cover only the frames
 before the failure.
 
-There is one board per modality, as the modalities score different things.
+There is one board per modality, as the modalities score different things,
+and one per modality and suite of closed-loop cells (:mod:`benchmark.closedloop`),
+named ``MODALITY: SUITE, closed loop``: a closed-loop cell's frames depend
+on its tracker, so its rows are not read against open-loop ones.  A dataset
+is closed-loop when any of its cells' frames holds the vehicle's values (the
+``loop_*`` columns, :class:`benchmark.results.LoopValues`); a closed-loop
+board's columns put the following metrics first
+(:data:`benchmark.metrics.CLOSED_LOOP_KINDS`), then the open-loop metrics of
+the frames the vehicle saw, and rank by the distance followed, then the mean
+offset, before the correct rate.  Closed-loop cells run in real time
+(:mod:`benchmark.closedloop.real_time`) have a board of their own, the name
+ending in ``, real time``, so that a run that saw every frame is never
+ranked or pooled with one that skipped frames.  Its ``real_time`` column says
+where each row's step time came from (``declared 17 ms``, or ``measured
+median, this machine``: a figure of the machine that ran it); a tracker run
+under several sources gets a row per source, labelled ``name (source)``.
 Numeric column names carry their units (``conventions.md`` section 4).
 Boards keep full precision; :mod:`benchmark.report` writes them out.
 """
@@ -44,14 +59,15 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import pandas as pd
 
 from benchmark.intervals import seed_intervals
-from benchmark.metrics import CORE, KINDS, Metric, Metrics
+from benchmark.metrics import CLOSED_LOOP_KINDS, CORE, KINDS, Kind, Metric, Metrics, columns_with_values
 from benchmark.modality import Modality
-from benchmark.results import summarise
+from benchmark.results import LOOP_PREFIX, summarise
 
 if TYPE_CHECKING:
     from benchmark.store import ResultStore
@@ -75,6 +91,71 @@ def is_pooled(dataset: str) -> bool:
 
 LEADING_COLUMNS = ("rank", "tracker", "dataset", "init", "training", "seeds", "frames")
 
+REAL_TIME_COLUMN = "real_time"
+"""Column of a real-time board, after ``init``: the source of each row's step time."""
+
+REAL_TIME_BOARD = ", real time"
+"""Ending of the name of a board of cells run in real time: ``camera: routes, closed loop, real time``."""
+
+
+def board_modality(board_name: str) -> str:
+    """The modality a board of :func:`leaderboards` ranks: its name up to the first colon."""
+    return board_name.partition(":")[0]
+
+
+@dataclass(frozen=True)
+class BoardLayout:
+    """How a kind of board is named and in which order of metric kinds its columns stand.
+
+    Attributes
+    ----------
+    title : str
+        The board's name, formatted with its cells' ``modality`` and ``suite``.
+    kinds : tuple of str
+        The kinds of metric in board order (:meth:`benchmark.metrics.Metrics.for_board`).
+    """
+
+    title: str
+    kinds: tuple[Kind, ...]
+
+    def name(self, modality: str, suite: str) -> str:
+        """The board's name for cells of ``modality`` and ``suite``."""
+        return self.title.format(modality=modality, suite=suite)
+
+
+LAYOUTS: dict[bool, BoardLayout] = {
+    False: BoardLayout("{modality}", KINDS),
+    True: BoardLayout("{modality}: {suite}, closed loop", CLOSED_LOOP_KINDS),
+}
+"""The layout of an open-loop board (one per modality) and of a closed-loop one (one per suite), by closed loop."""
+
+
+def closed_loop_datasets(cells: pd.DataFrame, frames: pd.DataFrame) -> frozenset[str]:
+    """The dataset keys of ``cells`` of which any cell's frames hold a ``loop_*`` value: the closed-loop datasets."""
+    loop_columns = [column for column in frames.columns if str(column).startswith(LOOP_PREFIX)]
+    if not loop_columns or "cell_id" not in frames.columns:
+        return frozenset()
+    with_values = frames.loc[frames[loop_columns].notna().any(axis=1), "cell_id"].unique()
+    return frozenset(cells.loc[cells["id"].isin(with_values), "dataset_key"].astype(str))
+
+
+def real_time_sources(cells: pd.DataFrame) -> pd.Series:
+    """Each cell's source of step time (:data:`REAL_TIME_COLUMN`), ``""`` for a cell not run in real time."""
+    if REAL_TIME_COLUMN not in cells:
+        return pd.Series("", index=cells.index)
+    return cells[REAL_TIME_COLUMN].fillna("").astype(str)
+
+
+def board_layouts(cells: pd.DataFrame, frames: pd.DataFrame) -> pd.DataFrame:
+    """Each cell's board: ``board`` (its name) and ``closed_loop``, in the order of ``cells``."""
+    closed = cells["dataset_key"].astype(str).isin(closed_loop_datasets(cells, frames))
+    real_time = real_time_sources(cells) != ""
+    names = [
+        LAYOUTS[bool(loop)].name(str(modality), suite_of(str(dataset))) + (REAL_TIME_BOARD if timed else "")
+        for modality, dataset, loop, timed in zip(cells["modality"], cells["dataset"], closed, real_time, strict=True)
+    ]
+    return pd.DataFrame({"board": names, "closed_loop": closed.to_numpy()}, index=cells.index)
+
 
 def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str, ...]:
     """The error columns of a modality; those found in ``frames`` for a modality not registered here."""
@@ -84,17 +165,31 @@ def error_columns(modality: Modality | None, frames: pd.DataFrame) -> tuple[str,
 
 
 def board_metrics(
-    metrics: Metrics, modality_name: str, modality: Modality | None, frames: pd.DataFrame
+    metrics: Metrics,
+    modality_name: str,
+    modality: Modality | None,
+    frames: pd.DataFrame,
+    kinds: Sequence[Kind] = KINDS,
 ) -> tuple[Metric, ...]:
-    """The metrics of the board of a modality (registered or not: :func:`error_columns`), in board order."""
-    return metrics.for_board(modality_name, error_columns(modality, frames))
+    """The metrics of the board of a modality (registered or not: :func:`error_columns`), in board order.
+
+    A metric that requires frame columns none of ``frames`` fills (the
+    closed-loop metrics on open-loop frames) is not on the board
+    (:attr:`benchmark.metrics.Metric.requires`).  ``kinds`` orders them
+    (:attr:`BoardLayout.kinds`).
+    """
+    return metrics.for_board(modality_name, error_columns(modality, frames), columns_with_values(frames), kinds)
 
 
 def board_columns(metrics: Sequence[Metric]) -> list[str]:
-    """Columns of a board of ``metrics``: each kind's metrics then their spreads, ``deterministic``, intervals."""
+    """Columns of a board of ``metrics``: each kind's metrics then their spreads, ``deterministic``, intervals.
+
+    Kinds stand in the order of ``metrics`` (board order).
+    """
+    kinds = list(dict.fromkeys(metric.kind for metric in metrics))
     values = [
         column
-        for kind in KINDS
+        for kind in kinds
         for column in [
             *(m.name for m in metrics if m.kind == kind),
             *(m.spread_column for m in metrics if m.kind == kind and m.spread),
@@ -267,14 +362,43 @@ def leaderboards(
     Returns
     -------
     dict
-        Modality name to board, in alphabetical order of modality.
+        Board name to board: the open-loop boards by modality name, then
+        the closed-loop boards (``MODALITY: SUITE, closed loop``, :data:`LAYOUTS`),
+        each in alphabetical order.
     """
     boards: dict[str, pd.DataFrame] = {}
-    for modality, group in cells.groupby("modality", sort=True):
+    if cells.empty:
+        return boards
+    sources = real_time_sources(cells)
+    grouped = cells.join(board_layouts(cells, frames)).groupby(["closed_loop", "board", "modality"], sort=True)
+    for (closed_loop, name, modality), group in grouped:
+        group = group.drop(columns=["board", "closed_loop"])
+        timed = bool((sources[group.index] != "").any())
+        if timed:
+            group = group.assign(tracker=_source_labels(group["tracker"], sources[group.index]))
         part = frames[frames["cell_id"].isin(group["id"])] if "cell_id" in frames.columns else frames
-        name = str(modality)
-        boards[name] = modality_board(group, part, board_metrics(metrics, name, modalities.get(name), part))
+        of_board = board_metrics(
+            metrics, str(modality), modalities.get(str(modality)), part, LAYOUTS[bool(closed_loop)].kinds
+        )
+        board = modality_board(group, part, of_board)
+        boards[str(name)] = _with_sources(board, group, sources[group.index]) if timed else board
     return boards
+
+
+def _source_labels(trackers: pd.Series, sources: pd.Series) -> pd.Series:
+    """The tracker names, each followed by ``(source)`` where one name ran under several step-time sources."""
+    several = sources.groupby(trackers).transform("nunique") > 1
+    return trackers.where(~several, trackers + " (" + sources + ")")
+
+
+def _with_sources(board: pd.DataFrame, cells: pd.DataFrame, sources: pd.Series) -> pd.DataFrame:
+    """``board`` of real-time cells with the :data:`REAL_TIME_COLUMN` after ``init``: each row's step-time sources."""
+    labels = key_labels(cells, "tracker", "tracker_key")
+    by_label = sources.groupby(labels).agg(lambda values: ", ".join(sorted(set(values))))
+    at = board.columns.get_loc("init") + 1
+    return board.assign(**{REAL_TIME_COLUMN: board["tracker"].map(by_label)})[
+        [*board.columns[:at], REAL_TIME_COLUMN, *board.columns[at:]]
+    ]
 
 
 def load_leaderboards(

@@ -21,9 +21,12 @@ import enum
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any, ClassVar, Generic, TypeVar
+from typing import TYPE_CHECKING, Any, ClassVar, Generic, TypeVar
 
 from benchmark.identity import DatasetIdentity, digest
+
+if TYPE_CHECKING:
+    from benchmark.results import LoopValues
 
 
 class Outcome(enum.StrEnum):
@@ -116,9 +119,15 @@ class Sequence(ABC):
         The frames are a pure function of :attr:`identity` and worth keeping
         once produced (simulated scenes): a run reads them through its frame
         cache (:mod:`benchmark.frame_cache`).  False for data read from files.
+    closed_loop : bool
+        The frames depend on the estimates: after each frame is scored the
+        runner hands the tracker's estimate to :meth:`steer`, and the next
+        frame is made from where it steered the vehicle
+        (:mod:`benchmark.closedloop`).  Such frames are never cached.
     """
 
     cache_frames: ClassVar[bool] = False
+    closed_loop: ClassVar[bool] = False
 
     @property
     @abstractmethod
@@ -142,6 +151,21 @@ class Sequence(ABC):
         info = self.info
         generator = f"{type(self).__module__}.{type(self).__qualname__}"
         return DatasetIdentity(info.name, info.modality, source=generator, fingerprint=digest(info.name))
+
+    def steer(self, estimate: Any, busy_s: float = 0.0) -> LoopValues | None:
+        """Take the estimate of the frame :meth:`frames` yielded last; only a :attr:`closed_loop` sequence uses it.
+
+        ``busy_s`` is how long the tracker was busy with that frame in
+        real-time mode (:mod:`benchmark.closedloop.real_time`), 0 otherwise.
+
+        Returns
+        -------
+        LoopValues or None
+            A closed-loop sequence gives the vehicle's values at that frame
+            (:class:`benchmark.results.LoopValues`), which the runner adds to
+            the frame's score; None otherwise.
+        """
+        return None
 
     def lacks(self, needs: Iterable[str]) -> dict[str, str]:
         """Of the :class:`SequenceInfo` fields ``needs`` (a tracker's :attr:`~benchmark.tracker.Tracker.needs`), those the sequence does not give.

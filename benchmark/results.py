@@ -4,7 +4,10 @@ Every frame a tracker processes gets a :class:`FrameScore`: its detection
 outcome (seeds/004, section VI-C, Table V), the estimate's errors (one per
 error column of the modality's scorer) and the time the tracker's ``step``
 took, as CPU time of the thread that ran it and as wall time
-(:mod:`benchmark.runner`).  A :class:`CellResult` holds a cell's identity, how it ended, its
+(:mod:`benchmark.runner`); a frame of a closed-loop sequence
+(:mod:`benchmark.closedloop`) also gets the :class:`LoopValues` of the
+vehicle that saw it, stored and read back beside the errors under names
+that start with :data:`LOOP_PREFIX`.  A :class:`CellResult` holds a cell's identity, how it ended, its
 frame scores and a :class:`Picture` of the first frame of each run of
 failures (where its modality draws frames); it is what worker processes
 hand back and what the store writes.  :func:`summarise` turns frame
@@ -23,14 +26,67 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal, NamedTuple
 
 import numpy as np
+from pydantic import FiniteFloat, PositiveFloat
+from pydantic.dataclasses import dataclass as pydantic_dataclass
 
-from benchmark.metrics import CORE, Metric, Metrics
+from benchmark.metrics import CORE, Metric, Metrics, columns_with_values
 from benchmark.model import Outcome
 
 if TYPE_CHECKING:
     import pandas as pd
 
 Status = Literal["ok", "error", "timeout"]
+
+LOOP_PREFIX = "loop_"
+"""Start of the name of every frame-table column that :class:`LoopValues` fills."""
+
+
+@pydantic_dataclass(frozen=True)
+class LoopValues:
+    """The vehicle of a closed-loop run at one frame, where it stood when the camera took it.
+
+    Frame tables (:func:`frame_table`) and the store hold each field as a
+    column named :data:`LOOP_PREFIX` and the field (:meth:`column`):
+    ``loop_offset_m``, ``loop_heading_error_deg``, ``loop_along_m``,
+    ``loop_time_s`` and ``loop_in_view`` (1.0 or 0.0).  Frames of open-loop
+    sequences have none of these columns.
+
+    Attributes
+    ----------
+    offset_m : float
+        Lateral offset from the cable, m, positive right of it
+        (:class:`benchmark.closedloop.route.Place`).
+    heading_error_deg : float
+        The vehicle's heading minus the cable's, deg, positive turned to the right.
+    along_m : float
+        Distance along the route of the cable's point nearest the vehicle, m.
+    time_s : float
+        The frame's time from the start of the run, s.
+    in_view : bool
+        Whether the cable's centreline crosses the image (a cable buried
+        under sand counts as in view: the camera looks at it).
+    route_m : float or None
+        The route's whole length, m (``loop_route_m``), so that the share
+        of the route followed can be told from the frames alone; None
+        where the sequence does not say it, and then no column.
+    """
+
+    offset_m: FiniteFloat
+    heading_error_deg: FiniteFloat
+    along_m: FiniteFloat
+    time_s: FiniteFloat
+    in_view: bool
+    route_m: PositiveFloat | None = None
+
+    @staticmethod
+    def column(field_name: str) -> str:
+        """The frame-table column of a field: ``offset_m`` -> ``loop_offset_m``."""
+        return LOOP_PREFIX + field_name
+
+    def columns(self) -> dict[str, float]:
+        """The values by frame-table column, as floats (``in_view`` as 1.0 or 0.0); a value that is None has none."""
+        values = {name: getattr(self, name) for name in self.__dataclass_fields__}
+        return {self.column(name): float(value) for name, value in values.items() if value is not None}
 
 
 @dataclass(frozen=True)
@@ -53,6 +109,9 @@ class FrameScore:
     wall_s : float
         Wall time of the same ``step``, which also counts the waits for a
         core that other processes held.
+    loop : LoopValues or None
+        On a closed-loop sequence, the vehicle at this frame
+        (:meth:`benchmark.model.Sequence.steer`); None on every other.
     """
 
     index: int
@@ -60,6 +119,7 @@ class FrameScore:
     errors: Mapping[str, float] = field(default_factory=dict)
     step_s: float = 0.0
     wall_s: float = 0.0
+    loop: LoopValues | None = None
 
 
 @dataclass(frozen=True)
@@ -86,12 +146,18 @@ class Picture:
 
 
 def frame_table(scores: Iterable[FrameScore]) -> pd.DataFrame:
-    """Frame scores as a table: ``frame``, ``outcome``, error columns, ``step_ms`` (thread CPU) and ``wall_ms``."""
+    """Frame scores as a table: ``frame``, ``outcome``, error columns, ``step_ms`` (thread CPU) and ``wall_ms``.
+
+    Frames of a closed-loop sequence add the ``loop_*`` columns of their
+    :class:`LoopValues` after the error columns; a table without such a
+    frame has none of them.
+    """
     rows = [
         {
             "frame": s.index,
             "outcome": None if s.outcome is None else str(s.outcome),
             **s.errors,
+            **({} if s.loop is None else s.loop.columns()),
             "step_ms": 1000.0 * s.step_s,
             "wall_ms": 1000.0 * s.wall_s,
         }
@@ -185,6 +251,10 @@ class CellResult:
         The tracker declares that it draws no random numbers
         (:attr:`benchmark.tracker.Tracker.deterministic`), which the
         conformance kit verifies; only then may a board call it deterministic.
+    real_time : str
+        Empty for an ordinary cell; for a closed-loop cell run in real time
+        (:mod:`benchmark.closedloop.real_time`), the source of its step
+        time: ``"declared 17 ms"`` or ``"measured median, this machine"``.
     """
 
     tracker: str
@@ -206,6 +276,7 @@ class CellResult:
     read_s: float = 0.0
     pictures: tuple[Picture, ...] = ()
     deterministic: bool = False
+    real_time: str = ""
 
     @property
     def key(self) -> CellKey:
@@ -218,5 +289,6 @@ class CellResult:
         return frame_table(self.scores)
 
     def summary(self, metrics: Metrics = CORE) -> dict[str, float]:
-        """The metrics of this cell (:func:`summarise`), those of ``metrics`` for its modality."""
-        return summarise(self.frames, metrics.for_board(self.modality, self.error_columns))
+        """The metrics of this cell (:func:`summarise`), those of ``metrics`` for its modality that its frames feed."""
+        frames = self.frames
+        return summarise(frames, metrics.for_board(self.modality, self.error_columns, columns_with_values(frames)))

@@ -70,6 +70,7 @@ from typing import Any, Literal, Protocol
 import numpy as np
 
 from benchmark import shared_modules
+from benchmark.closedloop.real_time import RealTime
 from benchmark.drawing import encode_png
 from benchmark.faults import Call, Stopped, UserInterrupt, safe_text
 from benchmark.identity import DatasetIdentity
@@ -111,6 +112,10 @@ class Cell:
     training : Training or None
         For a tracker that learns: its training set, then its fitted model
         (:mod:`benchmark.training`; keyword only).
+    real_time : RealTime or None
+        Real-time mode and the source of the tracker's step time
+        (:mod:`benchmark.closedloop.real_time`; keyword only), for a
+        closed-loop sequence only; None runs the ordinary cell.
     """
 
     tracker: TrackerEntry
@@ -119,10 +124,13 @@ class Cell:
     init: InitMode = "truth"
     modality: Modality = dataclasses.field(kw_only=True)
     training: Training | None = dataclasses.field(default=None, kw_only=True)
+    real_time: RealTime | None = dataclasses.field(default=None, kw_only=True)
 
     def __post_init__(self) -> None:
         if self.init not in ("truth", "none"):
             raise ValueError(f"init must be 'truth' or 'none', not {self.init!r}")
+        if self.real_time is not None and not self.sequence.closed_loop:
+            raise ValueError(f"real-time mode is for closed-loop sequences; {self.sequence!r} is open loop")
         if self.modality.name != self.tracker.modality:
             raise ValueError(
                 f"tracker {self.tracker.name!r} reads {self.tracker.modality} frames, not {self.modality.name} frames"
@@ -140,9 +148,10 @@ class Cell:
 
     @property
     def tracker_key(self) -> str:
-        """The tracker's cache key, joined by the training's key for a tracker that learns."""
+        """The tracker's cache key, joined by the training's key for a tracker that learns, and by a real-time mode's."""
         key = self.tracker.cache_key
-        return key if self.training is None else f"{key}+{self.training.key}"
+        key = key if self.training is None else f"{key}+{self.training.key}"
+        return key if self.real_time is None else f"{key}+{self.real_time.key}"
 
     @property
     def key(self) -> CellKey:
@@ -150,8 +159,9 @@ class Cell:
         return CellKey(self.tracker_key, self.identity.key, self.seed, self.init)
 
     def label(self) -> str:
-        """Short human-readable name: ``tracker on dataset, seed s``."""
-        return f"{self.tracker.name} on {self.dataset}, seed {self.seed}"
+        """Short human-readable name: ``tracker on dataset, seed s`` (then ``, real time (declared 17 ms)``)."""
+        label = f"{self.tracker.name} on {self.dataset}, seed {self.seed}"
+        return label if self.real_time is None else f"{label}, real time ({self.real_time.source})"
 
 
 def cell_result(cell: Cell, status: Status, message: str = "", **fields: Any) -> CellResult:
@@ -165,6 +175,7 @@ def cell_result(cell: Cell, status: Status, message: str = "", **fields: Any) ->
         tracker_key=cell.tracker_key,
         params=dataclasses.asdict(cell.tracker.params),
         training="" if cell.training is None else cell.training.name,
+        real_time="" if cell.real_time is None else cell.real_time.source,
         deterministic=bool(getattr(cell.tracker.tracker_class, "deterministic", False)),
         dataset=dataset,
         dataset_key=dataset_key,
@@ -272,7 +283,13 @@ def run_cell(
         Status ``"ok"`` with all frames scored, or ``"error"`` /
         ``"timeout"`` with the frames scored before; with the pictures of
         the first frame of each run of false or missed frames (a run ends
-        where the outcome changes), at most :data:`MAX_PICTURES`.
+        where the outcome changes), at most :data:`MAX_PICTURES`.  On a
+        closed-loop sequence each frame's score also holds the vehicle's
+        values that steering after it gave
+        (:meth:`benchmark.model.Sequence.steer`); in real-time mode the
+        steering is told how long the tracker was busy with the frame
+        (:class:`~benchmark.closedloop.real_time.StepClock`), and the
+        frames that arrived meanwhile are neither stepped nor scored.
 
     References
     ----------
@@ -361,9 +378,16 @@ def _play(
     rng = cell_rng(cell.seed, cell.tracker.name, cell.identity)
     init = frame.truth if cell.init == "truth" else None
     Call.of(lambda: tracker.reset(info, rng, init=init), "reset, frame 0", 0).value()
+    clock = None if cell.real_time is None else cell.real_time.clock()
     while True:
         index = frame.index
         estimate = Call.of(lambda: _step(cell, tracker, frame, info, progress), f"frame {index}", index).value()
+        if cell.sequence.closed_loop:
+            busy_s = 0.0 if clock is None else clock.busy_s(progress.scores[-1].step_s)
+            steering = f"steering after frame {index}"
+            loop = Call.of(lambda: cell.sequence.steer(estimate, busy_s), steering, index).value()
+            if loop is not None:
+                progress.scores[-1] = dataclasses.replace(progress.scores[-1], loop=loop)
         if observer is not None:
             score = progress.scores[-1]
             Call.of(lambda: observer(tracker, frame, estimate, score), f"observing frame {index}", index).value()

@@ -35,7 +35,9 @@ def cell_columns() -> list[sa.Column]:
     ``tracker_key``, ``dataset_key``, ``seed`` and ``init``; ``dataset`` is
     only the name it was shown under.  ``training`` names the training set
     of a tracker that learns (empty for the others) and ``deterministic``
-    whether the tracker declares that it draws no random numbers; both
+    whether the tracker declares that it draws no random numbers;
+    ``real_time`` the source of the step time of a cell run in real time
+    (empty for the others; :mod:`benchmark.closedloop.real_time`); these
     have defaults, so that tables of older versions can gain them.
 
     Returns
@@ -59,6 +61,7 @@ def cell_columns() -> list[sa.Column]:
         sa.Column("frames", sa.Integer, nullable=False),
         sa.Column("elapsed_s", sa.Float, nullable=False),
         sa.Column("deterministic", sa.Boolean, nullable=False, server_default=sa.false()),
+        sa.Column("real_time", sa.Text, nullable=False, server_default=""),
     ]
 
 

@@ -27,6 +27,7 @@ from collections import defaultdict
 from collections.abc import Iterable, Iterator, Mapping
 from typing import Any
 
+from benchmark.closedloop.real_time import RealTime
 from benchmark.errors import ParameterError, TrackbenchError
 from benchmark.faults import Call
 from benchmark.identity import DatasetIdentity
@@ -345,6 +346,12 @@ class Selection:
         Suites, registered sequences or sequence paths (``--train``) that
         train every tracker that learns, instead of the ``training`` suite
         each scored suite names.
+    real_time : bool
+        Run the closed-loop sequences in real time (``--real-time``;
+        :mod:`benchmark.closedloop.real_time`).
+    step_times : tuple of str
+        ``TRACKER=MS`` words (``--step-time``): a tracker's declared step
+        time in real time; the others' is measured.
     """
 
     trackers: tuple[str, ...] = ()
@@ -354,6 +361,8 @@ class Selection:
     seeds: int = 1
     init: InitMode = "truth"
     train: tuple[str, ...] = ()
+    real_time: bool = False
+    step_times: tuple[str, ...] = ()
 
 
 def select_cells(registry: Registry, selection: Selection) -> list[Cell]:
@@ -372,7 +381,60 @@ def select_cells(registry: Registry, selection: Selection) -> list[Cell]:
     entries = apply_param_overrides(select_trackers(registry, selection.trackers), overrides)
     sequences = select_sequences(registry, selection.suites, selection.datasets)
     cells = make_cells(entries, sequences, range(selection.seeds), selection.init, registry.modalities)
+    if selection.step_times and not selection.real_time:
+        raise ParameterError("--step-time declares a step time for --real-time runs; add --real-time")
+    cells = in_real_time(cells, selection.step_times) if selection.real_time else cells
     return plan_training(registry, cells, selection.train)
+
+
+def in_real_time(cells: Iterable[Cell], step_times: Iterable[str] = ()) -> list[Cell]:
+    """The cells, each run in real time with its tracker's declared step time, or its measured one.
+
+    Parameters
+    ----------
+    cells : iterable of Cell
+        Cells of closed-loop sequences.
+    step_times : iterable of str
+        ``TRACKER=MS`` words: the declared step time of a selected tracker,
+        in milliseconds; a tracker not named has its step time measured
+        (:class:`benchmark.closedloop.real_time.StepClock`).
+
+    Raises
+    ------
+    SelectionError
+        If a cell's sequence is open loop: real time only means something
+        where the frames depend on the estimates, so an open-loop suite is
+        refused rather than run in the ordinary way under a real-time run.
+    ParameterError
+        For a malformed word, a step time that is not a positive number of
+        milliseconds, or a tracker that is not selected.
+    """
+    cells = list(cells)
+    open_loop = sorted({cell.dataset for cell in cells if not cell.sequence.closed_loop})
+    if open_loop:
+        shown = ", ".join(open_loop[:5]) + (f" and {len(open_loop) - 5} more" if len(open_loop) > 5 else "")
+        raise SelectionError(
+            f"--real-time runs closed-loop sequences only (such as --suite routes); open loop: {shown}"
+        )
+    declared: dict[str, float] = {}
+    for word in step_times:
+        tracker, equals, value = (part.strip() for part in word.partition("="))
+        try:
+            if not (equals and tracker):
+                raise ValueError(word)
+            declared[tracker] = RealTime(float(value)).declared_ms  # type: ignore[assignment]
+        except ValueError:  # pydantic's ValidationError is one
+            raise ParameterError(
+                f"--step-time {word!r}: expected TRACKER=MS, MS a positive number of milliseconds, e.g. hough=17"
+            ) from None
+    selected = {cell.tracker.name for cell in cells}
+    stray = sorted(set(declared) - selected)
+    if stray:
+        raise ParameterError(
+            f"--step-time names tracker {', '.join(map(repr, stray))}, which is not selected "
+            f"(selected: {_known(selected)})"
+        )
+    return [dataclasses.replace(cell, real_time=RealTime(declared.get(cell.tracker.name))) for cell in cells]
 
 
 def plan_training(registry: Registry, cells: Iterable[Cell], train: Iterable[str] = ()) -> list[Cell]:

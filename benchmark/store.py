@@ -14,16 +14,23 @@ pictures share their columns with the nightly history's
     runs(id, started, finished, argv JSON, options JSON, version, problems JSON)
     cells(id, run_id -> runs, tracker, tracker_version, tracker_key, params JSON,
           dataset, dataset_key, modality, seed, init, status, message, detail,
-          frames, elapsed_s, finished, training, deterministic)
+          frames, elapsed_s, finished, training, deterministic, real_time)
     run_cells(run_id -> runs, cell_id -> cells)
     frames(cell_id -> cells, position, frame, outcome, step_ms, wall_ms)
     frame_errors(cell_id, position, name, value)
     pictures(cell_id -> cells, frame, outcome, png BLOB)
     conditions(dataset_key, name, value JSON)
 
-``training`` names the training set of a tracker that learns (empty for
+``frame_errors`` holds a frame's values by name: the scorer's error
+columns, and on a closed-loop cell its ``loop_*`` values
+(:class:`benchmark.results.LoopValues`); a value that is not finite is not
+stored and reads back as NaN.  ``training`` names the training set of a tracker that learns (empty for
 the others; :mod:`benchmark.training`); ``deterministic`` is 1 when the
-tracker declares that it draws no random numbers.  ``problems`` lists, one line each, what went wrong in a run outside any
+tracker declares that it draws no random numbers; ``real_time`` is the
+step time's source of a cell run in real time, empty for the others
+(:mod:`benchmark.closedloop.real_time`; the mode is also in its
+``tracker_key``, so that the two modes are never taken for one cell).
+``problems`` lists, one line each, what went wrong in a run outside any
 cell, such as a plugin that failed to import.  A cell is identified by
 ``(tracker_key, dataset_key, seed, init)`` (:class:`benchmark.results.CellKey`):
 ``dataset_key`` is the key of the dataset's identity
@@ -54,7 +61,8 @@ and ``wall_ms`` its wall time (:mod:`benchmark.runner`).
 
 A database of schema version 1 (no ``problems``, no ``dataset_key``), 2
 (no ``training``), 3 (no ``pictures``), 4 (no ``conditions``), 5 (no
-``deterministic``) or 6 (``step_ms`` was the wall time, no ``wall_ms``)
+``deterministic``), 6 (``step_ms`` was the wall time, no ``wall_ms``) or
+7 (no ``real_time``)
 is upgraded in place when opened, its cells keeping no pictures and
 declaring nothing; version 1's cells get their ``dataset`` as
 ``dataset_key``, which no identity's key equals, so they are shown but
@@ -90,7 +98,7 @@ from benchmark.results import Picture
 if TYPE_CHECKING:
     from benchmark.results import CellKey, CellResult
 
-SCHEMA_VERSION = 7
+SCHEMA_VERSION = 8
 DATABASE_NAME = "results.sqlite"
 
 _runs = schema.results_runs
@@ -141,6 +149,7 @@ CELL_COLUMNS = (
     "finished",
     "training",
     "deterministic",
+    "real_time",
 )
 """Columns of the table :meth:`ResultStore.cells` returns."""
 
@@ -384,6 +393,7 @@ class ResultStore:
             "finished": _now(),
             "training": result.training,
             "deterministic": bool(result.deterministic),
+            "real_time": result.real_time,
         }
         with self._transaction() as connection:
             cell_id = int(connection.execute(_cells.insert(), cell).inserted_primary_key[0])
@@ -395,7 +405,7 @@ class ResultStore:
             errors = [
                 (cell_id, position, name, float(value))
                 for position, score in enumerate(result.scores)
-                for name, value in score.errors.items()
+                for name, value in {**score.errors, **({} if score.loop is None else score.loop.columns())}.items()
                 if math.isfinite(float(value))
             ]
             pictures = [(cell_id, int(shot.frame), str(shot.outcome), bytes(shot.png)) for shot in result.pictures]

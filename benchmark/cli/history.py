@@ -22,13 +22,22 @@ from benchmark.cli.run import run_benchmark
 from benchmark.cli.session import EXIT_FAILED, Session
 
 if TYPE_CHECKING:
+    from benchmark.closedloop.route import Route
     from benchmark.harness import RunSummary
+    from benchmark.registry import Registry
     from benchmark.runner import Cell
 
 EXIT_REGRESSION = 3
 """``nightly`` found an accuracy regression (after storing the run and writing the site)."""
 EXIT_SPEED_REGRESSION = 4
 """``nightly --fail-on-speed`` found a speed regression, held on a repeat, and no accuracy regression."""
+
+def registry_routes(registry: Registry) -> dict[str, Route]:
+    """The routes of the registry's closed-loop datasets by dataset key, for the site's top views."""
+    from benchmark.closedloop.topview import routes_by_dataset
+
+    return routes_by_dataset(sequence for suite in registry.suites.values() for sequence in suite.sequences)
+
 
 BYTE_UNITS = {"": 1, "b": 1, "kb": 10**3, "mb": 10**6, "gb": 10**9, "kib": 2**10, "mib": 2**20, "gib": 2**30}
 """The units a size may be given in (case ignored)."""
@@ -90,7 +99,11 @@ def nightly(
 ) -> None:
     """Run the benchmark, add the run to the history, report its changes and rewrite the site.
 
-    Takes every option of run.  Speed is the CPU time of the trackers'
+    Takes every option of run; like run, it leaves out the suites that
+    are not scored unless named, so the closed-loop routes run when named
+    (--suite camera --suite routes): their frames depend on the tracker,
+    so every cell renders its own.  The site then shows their closed-loop
+    board and each run's path over its route.  Speed is the CPU time of the trackers'
     steps (cpu_fps; wall_fps is shown, not judged); a speed change counts
     when it exceeds the series' noise over the earlier runs on this machine
     and holds when its cells run once more into OUT/repeat.
@@ -125,7 +138,8 @@ def nightly(
     session: Session = ctx.obj
     registry = session.registry
     selection = Selection(options["trackers"], options["suites"], options["datasets"], options["params"],
-                          options["seeds"], options["init"], options["train"])
+                          options["seeds"], options["init"], options["train"], options["real_time"],
+                          options["step_times"])
     replays = ReplayPlan(replay_budget, lambda: select_cells(registry, selection),
                          None if options["no_cache"] else FrameCache(options["cache"]))
     with Meter("site pages") as pages:
@@ -142,6 +156,7 @@ def nightly(
             report=pages,
             replays=replays,
             log=lambda line: click.echo(line, err=True),
+            routes=registry_routes(registry),
         )
     if kept.repeat is not None:
         repeated = kept.repeat.statuses.total()
@@ -235,5 +250,6 @@ def report_command(
                 thresholds=thresholds(min_effects, window, min_step_s),
                 metrics=session.registry.metrics,
                 report=pages,
+                routes=registry_routes(session.registry),
             )
     click.echo(f"wrote {index}")

@@ -79,6 +79,20 @@ _RUN_OPTIONS = [
         "and a tracker that exits or crashes ends the run.",
     ),
     init_option(),
+    click.option(
+        "--real-time",
+        is_flag=True,
+        help="Run closed-loop sequences in real time: frames arrive at the route's frame rate and a tracker busy "
+        "longer than a frame interval skips the frames that arrive meanwhile.",
+    ),
+    click.option(
+        "--step-time",
+        "step_times",
+        multiple=True,
+        metavar="TRACKER=MS",
+        help="With --real-time: the tracker's declared step time in ms (repeatable); without it a tracker's step "
+        "time is the running median of its measured steps, a figure of this machine.",
+    ),
     click.option("--resume", is_flag=True, help="Skip cells this database already finished with status ok."),
     click.option(
         "--timeout",

@@ -50,6 +50,8 @@ def run_benchmark(
     jobs: int | None,
     in_process: bool,
     init: str,
+    real_time: bool,
+    step_times: tuple[str, ...],
     resume: bool,
     timeout: float,
     params: tuple[str, ...],
@@ -77,7 +79,8 @@ def run_benchmark(
 
     session: Session = ctx.obj
     registry = session.registry
-    cells = select_cells(registry, Selection(trackers, suites, datasets, params, seeds, init, train))
+    selection = Selection(trackers, suites, datasets, params, seeds, init, train, real_time, step_times)
+    cells = select_cells(registry, selection)
     if only is not None:
         cells = [cell for cell in cells if only(cell)]
     options = {key: list(value) if isinstance(value, tuple) else value for key, value in ctx.params.items()}

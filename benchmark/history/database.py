@@ -7,7 +7,7 @@ row per cell to ``cells``, copied from the run's results database
     runs(id, started, finished, version, commit, machine_key, machine JSON, argv JSON, seeds, load JSON)
     cells(id, run_id -> runs, tracker, tracker_version, tracker_key, params JSON, dataset,
           dataset_key, modality, seed, init, training, status, message, frames, elapsed_s,
-          metrics JSON, deterministic)
+          metrics JSON, deterministic, real_time)
     cell_frames(cell_id -> cells, frames BLOB)
     cell_pictures(cell_id -> cells, frame, outcome, png BLOB)
     run_boards(run_id -> runs, modality, board JSON)
@@ -645,5 +645,6 @@ _COPIED = (
     "status",
     "message",
     "deterministic",
+    "real_time",
 )
 """Columns of a results database's cells copied as they are."""

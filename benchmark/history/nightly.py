@@ -38,6 +38,7 @@ from benchmark.store import DATABASE_NAME, ResultStore
 from benchmark.text import counted, one_line, shortened
 
 if TYPE_CHECKING:
+    from benchmark.closedloop.route import Route
     from benchmark.harness import RunSummary
     from benchmark.progress import Report
     from benchmark.runner import Cell
@@ -147,6 +148,7 @@ def run_nightly(
     report: Report | None = None,
     replays: ReplayPlan | None = None,
     log: Callable[[str], None] = lambda line: None,
+    routes: Mapping[str, Route] | None = None,
 ) -> Nightly:
     """Run the benchmark into ``out``, append the run to ``history``, find its changes and rewrite ``site``.
 
@@ -177,6 +179,9 @@ def run_nightly(
         (:func:`~benchmark.history.replays.record_replays`); none without it.
     log : callable
         Told a line for each replay that failed (which fails nothing else).
+    routes : Mapping, optional
+        The route of each closed-loop dataset by its key, over which the
+        site draws each closed-loop cell's path (:func:`benchmark.site.build_site`).
 
     Notes
     -----
@@ -218,7 +223,8 @@ def run_nightly(
         replayed = None
         if replays is not None:
             replayed = record_replays(database, run_id, changes, replays, out, replay_back, log)
-        index = build_site(database, site, modalities, thresholds=thresholds, metrics=metrics, report=report)
+        index = build_site(database, site, modalities, thresholds=thresholds, metrics=metrics, report=report,
+                           routes=routes)
     return Nightly(summary, run_id, changes, index, load, repeat, replayed)
 
 

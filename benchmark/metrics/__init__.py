@@ -35,14 +35,17 @@ column ``err_X`` of a modality's scorer is an RMSE ``rmse_X``
 correct rate.  Plugins add others through the ``trackbench_register_metrics``
 hook (:meth:`benchmark.registry.Registry.add_metric`), for every modality or
 for one; trackbench's own robustness metrics are added that way
-(:mod:`benchmark.metrics.robustness`).
+(:mod:`benchmark.metrics.robustness`), and so are the following metrics of
+closed-loop runs (:mod:`benchmark.metrics.closed_loop`), which declare the
+frame columns they need (:attr:`Metric.requires`) so that a board whose
+frames lack them does not show them.
 """
 
 from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Collection, Iterable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Annotated, Literal
 
@@ -55,9 +58,13 @@ from benchmark.model import Outcome
 if TYPE_CHECKING:
     import pandas as pd
 
-Kind = Literal["detection", "accuracy", "speed", "robustness"]
-KINDS: tuple[Kind, ...] = ("detection", "accuracy", "speed", "robustness")
+Kind = Literal["detection", "accuracy", "speed", "robustness", "following"]
+KINDS: tuple[Kind, ...] = ("detection", "accuracy", "speed", "robustness", "following")
 """The kinds of metric, in the order their columns stand on a board."""
+
+CLOSED_LOOP_KINDS: tuple[Kind, ...] = ("following", "detection", "accuracy", "speed", "robustness")
+"""The order of a closed-loop board (:mod:`benchmark.leaderboard`): how the vehicle followed the cable first,
+then the open-loop metrics of the frames it saw."""
 
 NAME_PATTERN = r"^[a-z][a-z0-9]*(_[a-z0-9]+)*$"
 """A metric's name: lower-case words joined by ``_``, the unit last (``rmse_d_px``)."""
@@ -108,10 +115,11 @@ class Metric:
         (``correct_pct``, ``rmse_d_px``, ``failures_per100``).
     better : {"higher", "lower"}
         Which direction is an improvement.
-    kind : {"detection", "accuracy", "speed", "robustness"}
+    kind : {"detection", "accuracy", "speed", "robustness", "following"}
         What it measures; boards group their columns by kind
         (:data:`KINDS`), and regressions judge speed on the same machine
-        only.
+        only.  ``following`` is how a vehicle steered by the tracker
+        followed the cable (:mod:`benchmark.metrics.closed_loop`).
     columns : tuple of str
         The frame-table columns it reads; seeds that agree on these (and on
         ``frame``) for every interval metric are seeds that agree.
@@ -145,6 +153,11 @@ class Metric:
         Whether regressions judge it (:mod:`benchmark.history.regressions`);
         a number that measures the machine's other work more than the
         tracker's, such as the wall-clock speed, is shown but not judged.
+    requires : tuple of str
+        Frame-table columns only some sequences give (the ``loop_*``
+        columns of closed-loop runs): a board whose frames hold no value in
+        one of them leaves the metric out (:meth:`Metrics.for_board`).
+        Empty for a metric every frame table can feed.
     """
 
     name: Annotated[str, Field(pattern=NAME_PATTERN)]
@@ -163,6 +176,11 @@ class Metric:
     ranks: bool = False
     headline: bool = False
     judged: bool = True
+    requires: tuple[str, ...] = ()
+
+    def feeds_on(self, present: Collection[str]) -> bool:
+        """Whether frames with values in the columns ``present`` give it one: it requires none missing."""
+        return all(column in present for column in self.requires)
 
     @property
     def unit(self) -> str:
@@ -206,6 +224,31 @@ def derived_column(name: str, part: str) -> str:
 
 
 # --- the core metrics ---------------------------------------------------------------------------------------------
+
+
+def columns_with_values(frames: pd.DataFrame) -> frozenset[str]:
+    """The columns of a frame table with at least one value (not NaN, not None)."""
+    return frozenset(str(column) for column in frames.columns[frames.notna().any(axis=0).to_numpy()])
+
+
+def sequence_starts(frames: pd.DataFrame, rows: np.ndarray) -> np.ndarray:
+    """Of the selected ``rows`` (a boolean mask) of a frame table, those that start a cell's sequence.
+
+    The first row starts one, and so does every row whose ``cell_id``
+    differs from the row before or whose ``frame`` does not increase:
+    pooled tables hold several cells one after another.
+    """
+    count = int(np.count_nonzero(rows))
+    starts = np.zeros(count, dtype=bool)
+    if count:
+        starts[0] = True
+        if "cell_id" in frames:
+            cells = frames["cell_id"].to_numpy()[rows]
+            starts[1:] |= cells[1:] != cells[:-1]
+        if "frame" in frames:
+            indices = frames["frame"].to_numpy(dtype=float)[rows]
+            starts[1:] |= ~(indices[1:] > indices[:-1])
+    return starts
 
 
 def outcomes(frames: pd.DataFrame) -> np.ndarray:
@@ -421,17 +464,31 @@ class Metrics:
         yield from ((metric, None) for metric in (*RATES, SPEED, WALL_SPEED))
         yield from self.added
 
-    def for_board(self, modality: str | None, error_columns: Sequence[str]) -> tuple[Metric, ...]:
+    def for_board(
+        self,
+        modality: str | None,
+        error_columns: Sequence[str],
+        present: Collection[str] | None = None,
+        kinds: Sequence[Kind] = KINDS,
+    ) -> tuple[Metric, ...]:
         """The metrics of a board of ``modality`` whose scorer has ``error_columns``, in board order.
 
-        Board order is by kind (:data:`KINDS`), then the rates, the RMSEs
+        Board order is by kind (``kinds``, :data:`KINDS` by default; a
+        closed-loop board puts the following metrics first,
+        :data:`CLOSED_LOOP_KINDS`), then the rates, the RMSEs
         in the scorer's order, the speeds (CPU, then wall) and the added
-        metrics in the order they were added.
+        metrics in the order they were added.  Given the frame-table
+        columns ``present`` with a value (:func:`columns_with_values`), an
+        added metric that :attr:`~Metric.requires` another is left out.
         """
         errors = [error_metric(column, ranks=i == 0) for i, column in enumerate(error_columns)]
-        added = [metric for metric, scope in self.added if scope is None or scope == modality]
+        added = [
+            metric
+            for metric, scope in self.added
+            if (scope is None or scope == modality) and (present is None or metric.feeds_on(present))
+        ]
         ordered = [*RATES, *errors, SPEED, WALL_SPEED, *added]
-        return tuple(sorted(ordered, key=lambda metric: KINDS.index(metric.kind)))
+        return tuple(sorted(ordered, key=lambda metric: kinds.index(metric.kind)))
 
     def named(self, name: str) -> Metric | None:
         """The metric whose column is ``name``, of any modality (``rmse_X`` for any error ``err_X``); else None."""
@@ -449,7 +506,10 @@ class Metrics:
 
 
 RESERVED_COLUMNS = frozenset(
-    {"rank", "tracker", "dataset", "init", "training", "seeds", "frames", "deterministic", "status", "message"}
+    {
+        "rank", "tracker", "dataset", "init", "real_time", "training", "seeds", "frames", "deterministic", "status",
+        "message",
+    }
 )
 """Board and history columns that are not metrics."""
 
@@ -458,6 +518,7 @@ CORE = Metrics()
 
 
 __all__ = [
+    "CLOSED_LOOP_KINDS",
     "CORE",
     "KINDS",
     "RATES",
@@ -466,11 +527,13 @@ __all__ = [
     "Effect",
     "Metric",
     "Metrics",
+    "columns_with_values",
     "derived_column",
     "error_columns_of",
     "error_metric",
     "outcomes",
     "scored",
+    "sequence_starts",
     "percentage",
     "ratio",
     "unit_scale",

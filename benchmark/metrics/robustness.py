@@ -34,7 +34,7 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from benchmark.hookspecs import hookimpl
-from benchmark.metrics import Effect, Metric, outcomes, percentage, ratio, scored
+from benchmark.metrics import Effect, Metric, outcomes, percentage, ratio, scored, sequence_starts
 from benchmark.model import Outcome
 
 if TYPE_CHECKING:
@@ -67,15 +67,7 @@ def failure_runs(frames: pd.DataFrame) -> FailureRuns:
     with_truth = scored(values)
     wrong = values[with_truth] != str(Outcome.CORRECT)
     count = wrong.size
-    starts_sequence = np.zeros(count, dtype=bool)
-    if count:
-        starts_sequence[0] = True
-        if "cell_id" in frames:
-            cells = frames["cell_id"].to_numpy()[with_truth]
-            starts_sequence[1:] |= cells[1:] != cells[:-1]
-        if "frame" in frames:
-            indices = frames["frame"].to_numpy(dtype=float)[with_truth]
-            starts_sequence[1:] |= ~(indices[1:] > indices[:-1])
+    starts_sequence = sequence_starts(frames, with_truth)
     follows_wrong = np.r_[False, wrong[:-1]] & ~starts_sequence
     precedes_wrong = np.r_[wrong[1:], False] & ~np.r_[starts_sequence[1:], True]
     first = np.flatnonzero(wrong & ~follows_wrong)

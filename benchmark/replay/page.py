@@ -32,6 +32,7 @@ from markupsafe import Markup
 
 from benchmark.files import write_text_atomically
 from benchmark.replay.record import Belief, FrameRecord, Recording
+from benchmark.results import LOOP_PREFIX
 from benchmark.replay.views import Mark, ReplayView, view_of
 from benchmark.site.figures import OUTCOME_COLOURS
 
@@ -141,6 +142,7 @@ def _frame(frame: FrameRecord, ranges: list[tuple[float, float]], view: ReplayVi
         "index": frame.index,
         "outcome": frame.outcome,
         "errors": {name: _number(value) for name, value in frame.errors.items()},
+        "loop": {name.removeprefix(LOOP_PREFIX): _number(value) for name, value in frame.loop.items()},
         "step_s": _number(frame.step_s),
         "truth": None if frame.truth is None else _numbers(frame.truth),
         "estimate": None if frame.estimate is None else _numbers(frame.estimate),

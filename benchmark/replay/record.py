@@ -136,6 +136,10 @@ class FrameRecord:
     region : object
         The part of the frame the tracker searched, where it says
         (:class:`~benchmark.tracker.Searches`); None: all of it, or unknown.
+    loop : dict
+        On a closed-loop sequence, the vehicle at this frame by frame-table
+        column (``loop_offset_m``, ..., :class:`benchmark.results.LoopValues`);
+        empty on every other.
     """
 
     index: int
@@ -150,6 +154,7 @@ class FrameRecord:
     picture: Picture
     estimate_value: Any = field(repr=False, compare=False, default=None)
     region: Any = field(repr=False, compare=False, default=None)
+    loop: dict[str, float] = field(default_factory=dict)
 
 
 @dataclass
@@ -341,4 +346,5 @@ class _Recorder:
             picture=picture,
             estimate_value=estimate,
             region=tracker.search_region if isinstance(tracker, Searches) else None,
+            loop={} if score.loop is None else score.loop.columns(),
         )

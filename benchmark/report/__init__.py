@@ -46,7 +46,8 @@ def write_leaderboards(
     Parameters
     ----------
     boards : Mapping
-        Modality name to board (:func:`benchmark.leaderboard.leaderboards`).
+        Board name (a modality, or a suite's closed-loop board) to board
+        (:func:`benchmark.leaderboard.leaderboards`).
     out_dir : str or pathlib.Path
         The folder, created if missing.
     caption : str

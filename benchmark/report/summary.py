@@ -23,7 +23,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from benchmark.leaderboard import ALL_DATASETS, failed_cells, is_pooled
+from benchmark.leaderboard import ALL_DATASETS, REAL_TIME_COLUMN, board_modality, failed_cells, is_pooled
 from benchmark.metrics import CORE, Metric, Metrics, error_columns_of
 from benchmark.report.display import format_value
 from benchmark.text import counted, one_line, printable, shortened
@@ -48,7 +48,8 @@ def terminal_width() -> int:
 def summary_metrics(board: pd.DataFrame, modality: str, metrics: Metrics = CORE) -> list[Metric]:
     """The metrics a summary row of ``board`` shows: the catalogue's headline metrics and every speed metric.
 
-    In board order, except that the ranking metrics come first, then the
+    In the board's order of columns (a closed-loop board's following
+    metrics first), except that the ranking metrics come first, then the
     speeds, then the rest (left out first when the terminal is narrow).
     """
     shown = [
@@ -56,7 +57,10 @@ def summary_metrics(board: pd.DataFrame, modality: str, metrics: Metrics = CORE)
         for metric in metrics.for_board(modality, error_columns_of(board.columns))
         if (metric.headline or metric.kind == "speed") and metric.name in board.columns
     ]
-    return sorted(shown, key=lambda metric: 0 if metric.ranks else 1 if metric.kind == "speed" else 2)
+    columns = list(board.columns)
+    return sorted(
+        shown, key=lambda metric: (0 if metric.ranks else 1 if metric.kind == "speed" else 2, columns.index(metric.name))
+    )
 
 
 def _fitting(widths: Sequence[int], first: int, width: int) -> int:
@@ -82,7 +86,7 @@ def board_summary(board: pd.DataFrame, modality: str, width: int, metrics: Metri
     def shown(metric: Metric) -> tuple[str, list[str]]:
         return metric.name, [format_value(metric.name, value, metrics) for value in pooled[metric.name]]
 
-    chosen = summary_metrics(board, modality, metrics)
+    chosen = summary_metrics(board, board_modality(modality), metrics)
     first = [metric for metric in chosen if metric.ranks or metric.kind == "speed"]
     failed = [
         f"{failed_cells(status)}/{cells_of.get((tracker, init), 0)}"
@@ -99,8 +103,11 @@ def board_summary(board: pd.DataFrame, modality: str, width: int, metrics: Metri
     if kept <= len(first):  # shorten the names rather than leave out a ranking metric, a speed or the failures
         kept = _fitting(widths, min(longest, MIN_NAME_WIDTH), width)
     name_width = max(1, min(longest, width - sum(len(GAP) + w for w in widths[:kept])))
+    title = f"{modality}: {counted(len(names), 'tracker')} over {counted(datasets, 'dataset')}"
+    if REAL_TIME_COLUMN in board:  # a real-time board says where its step times came from
+        title += "; step time " + "; ".join(sorted(set(pooled[REAL_TIME_COLUMN].dropna())))
     lines = [
-        shortened(f"{modality}: {counted(len(names), 'tracker')} over {counted(datasets, 'dataset')}", width),
+        shortened(title, width),
         "tracker".ljust(name_width)
         + "".join(GAP + title.rjust(w) for (title, _), w in zip(columns[:kept], widths[:kept])),
     ]

@@ -8,7 +8,7 @@
     compare.html           any two runs side by side, picked in the browser
     trackers/<name>.html   a tracker's headline metrics over the runs (interactive), its cells, changed parameters
     cells/<id>.html        one cell of a run that keeps its details: frames (interactive), pictures, parameters,
-                           its replay or why there is none
+                           its replay or why there is none; a closed-loop cell's path over its route from above
     replays/<run>/<id>.html  a cell's replay page as its nightly recorded it (:mod:`benchmark.history.replays`)
     assets/itables.js      the table library (:mod:`benchmark.site.tables`)
     assets/plotly.js       the plotting library (:mod:`benchmark.site.figures`)
@@ -59,6 +59,7 @@ import filelock
 import pandas as pd
 
 import benchmark
+from benchmark.closedloop.route import Route
 from benchmark.errors import DataError
 from benchmark.files import make_folder
 from benchmark.history.database import RECORDED, History
@@ -152,21 +153,29 @@ def _plan(night: Night) -> list[Page]:
         # Empty values left out: a column added to the history later (a new metric) leaves old cells' pages as they are.
         known = {name: value for name, value in cell.items() if not (isinstance(value, float) and math.isnan(value))}
         replay = night.replay_rows.get(int(cell["id"]))
-        pages.append(Page("cell", int(cell["id"]), _digest(shared, known, compared, replay)))
+        route = night.routes.get(str(cell["dataset_key"]))
+        drawn_route = None if route is None else [leg.__dict__ for leg in route.spec.legs]
+        pages.append(Page("cell", int(cell["id"]), _digest(shared, known, compared, replay, drawn_route)))
         if replay is not None and replay["state"] == RECORDED:
             pages.append(Page("replay", int(cell["id"]), _digest(int(cell["run_id"]), replay["digest"])))
     pages += [Page("compare", None, everything), Page("runs", None, everything)]
     return pages
 
 
-def _load(history: History, modalities: Mapping[str, Modality], metrics: Metrics, thresholds: Thresholds) -> Night:
+def _load(
+    history: History,
+    modalities: Mapping[str, Modality],
+    metrics: Metrics,
+    thresholds: Thresholds,
+    routes: Mapping[str, Route],
+) -> Night:
     runs = history.runs()
     if runs.empty:
         raise DataError(f"history database {history.location}: no runs yet, so no site to build")
     kept = {int(run_id): history.changes(int(run_id)) for run_id in runs["id"]}
     return Night(history, modalities, metrics, thresholds, runs, history.cells(), {},
                  {run_id: changes for run_id, changes in kept.items() if changes is not None},
-                 replays=history.replays())
+                 replays=history.replays(), routes=routes)
 
 
 _night: Night | None = None
@@ -266,6 +275,7 @@ def build_site(
     metrics: Metrics = CORE,
     report: Callable[[int, int], None] | None = None,
     workers: int = WORKERS,
+    routes: Mapping[str, Route] | None = None,
 ) -> Path:
     """Write the site of the history into ``site`` (created, old pages replaced); return index.html.
 
@@ -290,6 +300,11 @@ def build_site(
     workers : int
         Processes that draw pages at once (at most the machine's cores);
         1 draws them in this process.
+    routes : Mapping, optional
+        The route of each closed-loop dataset by its key
+        (:func:`benchmark.closedloop.topview.routes_by_dataset` of the
+        registry's suites), over which a closed-loop cell's page draws its
+        path; a cell whose route is not among them says so instead.
 
     Returns
     -------
@@ -302,7 +317,7 @@ def build_site(
         If the history holds no run, from the history database, or when the
         site cannot be written (a full or read-only disk), naming the site.
     """
-    night = _load(history, modalities, metrics, thresholds or Thresholds())
+    night = _load(history, modalities, metrics, thresholds or Thresholds(), routes or {})
     site = make_folder(site)
     try:
         with filelock.FileLock(site / LOCK):

@@ -1,4 +1,4 @@
-"""Figures of the site as plotly figures: a tracker's metrics over the runs, and a cell's frames.
+"""Figures of the site as plotly figures: a tracker's metrics over the runs, a cell's frames, a closed-loop run's path.
 
 Both are interactive (hover names each point's run or frame and value;
 drag zooms, double click resets), because both are read point by point:
@@ -21,7 +21,7 @@ import json
 import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pandas as pd
 from markupsafe import Markup
@@ -29,6 +29,9 @@ from markupsafe import Markup
 from benchmark.history.regressions import Step
 from benchmark.metrics import CORE, Metrics
 from benchmark.report.display import format_value
+
+if TYPE_CHECKING:
+    from benchmark.closedloop.topview import TopView
 
 OUTCOME_COLOURS = {
     "correct": "#2e7d32",
@@ -221,3 +224,49 @@ def cell_figure(frames: pd.DataFrame, errors: Sequence[str]) -> tuple[Figure, in
                    "itemdoubleclick": False},
     }
     return {"data": traces, "layout": layout}, total + 100
+
+
+OUT_OF_VIEW_COLOUR = "#c62828"
+"""Colour of the frames of a top view at which the cable was out of view."""
+
+
+def top_view_figure(view: TopView) -> tuple[Figure, int]:
+    """A closed-loop cell from above: the route's centreline, the vehicle's path, the frames the cable was out of view.
+
+    Both axes are metres (``x`` to the right of the route's first
+    heading, ``z`` along it, :mod:`benchmark.closedloop.route`), each
+    fitted to the plot on its own: drawn at one scale, the offsets of a few
+    centimetres that tell trackers apart would vanish beside a route of
+    tens of metres, so the lateral axis is stretched (the page says so).
+
+    Parameters
+    ----------
+    view : TopView
+        The cell's route and path (:func:`benchmark.closedloop.topview.top_view`).
+
+    Returns
+    -------
+    tuple
+        The figure, and its height in pixels.
+    """
+    hidden = ~view.in_view
+    traces = [
+        {"type": "scatter", "mode": "lines", "x": _finite(view.centreline[:, 0]), "y": _finite(view.centreline[:, 1]),
+         "name": "cable", "line": {"color": "#9e9e9e", "width": 6}, "hoverinfo": "skip"},
+        {"type": "scatter", "mode": "lines", "x": _finite(view.path[:, 0]), "y": _finite(view.path[:, 1]),
+         "name": "vehicle", "line": {"color": "#1565c0", "width": 1.6}, "customdata": view.frames.tolist(),
+         "hovertemplate": "frame %{customdata}<br>x %{x:.3f} m, z %{y:.2f} m<extra></extra>"},
+        {"type": "scatter", "mode": "markers", "x": _finite(view.path[hidden, 0]), "y": _finite(view.path[hidden, 1]),
+         "name": f"cable out of view ({int(hidden.sum())} frames)", "customdata": view.frames[hidden].tolist(),
+         "marker": {"color": OUT_OF_VIEW_COLOUR, "size": 5},
+         "hovertemplate": "frame %{customdata}: cable out of view<extra></extra>"},
+    ]
+    layout = {
+        "xaxis": {"title": {"text": "x (m)", "font": {"size": 11}}, "gridcolor": "#e0e0e0", "zeroline": False},
+        "yaxis": {"title": {"text": "z along the route's start (m)", "font": {"size": 11}}, "gridcolor": "#e0e0e0",
+                  "zeroline": False},
+        "hovermode": "closest", "font": _FONT, "plot_bgcolor": "white",
+        "margin": {"l": 70, "r": 20, "t": 30, "b": 50},
+        "legend": {"orientation": "h", "x": 0, "y": 1.0, "yanchor": "bottom"},
+    }
+    return {"data": traces, "layout": layout}, 560

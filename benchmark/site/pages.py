@@ -20,12 +20,13 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from datetime import datetime
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import jinja2
 import pandas as pd
 from markupsafe import Markup, escape
 
+from benchmark.closedloop.topview import has_loop_values, top_view
 from benchmark.history.database import DETAILED_RUNS, RECORDED, REPLAY_COLUMNS, SERIES, History
 from benchmark.history.regressions import Step, Thresholds, find_changes, group_changes, steps
 from benchmark.history.replays import shown_size
@@ -34,8 +35,11 @@ from benchmark.metrics import Metric, Metrics, error_columns_of
 from benchmark.modality import Modality
 from benchmark.report.display import alignment, display_table, format_value
 from benchmark.results import Picture
-from benchmark.site.figures import OUTCOME_COLOURS, cell_figure, plot, trend_figure
+from benchmark.site.figures import OUTCOME_COLOURS, cell_figure, plot, top_view_figure, trend_figure
 from benchmark.site.tables import datatable, escaped, link
+
+if TYPE_CHECKING:
+    from benchmark.closedloop.route import Route
 
 SHARED_COLUMNS = ("init", "seeds", "training")
 """Board columns shown once above the board instead when every row has the same value."""
@@ -136,6 +140,9 @@ class Night:
     run_facts: dict[int, dict[str, Any]] = field(default_factory=dict)
     replays: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(columns=REPLAY_COLUMNS))
     """What the nightlies did about their cells' replays (:meth:`History.replays`)."""
+    routes: Mapping[str, Route] = field(default_factory=dict)
+    """The route of each closed-loop dataset the registry knows, by dataset key
+    (:func:`benchmark.closedloop.topview.routes_by_dataset`), for the cells' top views."""
 
     @property
     def run(self) -> pd.Series:
@@ -359,8 +366,10 @@ def _run_page(night: Night, run_id: int, root: str, index: bool) -> tuple[str, d
         boards = leaderboards(cells, pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(),
                               night.modalities, night.metrics)
     if boards is not None:
-        tables = {modality: _board(night, board, cells[cells["modality"] == modality], f"board-{i}", root)
-                  for i, (modality, board) in enumerate(boards.items())}
+        # A board's cells are those of its datasets (a modality's open-loop board, a suite's closed-loop one).
+        datasets = key_labels(cells, "dataset", "dataset_key")
+        tables = {name: _board(night, board, cells[datasets.isin(board["dataset"])], f"board-{i}", root)
+                  for i, (name, board) in enumerate(boards.items())}
     else:
         tables = {str(modality): _summary_board(night, group, str(modality), f"board-{i}", root)
                   for i, (modality, group) in enumerate(cells.groupby("modality", sort=True))}
@@ -500,6 +509,9 @@ def cell_page(night: Night, cell_id: int, site: Path) -> Drawn:
     if len(frames):
         spec, height = cell_figure(frames, errors)
         figure = plot(spec, height, "frames")
+    closed_loop = has_loop_values(frames)
+    route = night.routes.get(str(cell["dataset_key"])) if closed_loop else None
+    path = None if route is None else plot(*top_view_figure(top_view(route, frames)), "top-view")
     folder = site / "cells"
     folder.mkdir(exist_ok=True)
     files = [f"cells/{cell_id}.html"]
@@ -527,11 +539,12 @@ def cell_page(night: Night, cell_id: int, site: Path) -> Drawn:
         cell=cell.to_dict(), tracker_href=night.tracker_href(str(cell["tracker"]), "../"), figure=figure,
         outcomes={outcome: int(counts.get(outcome, 0)) for outcome in OUTCOME_COLOURS}, summary=summary,
         pictures=pictures, replay=replay, changed=changed_parameters(cell["params"], list(earlier["params"])),
+        closed_loop=closed_loop, path=path,
         old_version=", ".join(versions) if versions and versions != [str(cell["tracker_version"])] else "",
         earlier=int(earlier["id"].iloc[0]) if len(earlier) and int(earlier["run_id"].iloc[0]) in night.detailed
         else None,
         earlier_run=int(earlier["run_id"].iloc[0]) if len(earlier) else None,
-        datatables=False, plotly=figure is not None,
+        datatables=False, plotly=figure is not None or path is not None,
     )
     (folder / f"{cell_id}.html").write_text(html, encoding="utf-8")
     return Drawn(files, frames=frames if run_id == int(night.run["id"]) else None)

@@ -289,3 +289,60 @@ def test_seeds_that_agree_frame_for_frame_are_deterministic_whatever_order_their
     # Seeds that agree within a run say nothing of the next run: only a tracker that declares it is deterministic.
     assert not board.loc["undeclared", "deterministic"]
     assert board.loc["undeclared", "correct_lo_pct"] == board.loc["undeclared", "correct_hi_pct"]
+
+
+def following_catalogue():
+    from benchmark.metrics.closed_loop import METRICS
+
+    catalogue = CORE
+    for metric in METRICS:
+        catalogue = catalogue.adding(metric)
+    return catalogue
+
+
+def closed_loop_run(data: Cells, tracker: str, dataset: str, seed: int, offsets: list[float], seen: list[bool],
+                    route_m: float = 4.0) -> None:
+    """A closed-loop cell of ``tracker``: a frame every 0.5 s, 1 m apart along the route, at ``offsets``."""
+    from benchmark.results import LoopValues
+
+    data.add(tracker, dataset, seed, ["correct" if s else "missed" for s in seen], [1.0 if s else math.nan for s in seen])
+    for row, offset, in_view in zip(data.frames[-len(seen):], offsets, seen, strict=True):
+        index = row["frame"]
+        row |= LoopValues(offset, 0.0, float(index), 0.5 * index, in_view, route_m=route_m).columns()
+
+
+def test_closed_loop_cells_get_a_board_per_suite_ranked_by_distance_followed_then_offset() -> None:
+    data = Cells()
+    data.add("a", "camera/S1", 0, ["correct", "correct"], [1.0, 1.0])
+    lost = [True, False, False, False, False, False, False]  # out of view for over 2 s from frame 5 on
+    closed_loop_run(data, "a", "routes/r1", 0, [0.0] * 7, lost, route_m=6.0)
+    closed_loop_run(data, "b", "routes/r1", 0, [0.3] * 7, [True] * 7, route_m=6.0)
+    closed_loop_run(data, "c", "routes/r1", 0, [0.1] * 7, [True] * 7, route_m=6.0)
+    closed_loop_run(data, "c", "routes/r1", 1, [0.2] * 7, [True] * 7, route_m=6.0)
+    closed_loop_run(data, "b", "other/r2", 0, [0.0] * 3, [True] * 3, route_m=2.0)
+    boards = leaderboards(pd.DataFrame(data.cells), pd.DataFrame(data.frames), MODALITIES, following_catalogue())
+    assert list(boards) == ["camera", "camera: other, closed loop", "camera: routes, closed loop"]
+    assert "followed_m" not in boards["camera"] and boards["camera"]["dataset"].tolist() == ["(all)", "camera/S1"]
+    board = boards["camera: routes, closed loop"]
+    metric_columns = [c for c in board.columns if c not in ("rank", "tracker", "dataset", "init", "training", "seeds",
+                                                            "frames")]
+    assert metric_columns[:6] == ["followed_m", "followed_pct", "offset_mean_m", "offset_max_m", "heading_error_deg",
+                                  "followed_sd_m"]
+    assert metric_columns.index("correct_pct") > metric_columns.index("followed_sd_m")
+    single = rows(board, "routes/r1")
+    # b and c follow all 6 m; c is closer to the cable; a lost it after 0 m.
+    assert single.index.tolist() == ["c", "b", "a"] and single["rank"].tolist() == [1, 2, 3]
+    assert single.loc["c", "seeds"] == 2 and single.loc["c", "offset_mean_m"] == pytest.approx(0.15)
+    assert single["followed_pct"].tolist() == pytest.approx([100.0, 100.0, 0.0])
+    assert single.loc["c", "followed_sd_m"] == 0.0 and single.loc["c", "correct_pct"] == 100.0
+    assert rows(boards["camera: other, closed loop"], "other/r2").loc["b", "followed_m"] == 2.0
+
+
+def test_a_closed_loop_cell_that_kept_no_frame_stays_on_its_dataset_s_board() -> None:
+    data = Cells()
+    closed_loop_run(data, "a", "routes/r1", 0, [0.0] * 3, [True] * 3)
+    data.add("a", "routes/r1", 1, [], status="error", message="died at once")
+    board = leaderboards(pd.DataFrame(data.cells), pd.DataFrame(data.frames), MODALITIES, following_catalogue())
+    assert list(board) == ["camera: routes, closed loop"]
+    row = rows(board["camera: routes, closed loop"], "routes/r1").loc["a"]
+    assert row["seeds"] == 2 and row["status"].startswith("error (1/2 cells)")

@@ -172,7 +172,7 @@ def test_a_modality_is_registered_with_its_scene_kinds(registry):
     added = registry.add_modality(modality(readers=(reader(suffixes=(".scan",)),), kinds={"scan-sim": factory}))
     assert registry.modalities["scan"] is added
     assert list(registry.modalities) == ["camera", "scan"]
-    assert registry.scene_kinds == {"camera": CAMERA.scene_kinds["camera"], "scan-sim": factory}
+    assert registry.scene_kinds == {**CAMERA.scene_kinds, "scan-sim": factory}
     assert registry.add_tracker(make(name="scanner", modality="scan")).modality == "scan"
 
 

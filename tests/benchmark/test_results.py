@@ -13,7 +13,9 @@ from hypothesis import strategies as st
 
 from benchmark.model import Outcome
 from benchmark.metrics import CORE
-from benchmark.results import CellKey, CellResult, FrameScore, Picture, frame_table, summarise
+import pydantic
+
+from benchmark.results import LOOP_PREFIX, CellKey, CellResult, FrameScore, LoopValues, Picture, frame_table, summarise
 
 COLUMNS = ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
 
@@ -50,6 +52,26 @@ def test_frame_table_has_frame_outcome_errors_step_ms_and_wall_ms():
     assert table["step_ms"].tolist() == pytest.approx([2.0, 0.0])
     assert table["wall_ms"].tolist() == pytest.approx([3.0, 0.0])
     assert math.isnan(table["err_x_m"][1])
+
+
+def test_frames_of_a_closed_loop_run_add_their_loop_columns_and_others_have_none():
+    loop = LoopValues(offset_m=-0.2, heading_error_deg=3.0, along_m=1.5, time_s=0.08, in_view=False)
+    first = dataclasses.replace(loop, in_view=True)
+    table = frame_table([FrameScore(0, Outcome.CORRECT, {"err_x_m": 0.5}, loop=first), FrameScore(1, None, loop=loop)])
+    assert list(table.columns) == [
+        "frame", "outcome", "err_x_m", "loop_offset_m", "loop_heading_error_deg", "loop_along_m", "loop_time_s",
+        "loop_in_view", "step_ms", "wall_ms",
+    ]
+    assert table.iloc[1, 3:8].tolist() == [-0.2, 3.0, 1.5, 0.08, 0.0] and table["loop_in_view"][0] == 1.0
+    open_loop = frame_table([FrameScore(0, Outcome.CORRECT, {"err_x_m": 0.5})])
+    assert not [column for column in open_loop.columns if column.startswith(LOOP_PREFIX)]
+
+
+@pytest.mark.parametrize("field", ["offset_m", "heading_error_deg", "along_m", "time_s"])
+def test_loop_values_refuse_a_value_that_is_not_finite(field):
+    values = {"offset_m": 0.0, "heading_error_deg": 0.0, "along_m": 0.0, "time_s": 0.0, "in_view": True}
+    with pytest.raises(pydantic.ValidationError, match=field):
+        LoopValues(**{**values, field: math.nan})
 
 
 def test_summary_of_nothing_is_nan_but_names_every_column():

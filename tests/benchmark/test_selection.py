@@ -50,6 +50,8 @@ def test_overrides_and_init_reach_every_cell(fake_registry: Registry) -> None:
         (Selection(trackers=("perfect",), params=("raising.fail_at=1",)), ParameterError, r"'raising'.*not selected"),
         (Selection(trackers=("raising",), params=("raising.fail_at=soon",)), ParameterError, r"'fail_at'"),
         (Selection(trackers=("sonar-only",)), SelectionError, r"nothing to run.*sonar-only \(sonar\).*S1 \(camera\)"),
+        (Selection(trackers=("perfect",), real_time=True), SelectionError, r"closed-loop sequences only.*fake/S1"),
+        (Selection(trackers=("perfect",), step_times=("perfect=17",)), ParameterError, r"add --real-time"),
     ],
 )
 def test_every_word_is_checked_before_any_cell_exists(

@@ -15,7 +15,7 @@ import pytest
 from benchmark import schema
 from benchmark.errors import DataError
 from benchmark.model import Outcome
-from benchmark.results import CellKey, CellResult, FrameScore, Picture
+from benchmark.results import LOOP_PREFIX, CellKey, CellResult, FrameScore, LoopValues, Picture
 from benchmark.store import CELL_COLUMNS, SCHEMA_VERSION, ResultStore
 
 ERRORS = ("err_d_px", "err_alpha_deg", "err_w_px", "err_beta_deg")
@@ -91,6 +91,31 @@ def test_a_cell_round_trips_with_its_frames(tmp_path: Path, results: dict[str, C
     assert frames["outcome"].tolist() == expected["outcome"].tolist()
     for column in (*ERRORS, "step_ms", "wall_ms"):
         np.testing.assert_allclose(frames[column].to_numpy(float), expected[column].to_numpy(float), equal_nan=True)
+
+
+def test_the_loop_values_of_a_closed_loop_cell_round_trip_and_open_loop_cells_get_no_loop_columns(
+    tmp_path: Path, results: dict[str, CellResult]
+) -> None:
+    noisy = results["noisy"]
+    loops = [LoopValues(0.01 * i - 0.03, 2.0 - i, 0.018 * i, 0.04 * i, i % 3 != 0) for i in range(len(noisy.scores))]
+    steered = dataclasses.replace(
+        noisy, scores=tuple(dataclasses.replace(s, loop=v) for s, v in zip(noisy.scores, loops, strict=True))
+    )
+    with ResultStore(tmp_path / "r.sqlite") as store:
+        run = store.start_run([], {})
+        steered_id, open_id = store.add_cell(run, steered), store.add_cell(run, noisy)
+        frames = store.frame_tables([steered_id])
+        open_frames = store.frame_tables([open_id])
+        both = store.frame_tables([steered_id, open_id])
+    expected = steered.frames
+    loop_columns = [column for column in expected.columns if column.startswith(LOOP_PREFIX)]
+    assert loop_columns == ["loop_offset_m", "loop_heading_error_deg", "loop_along_m", "loop_time_s", "loop_in_view"]
+    assert sorted(frames.columns) == sorted(["cell_id", *expected.columns])
+    for column in (*ERRORS, *loop_columns):
+        np.testing.assert_array_equal(frames[column].to_numpy(float), expected[column].to_numpy(float))
+    assert frames["loop_in_view"].tolist() == [float(v.in_view) for v in loops]
+    assert not [column for column in open_frames.columns if column.startswith(LOOP_PREFIX)]
+    assert both[both["cell_id"] == open_id][loop_columns].isna().all().all()
 
 
 def test_nan_errors_come_back_as_nan(tmp_path: Path, results: dict[str, CellResult]) -> None:
@@ -357,6 +382,18 @@ def test_a_version_2_database_gets_an_empty_training_column(tmp_path: Path, resu
     connection.close()
 
 
+def test_a_version_7_database_gets_an_empty_real_time_column(tmp_path: Path, results: dict[str, CellResult]) -> None:
+    path, _ = older_database(tmp_path, results["noisy"], 7, "ALTER TABLE cells DROP COLUMN real_time;")
+    paced = dataclasses.replace(results["noisy"], tracker_key="key+real-time:measured-median", real_time="measured")
+    with ResultStore(path) as store:
+        assert store.cells(all_runs=True)["real_time"].tolist() == [""]
+        store.add_cell(store.start_run([], {}), paced)
+        assert store.cells(all_runs=True)["real_time"].tolist() == ["", "measured"]
+    connection = sqlite3.connect(path)
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 8
+    connection.close()
+
+
 def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, results: dict[str, CellResult]) -> None:
     path, old_id = older_database(tmp_path, results["noisy"], 3, "DROP TABLE pictures; ALTER TABLE cells DROP COLUMN deterministic;")
     with ResultStore(path) as store:
@@ -366,7 +403,7 @@ def test_a_version_3_database_gets_an_empty_pictures_table(tmp_path: Path, resul
         new_id = store.add_cell(store.start_run([], {}), dataclasses.replace(results["noisy"], pictures=PICTURES))
         assert store.pictures([old_id, new_id]) == {new_id: list(PICTURES)}
     connection = sqlite3.connect(path)
-    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 7
+    assert connection.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 8
     columns = [(row[1], row[2], row[5]) for row in connection.execute("PRAGMA table_info(pictures)")]
     connection.close()
     assert columns == [("cell_id", "INTEGER", 1), ("frame", "INTEGER", 2), ("outcome", "VARCHAR(16)", 0), ("png", "BLOB", 0)]

@@ -17,6 +17,7 @@ from benchmark.modalities.camera.io.sequence_file import ImageSequenceFile
 from benchmark.modalities.camera.io.video import VIDEO_EXTENSIONS, VideoFile
 from benchmark.modalities.camera.model import CableState, CameraTruth
 from benchmark.modalities.camera.scenes.scene import CameraScene
+from benchmark.closedloop.scene import ClosedLoopScene
 from benchmark.modalities.camera.scoring import CameraScorer
 from benchmark.modality import ANY_FILE, Modality, Reader, Starter, sequences_in
 from benchmark.registry import Registry
@@ -33,7 +34,7 @@ CAMERA = Modality(
         Reader(ImageSequenceFile, "an image sequence file", suffixes=(ANY_FILE,)),
     ),
     exporter=export_camera_sequence,
-    scene_kinds={"camera": CameraScene.from_dict},
+    scene_kinds={"camera": CameraScene.from_dict, "camera-route": ClosedLoopScene.from_dict},
     description="grey images of a cable or pipe; estimates are cable states (d, alpha, w, beta), maybe with a pose",
     draw=draw_camera_frame,
     hard_observations=hard_observations,

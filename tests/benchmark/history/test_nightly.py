@@ -169,3 +169,26 @@ def test_changes_are_described_one_entry_per_tracker_and_cause_within_the_width(
     assert sum(line.startswith("  regression") for line in lines) == 1 and "correct_pct -10.0 on camera/S1" in text
     assert "cause: vote_fraction 0.25 -> 0.5" in text and "6 changes on 3 datasets, 2 metrics" in text
     assert "note: frames with an estimate 300 -> 212 (+2)" in text
+
+
+def test_a_nightly_runs_the_routes_suite_when_named_and_its_site_draws_each_path(
+    invoke: Invoke, fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    from benchmark.selection import Selection, select_cells
+
+    from ..site.conftest import route_registry
+
+    unnamed = select_cells(route_registry(fakes), Selection(trackers=("perfect",)))  # as a nightly naming no suite
+    assert {cell.dataset for cell in unnamed} == {"fake/S1", "fake/S2"}  # a closed-loop suite runs only when named
+    monkeypatch.setattr(benchmark.plugins, "load_registry", lambda *a, **k: route_registry(fakes))
+    named = invoke("nightly", "--tracker", "perfect", "--suite", "fake", "--suite", "routes", "--in-process",
+                   "--out", str(tmp_path / "out"), "--history", str(tmp_path / "history.sqlite"),
+                   "--site", str(tmp_path / "site"))
+    assert named.exit_code == 0, named.output
+    history = History(tmp_path / "history.sqlite")
+    cells = history.cells()
+    (route_cell,) = cells.loc[cells["dataset"] == "routes/short", "id"]
+    assert list(history.boards(1) or {}) == ["camera", "camera: routes, closed loop"]
+    assert cells.loc[cells["dataset"] == "routes/short", "followed_m"].iloc[0] > 1.0
+    page = (tmp_path / "site" / "cells" / f"{route_cell}.html").read_text(encoding="utf-8")
+    assert 'id="top-view"' in page and '"name":"vehicle"' in page

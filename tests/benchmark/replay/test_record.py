@@ -153,3 +153,24 @@ def test_the_further_columns_of_a_belief_are_named_as_its_tracker_names_them(
     assert all(frame.belief.particles.shape[1] == 6 for frame in recording.frames)
     plain = record_cell(make_cell(registry.trackers["fake-particles"], FakeSequence("fake/S1", 2)))
     assert plain.dimensions == ("d_px", "alpha_rad", "w_px", "beta_rad")
+
+
+def test_a_closed_loop_cell_replays_as_the_runner_steered_it_with_the_vehicle_s_values() -> None:
+    from benchmark.closedloop.scene import ClosedLoopScene
+    from benchmark.registry import TrackerEntry
+    from benchmark.replay.page import page_data
+
+    from ..closedloop.test_scene import Biased
+
+    route = {"name": "routes/replay", "legs": [{"length_m": 0.6}], "frame_size": [48, 36], "focal_px": 57.0,
+             "start_offset_m": 0.1}
+    entry = TrackerEntry(Biased.name, Biased, Biased.make_params())
+    result = run_cell(make_cell(entry, ClosedLoopScene.from_dict(route)))
+    recording = record_cell(make_cell(entry, ClosedLoopScene.from_dict(route)), FrameRange(5, 20))
+    assert result.status == "ok" and not recording.ended
+    assert [frame.index for frame in recording.frames] == list(range(5, 20))
+    steered = [score.loop.columns() for score in result.scores[5:20]]  # type: ignore[union-attr]
+    assert [frame.loop for frame in recording.frames] == steered
+    assert len({frame.loop["loop_offset_m"] for frame in recording.frames}) > 1  # the vehicle moved
+    shown = page_data(recording)["frames"][0]["loop"]
+    assert shown["offset_m"] == pytest.approx(steered[0]["loop_offset_m"], rel=1e-3) and shown["route_m"] == 0.6

@@ -142,3 +142,52 @@ def hostile(fakes: types.ModuleType, tmp_path_factory: pytest.TempPathFactory) -
     record_replays(history, int(history.runs()["id"].iloc[-1]), None, plan, folder / "run", replay_back)
     return build(history, folder / "site", registry)
 
+
+
+SHORT_ROUTE = {
+    "name": "routes/short",
+    "legs": [{"length_m": 0.5}, {"length_m": 0.6, "turn_deg": 3.0}],
+    "frame_size": [48, 36],
+    "focal_px": 57.0,
+    "start_offset_m": 0.15,
+}
+"""A closed-loop route of about 60 tiny frames."""
+
+
+def route_registry(fakes: types.ModuleType) -> Registry:
+    """The fake registry of ``perfect`` with a suite ``routes`` of :data:`SHORT_ROUTE` (not scored) and the following metrics."""
+    from benchmark.closedloop.scene import ClosedLoopScene
+    from benchmark.metrics.closed_loop import METRICS
+
+    registry = fakes.make_registry((fakes.Perfect,))
+    with registry.acting_for(fakes.ORIGIN):
+        registry.add_suite("routes", [ClosedLoopScene.from_dict(SHORT_ROUTE)], scored=False)
+        for metric in METRICS:
+            registry.add_metric(metric)
+    return registry
+
+
+@pytest.fixture(scope="session")
+def closed_loop_night(fakes: types.ModuleType, tmp_path_factory: pytest.TempPathFactory) -> Site:
+    """One run of a tracker that reports the truth, steering the vehicle along :data:`SHORT_ROUTE`, and its site."""
+    from benchmark.closedloop.topview import routes_by_dataset
+    from benchmark.leaderboard import load_leaderboards
+
+    registry = route_registry(fakes)
+    folder = tmp_path_factory.mktemp("closed-loop")
+    history = History(folder / "history.sqlite")
+    selection = Selection(trackers=("perfect",), suites=("routes", "fake"))
+    run_benchmark(select_cells(registry, selection), registry.modalities, folder / "run", in_process=True,
+                  metrics=registry.metrics)
+    store = ResultStore(folder / "run" / "results.sqlite")
+    run_id = store.latest_run()
+    assert run_id is not None
+    boards = load_leaderboards(store, registry.modalities, run_id, metrics=registry.metrics)
+    history.record(
+        store, run_id, registry.modalities, started="2024-06-10T02:00:00+00:00", version="0.1.0",
+        commit="0123456789abcdef", machine={"cpu": "test cpu", "cores": 2}, machine_key="m", argv=[], seeds=1,
+        metrics=registry.metrics, boards=boards,
+    )
+    routes = routes_by_dataset(registry.suites["routes"].sequences)
+    return Site(history, folder / "site",
+                build_site(history, folder / "site", registry.modalities, metrics=registry.metrics, routes=routes))

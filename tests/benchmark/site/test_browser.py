@@ -183,3 +183,23 @@ def test_without_javascript_the_boards_are_plain_tables(chromium: sync_api.Brows
         assert page.is_visible("#board-0_fallback a[href='trackers/hough.html']")
     finally:
         context.close()
+
+
+def test_a_closed_loop_cell_page_draws_the_path_over_the_route(browser: Browser, closed_loop_night: Site) -> None:
+    cells = closed_loop_night.history.cells()
+    (route_cell,) = cells.loc[cells["dataset"] == "routes/short", "id"]
+    page = browser.open(closed_loop_night.root / "cells" / f"{route_cell}.html")
+    page.wait_for_selector("#top-view .main-svg")
+    lines = page.locator("#top-view .scatterlayer .trace path.js-line")
+    assert lines.count() == 2  # the cable's route and the vehicle's path
+    drawn = [lines.nth(i).get_attribute("d") or "" for i in range(2)]
+    assert all(path.startswith("M") and path.count("L") >= 3 for path in drawn), drawn  # polylines, not empty
+    boxes = [lines.nth(i).bounding_box() for i in range(2)]
+    assert all(box is not None and box["height"] > 200 for box in boxes)  # each runs along the route, up the plot
+    legend = [str(text.text_content()) for text in page.query_selector_all("#top-view .legendtext")]
+    assert legend[:2] == ["cable", "vehicle"]  # (the out-of-view trace has no point here, so no legend entry)
+    page.wait_for_selector("#frames .main-svg")
+    index = browser.open(closed_loop_night.index)
+    index.wait_for_selector("#board-1.dataTable")
+    assert "followed_m" in index.locator("#board-1 thead").inner_text().replace("\u200b", "")
+    assert browser.problems == []

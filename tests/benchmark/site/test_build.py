@@ -407,3 +407,49 @@ def test_run_pages_show_the_boards_the_nightly_kept(
     index, first = (tmp_path / "again" / "index.html").read_text(), (tmp_path / "again" / "runs" / "1.html").read_text()
     assert ">12.3" not in worked_out and ">12.3" in index
     assert ">12.3" in first and "Each metric's mean over the seeds' summaries" not in first
+
+
+def test_the_closed_loop_board_stands_apart_and_links_its_cells(closed_loop_night: Site) -> None:
+    html = closed_loop_night.index.read_text(encoding="utf-8")
+    assert "<h3>camera</h3>" in html and "<h3>camera: routes, closed loop</h3>" in html
+    board = section(closed_loop_night.index, 'id="board-1_fallback"', "</table>")
+    assert "followed_<wbr>m" in board and "routes/short" in board and "fake/S1" not in board
+    cells = closed_loop_night.history.cells()
+    (route_cell,) = cells.loc[cells["dataset"] == "routes/short", "id"]
+    assert f'href="cells/{route_cell}.html"' in board
+    assert "followed_<wbr>m" not in section(closed_loop_night.index, 'id="board-0_fallback"', "</table>")
+
+
+def test_a_closed_loop_cell_page_draws_its_path_over_the_route_from_above(closed_loop_night: Site) -> None:
+    from .conftest import SHORT_ROUTE
+
+    cells = closed_loop_night.history.cells()
+    (route_cell,) = cells.loc[cells["dataset"] == "routes/short", "id"]
+    page = closed_loop_night.root / "cells" / f"{route_cell}.html"
+    assert 'id="path"' in page.read_text(encoding="utf-8")
+    top = next(figure for figure in figures(page) if figure["data"][0]["name"] == "cable")
+    cable, vehicle, hidden = top["data"]
+    length = sum(leg["length_m"] for leg in SHORT_ROUTE["legs"])
+    assert cable["y"][-1] == pytest.approx(length, abs=0.01) and cable["x"][-1] > 0  # the route turns right
+    frames = closed_loop_night.history.frames(int(route_cell))
+    assert len(vehicle["x"]) == len(frames) and vehicle["x"][0] == pytest.approx(SHORT_ROUTE["start_offset_m"])
+    assert abs(vehicle["x"][-1] - cable["x"][-1]) < abs(vehicle["x"][0])  # steered towards the cable
+    assert hidden["name"].startswith("cable out of view") and "stretched" in page.read_text(encoding="utf-8")
+    (open_cell,) = cells.loc[cells["dataset"] == "fake/S1", "id"]
+    assert 'id="path"' not in (closed_loop_night.root / "cells" / f"{open_cell}.html").read_text(encoding="utf-8")
+
+
+def test_a_closed_loop_cell_whose_route_the_build_does_not_know_says_so(
+    closed_loop_night: Site, tmp_path: Path, fakes: types.ModuleType
+) -> None:
+    from benchmark.metrics.closed_loop import METRICS
+
+    registry = fakes.make_registry((fakes.Perfect,))
+    metrics = registry.metrics
+    for metric in METRICS:
+        metrics = metrics.adding(metric)
+    index = build_site(closed_loop_night.history, tmp_path / "site", registry.modalities, metrics=metrics)
+    cells = closed_loop_night.history.cells()
+    (route_cell,) = cells.loc[cells["dataset"] == "routes/short", "id"]
+    text = (index.parent / "cells" / f"{route_cell}.html").read_text(encoding="utf-8")
+    assert 'id="path"' in text and "do not declare its route" in text and '"name":"cable"' not in text

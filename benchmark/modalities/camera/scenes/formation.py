@@ -81,6 +81,10 @@ class PipePixels:
         Share of the pixel that overgrowth covers (it takes the seabed's tint).
     highlight : numpy.ndarray
         Specular highlight factor, already times the cable's ``specular``.
+    normal_z : numpy.ndarray or None
+        The normal's ``Z`` component where it has one (a cable crossing the
+        pipe, :mod:`~benchmark.modalities.camera.scenes.crossing`); None
+        where every normal is across ``Z``, as the pipe's.
     """
 
     index: np.ndarray
@@ -89,6 +93,7 @@ class PipePixels:
     albedo: np.ndarray
     cover: np.ndarray
     highlight: np.ndarray
+    normal_z: np.ndarray | None = None
 
 
 class WaterFormation:
@@ -201,6 +206,8 @@ class WaterFormation:
             cos_beam = (vx * f32(aim[0]) + vy * f32(aim[1]) + vz * f32(aim[2])) / distance
             incidence = -vy
             incidence[pipe.index] = -(vx[pipe.index] * pipe.normal_x + vy[pipe.index] * pipe.normal_y)
+            if pipe.normal_z is not None:
+                incidence[pipe.index] -= vz[pipe.index] * pipe.normal_z
             np.maximum(incidence, 0.0, out=incidence)
             light = beam_profile(cos_beam, lamp)
             light *= incidence

@@ -16,7 +16,10 @@ processed at once with numpy:
    below the sand level the pixel keeps the seabed behind it, so a buried
    pipe disappears but for a faint trace; where algae or stones lie on
    the pipe (:mod:`benchmark.modalities.camera.scenes.overgrowth`) and their top is above the
-   pipe point, the pixel shows them, lit like the seabed around them;
+   pipe point, the pixel shows them, lit like the seabed around them; a
+   cable crossing the pipe (:mod:`benchmark.modalities.camera.scenes.crossing`)
+   is another cylinder, shaded like the pipe, that takes the pixels where
+   it is nearer than the surface found so far;
 4. light from a lamp at the camera: Lambertian shading (so the middle of
    the pipe, facing the lamp, is brightest) with an ambient share, a
    highlight along the pipe, fall-off with the distance squared (softened
@@ -36,6 +39,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import cv2
 import numpy as np
@@ -48,6 +52,9 @@ from benchmark.modalities.camera.scenes.spec import CameraSceneSpec
 from benchmark.modalities.camera.scenes.snow import SnowCloud
 from benchmark.modalities.camera.scenes.texture import PSI_CELLS, TextureGrid
 from benchmark.scenes.noise import gaussian_table
+
+if TYPE_CHECKING:
+    from benchmark.modalities.camera.scenes.crossing import CrossingCable, CrossingHits
 
 OPAQUE_TRANSMISSION = 1.0 / 1024.0
 """Haze transmission below which the water colour is all that is left."""
@@ -106,6 +113,8 @@ class SceneAssets:
         Marine snow of the water model.
     caustics : CausticWaves or None
         Sun flicker of the water model.
+    crossings : tuple of CrossingCable
+        Cables lying across the pipe (:mod:`~benchmark.modalities.camera.scenes.crossing`).
     """
 
     grid: TextureGrid
@@ -121,6 +130,7 @@ class SceneAssets:
     cover_x0: float = 0.0
     snow: SnowCloud | None = None
     caustics: CausticWaves | None = None
+    crossings: tuple[CrossingCable, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -321,6 +331,8 @@ class Renderer:
             lit[exposed] = lit_pipe
             depth[exposed] = t_pipe
             lit[buried] *= relief
+        for crossing in assets.crossings:
+            self._draw_crossing(crossing, pose, lit, depth)
 
         gain = self._automatic_gain(pose, axes[2])
         if optics.light_falloff:
@@ -432,12 +444,52 @@ class Renderer:
         under = py < assets.sand[sand_rows] + surface[:, 1]
         return _PipeSurface(t, px, py, hy, hn, facing, row, surface[:, 0], under)
 
-    def _highlight(self, facing: np.ndarray) -> np.ndarray:
-        """The highlight along the middle of the pipe, ``specular cos^(2^4)`` of the angle to the lamp."""
+    @staticmethod
+    def _highlight(facing: np.ndarray, specular: float) -> np.ndarray:
+        """The highlight along the middle of a cable, ``specular cos^(2^4)`` of the angle to the lamp."""
         highlight = facing * facing
         for _ in range(HIGHLIGHT_SQUARINGS - 1):
             highlight *= highlight
-        return np.float32(self.spec.cable.specular) * highlight
+        return np.float32(specular) * highlight
+
+    def _shade_cable(self, albedo: np.ndarray, facing: np.ndarray, specular: float) -> np.ndarray:
+        """A cable's surface lit by the lamp at the camera: Lambert with the ambient share, plus the highlight."""
+        ambient = np.float32(self.spec.optics.ambient)
+        lit = albedo * (ambient + (1 - ambient) * facing)
+        if specular > 0:
+            lit += self._highlight(facing, specular)
+        return lit
+
+    def _crossing_in_front(self, crossing: CrossingCable, pose: CameraPose, depth: np.ndarray) -> CrossingHits:
+        """Where ``crossing`` is nearer than the surface each pixel saw so far; ``depth`` takes its depth there."""
+        seen = crossing.hits(pose, self._work.rays, self._work.norm2)
+        front = seen.where(seen.t < depth[seen.index])
+        depth[front.index] = front.t
+        return front
+
+    def _draw_crossing(self, crossing: CrossingCable, pose: CameraPose, lit: np.ndarray, depth: np.ndarray) -> None:
+        """Shade, in place, the pixels that see ``crossing`` nearer than what they saw (``depth``, updated too)."""
+        front = self._crossing_in_front(crossing, pose, depth)
+        lit[front.index] = self._shade_cable(front.albedo, front.facing, crossing.look.specular)
+
+    def _water_crossing(
+        self, crossing: CrossingCable, pose: CameraPose, pipe: PipePixels, depth: np.ndarray
+    ) -> PipePixels:
+        """``pipe``'s pixels for the water model, those where ``crossing`` is nearer taken by it (``depth`` updated)."""
+        front = self._crossing_in_front(crossing, pose, depth)
+        keep = ~np.isin(pipe.index, front.index)
+        specular = crossing.look.specular
+        highlight = self._highlight(front.facing, specular) if specular > 0 else np.zeros_like(front.facing)
+        normal_z = np.zeros_like(pipe.normal_x) if pipe.normal_z is None else pipe.normal_z
+        return PipePixels(
+            np.concatenate((pipe.index[keep], front.index)),
+            np.concatenate((pipe.normal_x[keep], front.normal[0])),
+            np.concatenate((pipe.normal_y[keep], front.normal[1])),
+            np.concatenate((pipe.albedo[keep], front.albedo)),
+            np.concatenate((pipe.cover[keep], np.zeros_like(front.albedo))),
+            np.concatenate((pipe.highlight[keep], highlight)),
+            np.concatenate((normal_z[keep], front.normal[2])),
+        )
 
     def _shade_pipe(
         self, hits: np.ndarray, pose: CameraPose
@@ -452,13 +504,9 @@ class Renderer:
             Pixels where sand covers the pipe: they keep the seabed's values,
             times ``relief``, a faint trace of the mound over the pipe.
         """
-        optics = self.spec.optics
         pipe = self._pipe_surface(hits, pose)
         facing, t = pipe.facing, pipe.t
-        ambient = np.float32(optics.ambient)
-        lit = pipe.albedo * (ambient + (1 - ambient) * facing)
-        if self.spec.cable.specular > 0:
-            lit += self._highlight(facing)
+        lit = self._shade_cable(pipe.albedo, facing, self.spec.cable.specular)
         if self.assets.cover is not None:
             self._overgrow(lit, hits, pipe.px, pipe.py, pipe.row)
         under = pipe.under
@@ -488,7 +536,8 @@ class Renderer:
             if self.assets.cover is not None:
                 cover = self._overgrow(lit, hits, surface.px, surface.py, surface.row, shaded=False)
             above = ~surface.under
-            highlight = self._highlight(surface.facing) if spec.cable.specular > 0 else np.zeros_like(lit)
+            specular = spec.cable.specular
+            highlight = self._highlight(surface.facing, specular) if specular > 0 else np.zeros_like(lit)
             inverse_radius = np.float32(1.0 / spec.radius)
             pipe = PipePixels(
                 hits[above],
@@ -501,6 +550,8 @@ class Renderer:
             depth[pipe.index] = surface.t[above]
             if surface.under.any():
                 albedo[hits[surface.under]] *= self._relief(surface)
+        for crossing in self.assets.crossings:
+            pipe = self._water_crossing(crossing, pose, pipe, depth)
         return self._formation.image(
             pose, axes, time_s, work.rays, depth, work.norm, albedo, pipe, self.assets.vignette
         )

@@ -34,8 +34,9 @@ from typing import Any
 import numpy as np
 
 from benchmark.errors import DataError
-from benchmark.modalities.camera.model import CameraCalibration, CameraTruth, VehicleSpeeds
+from benchmark.modalities.camera.model import CameraCalibration, CameraPose, CameraTruth, VehicleSpeeds
 from benchmark.modalities.camera.scenes.burial import sand_level, visible_fraction
+from benchmark.modalities.camera.scenes.crossing import CrossingCable
 from benchmark.modalities.camera.scenes.motion import Trajectory, build_trajectory, vehicle_speeds
 from benchmark.modalities.camera.scenes.overgrowth import overgrowth_layer
 from benchmark.modalities.camera.scenes.projection import pixel_rays, pose_axes
@@ -155,6 +156,10 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
             seabed = layer.composite(seabed)
             cover, cover_x0 = layer.pipe_band(spec.radius)
         snow, caustics = self._water_assets(state)
+        crossings = tuple(
+            CrossingCable.build(crossing, spec, grid, self._stream(_TEXTURE, 7, number))
+            for number, crossing in enumerate(spec.crossing)
+        )
         return SceneAssets(
             grid=grid,
             seabed=seabed,
@@ -169,6 +174,7 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
             cover_x0=cover_x0,
             snow=snow,
             caustics=caustics,
+            crossings=crossings,
         )
 
     def _water_assets(self, state: _Cache) -> tuple[SnowCloud | None, CausticWaves | None]:
@@ -204,21 +210,31 @@ class CameraScene(SimulatedScene[CameraSceneSpec, _Cache]):
 
     def truth(self, index: int) -> CameraTruth:
         """Ground truth of frame ``index``, without rendering it."""
+        return self.truth_from(self._state().trajectory.pose(self._check(index)))
+
+    def truth_from(self, pose: CameraPose) -> CameraTruth:
+        """The ground truth of the scene seen from any ``pose``: the cable's projection and the visible share."""
         spec, state = self._spec, self._state()
-        pose = state.trajectory.pose(self._check(index))
         cable = cable_truth(pose, spec.radius, spec.focal_px, spec.frame_size)
         visible = visible_fraction(pose, spec.radius, spec.focal_px, spec.frame_size, state.sand_z, state.sand_y)
         return CameraTruth(cable=cable, pose=pose, visible_fraction=visible)
 
     def render(self, index: int) -> np.ndarray:
         """The image of frame ``index`` alone (identical to the one :meth:`frames` yields)."""
-        pose = self._state().trajectory.pose(self._check(index))
-        return self._renderer().render(pose, self._stream(_FRAMES, index), self._time(index))
+        return self.render_from(self._state().trajectory.pose(self._check(index)), index)
 
     def render_clean(self, index: int) -> np.ndarray:
         """Frame ``index`` before the sensor's noise, quantisation and compression: ``float32`` grey levels."""
-        pose = self._state().trajectory.pose(self._check(index))
-        return self._renderer().render(pose, self._stream(_FRAMES, index), self._time(index), clean=True)
+        return self.render_from(self._state().trajectory.pose(self._check(index)), index, clean=True)
+
+    def render_from(self, pose: CameraPose, index: int, clean: bool = False) -> np.ndarray:
+        """The scene seen from any ``pose`` at frame ``index``'s time, with that frame's sensor noise.
+
+        A closed-loop run (:mod:`benchmark.closedloop`) renders its frames
+        this way, from the poses its vehicle reaches; the seabed is textured
+        over what the spec's own trajectory sees.
+        """
+        return self._renderer().render(pose, self._stream(_FRAMES, index), self._time(index), clean=clean)
 
     def _time(self, index: int) -> float:
         return index * self._spec.frame_interval_s

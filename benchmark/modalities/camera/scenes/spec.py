@@ -19,6 +19,7 @@ The tree mirrors the parts of the scene model of seeds/004, section II:
 * :class:`Burial`: stretches where sand covers the pipe (seeds/004, Fig. 14);
 * :class:`Overgrowth`: algae and stones on the pipe and against its sides,
   which break its borders (seeds/000, section 5.2.3);
+* :class:`Crossing`: a second cable lying across the followed one;
 * :class:`OpticsSpec`: light, water and sensor; its optional
   :class:`WaterSpec` (``[optics.water]``) switches from the haze of the
   thesis suites to the image formation model of
@@ -335,6 +336,35 @@ class Overgrowth:
 
 
 @pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
+class Crossing:
+    """A second cable lying straight on the seabed across the followed one.
+
+    It is drawn (:mod:`~benchmark.modalities.camera.scenes.crossing`), never
+    tracked: the ground truth stays the followed cable.
+
+    Attributes
+    ----------
+    at_m : float
+        ``Z`` where its axis passes over the followed cable's axis.
+    angle_deg : float
+        Angle from the followed cable's ``+Z`` to its own direction, turning
+        towards ``+X``, in ``(0, 180)``: 90 crosses at right angles, 45
+        runs ahead and to the right.
+    diameter_m : float or None
+        Its diameter; None takes the followed cable's.
+    look : CableLook or None
+        Its surface; None takes the followed cable's (its texture drawn
+        anew).  The water model tints it as the followed cable, whatever
+        its own ``tint``.
+    """
+
+    at_m: Finite
+    angle_deg: Annotated[Finite, Interval(gt=0, lt=180)]
+    diameter_m: Positive | None = None
+    look: CableLook | None = None
+
+
+@pydantic.dataclasses.dataclass(frozen=True, config=SPEC_CONFIG)
 class Lamp:
     """A lamp on the vehicle, aimed at the point the camera looks at.
 
@@ -514,6 +544,8 @@ class CameraSceneSpec(TableSpec):
     nominal_tilt_deg : float or None
         Tilt at which the camera is mounted (``phi_0`` of seeds/004 eq. (12));
         None takes the mean of ``motion.phi_deg``.
+    crossing : tuple of Crossing
+        Other cables lying across the pipe.
     """
 
     name: Name
@@ -531,6 +563,7 @@ class CameraSceneSpec(TableSpec):
     burial: tuple[Burial, ...] = ()
     overgrowth: tuple[Overgrowth, ...] = ()
     optics: OpticsSpec = field(default_factory=OpticsSpec)
+    crossing: tuple[Crossing, ...] = field(default=(), metadata=OMIT_AT_DEFAULT)
 
     @property
     def radius(self) -> float:

@@ -21,7 +21,7 @@ def test_it_registers_itself_through_its_hook() -> None:
     registry = Registry()
     modality.trackbench_register_modalities(registry)
     assert registry.modalities == {"camera": modality.CAMERA}
-    assert set(registry.scene_kinds) == {"camera"}
+    assert set(registry.scene_kinds) == {"camera", "camera-route"}
 
 
 def test_it_declares_grey_images_cable_truths_and_cable_states() -> None:
