@@ -154,6 +154,16 @@ def _coherence(count: np.ndarray, cos2: np.ndarray, sin2: np.ndarray, size: int,
     return np.clip(np.sqrt(c * c + s * s) / np.maximum(count, 1.0), 0.0, 1.0)
 
 
+@numba.njit(cache=True, nogil=True)
+def _reflected(p: int, n: int) -> int:
+    """Index ``p`` mirrored into ``range(n)`` as OpenCV's ``BORDER_REFLECT`` mirrors it (``fedcba|abcdef``)."""
+    if n == 1:
+        return 0
+    while p < 0 or p >= n:
+        p = -p - 1 if p < 0 else 2 * n - p - 1
+    return p
+
+
 def _scatter(values: np.ndarray, at: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
     """A map of ``shape`` holding ``values`` at the flat indices ``at`` and 0 (False) elsewhere."""
     out = np.zeros(shape, values.dtype)
@@ -267,54 +277,117 @@ def densities(kinds: PixelKinds, window: int) -> np.ndarray:
     return np.clip(np.stack(layers, axis=-1), 0.0, 1.0)
 
 
-def _window_counts(layers: list[np.ndarray], window: int, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
-    """The number of non-zero pixels of each 0/1 layer in the ``window`` square around the pixels of a grid.
+_LANE = 16
+"""Bits of each count in :func:`_grid_window_sums`' packed sums: a square of at most 255 x 255 px holds < 2**16."""
 
-    The squares' sums are read off one integral image of the layers
-    (border pixels mirrored, as :func:`_density` mirrors them), so they
-    are exact integers.
+
+@numba.njit(cache=True, nogil=True)
+def _packed(counted: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray], y: int, x: int) -> np.uint64:
+    """The four 0/1 layers' values at ``(y, x)``, one in each :data:`_LANE`-bit lane of a ``uint64``."""
+    straight, ends, specks, soft = counted
+    return (
+        np.uint64(straight[y, x])
+        | (np.uint64(ends[y, x]) << _LANE)
+        | (np.uint64(specks[y, x]) << 2 * _LANE)
+        | (np.uint64(soft[y, x]) << 3 * _LANE)
+    )
+
+
+@numba.njit(cache=True, nogil=True)
+def _grid_window_sums(
+    counted: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    abrupt: np.ndarray,
+    size: int,
+    rows: np.ndarray,
+    cols: np.ndarray,
+    out: np.ndarray,
+) -> None:
+    """Fill ``out[i, j]`` with the five densities of the ``size`` square around pixel ``(rows[i], cols[j])``.
+
+    Border pixels are mirrored as :func:`_density` mirrors them.  The sums
+    are differences of running sums, down the mirrored rows to the grid's
+    rows, then along each grid row's mirrored column sums.  The four 0/1
+    layers of ``counted`` are summed at once, packed into the
+    :data:`_LANE`-bit lanes of one ``uint64`` per pixel: the arithmetic is
+    modulo ``2**64`` and linear, so a difference is exactly the packed
+    counts of its square, each below ``2**16``.  The abruptness values are
+    summed in ``float64``, exactly as well: each is a multiple of ``2**-24``
+    in ``[0, 1]`` (one minus a ``float32`` coherence in ``[0, 1]``), so
+    every running sum of fewer than ``2**29`` of them needs at most 53 bits.
+    Each exact sum is scaled as OpenCV's normalised box filter scales it:
+    times ``1 / size**2`` in ``float64``, rounded to ``float32``.
 
     Parameters
     ----------
-    layers : list of numpy.ndarray
-        ``uint8`` arrays of shape ``(H, W)`` holding 0 or 1.
-    window : int
-        Side of the square, px (even values rounded up to odd).
+    counted : tuple of numpy.ndarray
+        Straight, ends, specks and soft: ``uint8`` 0/1 arrays of shape ``(H, W)``.
+    abrupt : numpy.ndarray
+        ``float32`` abruptness of shape ``(H, W)``.
+    size : int
+        Odd side of the square, px, at most 255.
     rows, cols : numpy.ndarray
         Indices of the grid's rows and columns.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``int32`` array of shape ``(len(layers), len(rows), len(cols))``.
+    out : numpy.ndarray
+        ``float32`` array of shape ``(len(rows), len(cols), 5)``, in the order of :data:`NAMES`.
     """
-    size = _odd(window)
+    height, width = abrupt.shape
     half = size // 2
-    height, width = layers[0].shape
-    padded = np.empty((len(layers), height + 2 * half, width + 2 * half), np.uint8)
-    for layer, out in zip(layers, padded):
-        cv2.copyMakeBorder(layer, half, half, half, half, cv2.BORDER_REFLECT, dst=out)
-    # The layers are stacked one below the other: the sums of a layer's squares never reach into another.
-    total = cv2.integral(padded.reshape(-1, padded.shape[2]), sdepth=cv2.CV_32S)
-    tops = (np.arange(len(layers))[:, None] * padded.shape[1] + rows).reshape(-1)
-    bands = total[tops + size] - total[tops]
-    return (bands[:, cols + size] - bands[:, cols]).reshape(len(layers), len(rows), len(cols))
+    scale = 1.0 / (size * size)
+    # Running sums over the rows of the image mirrored ``half`` rows beyond each edge: before mirrored row ``e``.
+    running_counts = np.zeros(width, np.uint64)
+    running_abrupt = np.zeros(width, np.float64)
+    column_counts = np.empty((len(rows), width), np.uint64)
+    column_abrupt = np.empty((len(rows), width), np.float64)
+    for e in range(height + 2 * half + 1):
+        for i in range(len(rows)):
+            if rows[i] == e:
+                for x in range(width):
+                    column_counts[i, x] = np.uint64(0) - running_counts[x]
+                    column_abrupt[i, x] = -running_abrupt[x]
+            if rows[i] + size == e:
+                for x in range(width):
+                    column_counts[i, x] += running_counts[x]
+                    column_abrupt[i, x] += running_abrupt[x]
+        if e < height + 2 * half:
+            y = _reflected(e - half, height)
+            for x in range(width):
+                running_counts[x] += _packed(counted, y, x)
+                running_abrupt[x] += abrupt[y, x]
+    lane = np.uint64((1 << _LANE) - 1)
+    prefix_counts = np.empty(width + 2 * half + 1, np.uint64)
+    prefix_abrupt = np.empty(width + 2 * half + 1, np.float64)
+    for i in range(len(rows)):
+        prefix_counts[0], prefix_abrupt[0] = 0, 0.0
+        for e in range(width + 2 * half):
+            x = _reflected(e - half, width)
+            prefix_counts[e + 1] = prefix_counts[e] + column_counts[i, x]
+            prefix_abrupt[e + 1] = prefix_abrupt[e] + column_abrupt[i, x]
+        for j in range(len(cols)):
+            counts = prefix_counts[cols[j] + size] - prefix_counts[cols[j]]
+            values = (
+                float(counts & lane),
+                prefix_abrupt[cols[j] + size] - prefix_abrupt[cols[j]],
+                float((counts >> _LANE) & lane),
+                float((counts >> 2 * _LANE) & lane),
+                float((counts >> 3 * _LANE) & lane),
+            )
+            for k in range(5):
+                out[i, j, k] = min(max(np.float32(values[k] * scale), np.float32(0.0)), np.float32(1.0))
 
 
 def densities_at(kinds: PixelKinds, window: int, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
     """The five descriptors at the pixels of a grid, ``densities(kinds, window)[np.ix_(rows, cols)]``.
 
-    Only the grid's values are computed.  The densities of the kinds that
-    are counts (all but abruptness) come from :func:`_window_counts`: the
-    normalised box filter's sum of 0/1 values is that exact count, scaled
-    as the filter scales it.
+    Only the grid's values are computed, by :func:`_grid_window_sums`: the
+    normalised box filter's sum of each layer over a square is exact, and
+    so is that function's, so both scale the same number the same way.
 
     Parameters
     ----------
     kinds : PixelKinds
         The pixels each descriptor counts.
     window : int
-        Side of the neighbourhood, px (even values rounded up to odd).
+        Side of the neighbourhood, px (even values rounded up to odd), at most 255.
     rows, cols : numpy.ndarray
         Indices of the grid's rows and columns.
 
@@ -324,12 +397,17 @@ def densities_at(kinds: PixelKinds, window: int, rows: np.ndarray, cols: np.ndar
         ``float32`` array of shape ``(len(rows), len(cols), 5)`` with values in ``[0, 1]``, in the order of
         :data:`NAMES`.
     """
-    size = _odd(window)
-    counted = [kinds.straight, kinds.ends, kinds.specks, kinds.soft]
-    counts = _window_counts([layer.view(np.uint8) for layer in counted], size, rows, cols)
-    straightness, discontinuity, granularity, blurriness = (counts * (1.0 / (size * size))).astype(np.float32)
-    abruptness = _density(kinds.abrupt, size)[rows][:, cols]
-    return np.clip(np.stack([straightness, abruptness, discontinuity, granularity, blurriness], axis=-1), 0.0, 1.0)
+    counted = tuple(np.ascontiguousarray(layer).view(np.uint8) for layer in (kinds.straight, kinds.ends, kinds.specks, kinds.soft))
+    out = np.empty((len(rows), len(cols), len(NAMES)), np.float32)
+    _grid_window_sums(
+        counted,
+        np.ascontiguousarray(kinds.abrupt, dtype=np.float32),
+        _odd(window),
+        np.asarray(rows, np.intp),
+        np.asarray(cols, np.intp),
+        out,
+    )
+    return out
 
 
 def texture_descriptors(image: np.ndarray, params: DescriptorParams) -> np.ndarray:
