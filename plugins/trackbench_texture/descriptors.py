@@ -101,57 +101,66 @@ def _doubled_angles(gu: np.ndarray, gv: np.ndarray, at: np.ndarray) -> tuple[np.
     return cos2, sin2
 
 
-def _square_counts(on: np.ndarray, sizes: tuple[int, ...], at: np.ndarray) -> list[np.ndarray]:
-    """The number of True pixels in each odd ``size`` square around the pixels at the flat indices ``at``.
+def _box_counts(on: np.ndarray, size: int) -> np.ndarray:
+    """The number of True pixels of a ``bool`` map in the odd ``size`` (at most 255 px) square around each pixel.
 
-    Border pixels are mirrored, as in every other mask here.
+    Border pixels are mirrored, as in every other mask here; ``uint16``.
+    """
+    return cv2.boxFilter(on.view(np.uint8), cv2.CV_16U, (size, size), normalize=False, borderType=cv2.BORDER_REFLECT)
+
+
+@numba.njit(inline="always")
+def _likeness(cos2_sum: np.float32, sin2_sum: np.float32, count: np.float32) -> np.float32:
+    """How alike the directions of ``count`` edge pixels are: the length of their mean doubled-angle vector, in [0, 1].
+
+    Computed in ``float32``; the denominator is at least 1.
+    """
+    mean = np.sqrt(cos2_sum * cos2_sum + sin2_sum * sin2_sum) / max(count, np.float32(1.0))
+    return min(max(mean, np.float32(0.0)), np.float32(1.0))
+
+
+@numba.njit(cache=True, nogil=True)
+def _edge_kinds(
+    at: np.ndarray,
+    line_counts: np.ndarray,
+    turn_counts: np.ndarray,
+    around: np.ndarray,
+    line_sums: tuple[np.ndarray, np.ndarray],
+    turn_sums: tuple[np.ndarray, np.ndarray],
+    min_count: np.float32,
+    min_coherence: np.float32,
+    straight: np.ndarray,
+    abrupt: np.ndarray,
+    ends: np.ndarray,
+) -> None:
+    """Mark the straight pieces, abruptness and line ends at the edge pixels ``at`` (flat indices).
 
     Parameters
     ----------
-    on : numpy.ndarray
-        ``bool`` array of shape ``(H, W)``.
-    sizes : tuple of int
-        Odd sides of the squares, at most 255 px.
     at : numpy.ndarray
-        Flat indices of the pixels.
-
-    Returns
-    -------
-    list of numpy.ndarray
-        One ``uint16`` array of the shape of ``at`` per size.
+        Flat indices of the edge pixels.
+    line_counts, turn_counts, around : numpy.ndarray
+        ``(H, W)`` numbers of edge pixels in the line, turn and 3 x 3 squares around each pixel.
+    line_sums, turn_sums : tuple of numpy.ndarray
+        ``(H, W)`` ``float32`` sums of the doubled-angle vectors' ``cos`` and ``sin`` over the line (turn) squares.
+    min_count, min_coherence : numpy.float32
+        A straight piece has at least ``min_count`` edge pixels in its line square, whose directions agree
+        at least ``min_coherence``.
+    straight, abrupt, ends : numpy.ndarray
+        ``(H, W)`` maps, 0 (False) everywhere, written at ``at``: ``bool``, ``float32`` and ``bool``.
     """
-    values = on.view(np.uint8)
-    return [
-        cv2.boxFilter(values, cv2.CV_16U, (size, size), normalize=False, borderType=cv2.BORDER_REFLECT).reshape(-1)[at]
-        for size in sizes
-    ]
-
-
-def _coherence(count: np.ndarray, cos2: np.ndarray, sin2: np.ndarray, size: int, at: np.ndarray) -> np.ndarray:
-    """How alike the directions of the edge pixels in the ``size`` square around each pixel of ``at`` are.
-
-    The likeness is the length of the mean doubled-angle direction vector,
-    in ``[0, 1]``: 1 when all edges there run the same way.
-
-    Parameters
-    ----------
-    count : numpy.ndarray
-        ``float32`` number of edge pixels in each square.
-    cos2, sin2 : numpy.ndarray
-        ``(H, W)`` doubled-angle direction vectors (:func:`_doubled_angles`).
-    size : int
-        Odd side of the square, px.
-    at : numpy.ndarray
-        Flat indices of the pixels.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``float32`` array of the shape of ``at``.
-    """
-    c = _box_sum(cos2, size).reshape(-1)[at]
-    s = _box_sum(sin2, size).reshape(-1)[at]
-    return np.clip(np.sqrt(c * c + s * s) / np.maximum(count, 1.0), 0.0, 1.0)
+    line_counts, turn_counts, around = line_counts.reshape(-1), turn_counts.reshape(-1), around.reshape(-1)
+    line_cos, line_sin = line_sums[0].reshape(-1), line_sums[1].reshape(-1)
+    turn_cos, turn_sin = turn_sums[0].reshape(-1), turn_sums[1].reshape(-1)
+    straight, abrupt, ends = straight.reshape(-1), abrupt.reshape(-1), ends.reshape(-1)
+    one = np.float32(1.0)
+    for k in at:
+        count = np.float32(line_counts[k])
+        straight[k] = count >= min_count and _likeness(line_cos[k], line_sin[k], count) >= min_coherence
+        turn = _likeness(turn_cos[k], turn_sin[k], np.float32(turn_counts[k]))
+        abrupt[k] = min(max(one - turn, np.float32(0.0)), one)
+        # An edge pixel's 3 x 3 square holds itself and, at a line end, one edge neighbour.
+        ends[k] = around[k] == 2
 
 
 @numba.njit(cache=True, nogil=True)
@@ -162,13 +171,6 @@ def _reflected(p: int, n: int) -> int:
     while p < 0 or p >= n:
         p = -p - 1 if p < 0 else 2 * n - p - 1
     return p
-
-
-def _scatter(values: np.ndarray, at: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
-    """A map of ``shape`` holding ``values`` at the flat indices ``at`` and 0 (False) elsewhere."""
-    out = np.zeros(shape, values.dtype)
-    out.reshape(-1)[at] = values
-    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -242,16 +244,20 @@ def pixel_kinds(image: np.ndarray, params: DescriptorParams, noise_image: np.nda
     gv = cv2.Sobel(grey, cv2.CV_32F, 0, 1, ksize=3, borderType=cv2.BORDER_REFLECT)
     cos2, sin2 = _doubled_angles(gu, gv, at)
     line_size, turn_size = _odd(params.line_length_px), _odd(params.turn_window_px)
-    line_count, turn_count, around = _square_counts(on_edge, (line_size, turn_size, 3), at)
-
-    line_count = line_count.astype(np.float32)
-    line_coherence = _coherence(line_count, cos2, sin2, line_size, at)
-    is_straight = (line_count >= params.straight_fill * line_size) & (line_coherence >= params.straight_coherence)
-    straight = _scatter(is_straight, at, on_edge.shape)
-    turn_coherence = _coherence(turn_count.astype(np.float32), cos2, sin2, turn_size, at)
-    abrupt = _scatter(np.clip(1.0 - turn_coherence, 0.0, 1.0), at, on_edge.shape)
-    # An edge pixel's 3 x 3 square holds itself and, at a line end, one edge neighbour.
-    ends = _scatter(around == 2, at, on_edge.shape)
+    straight, ends = np.zeros(on_edge.shape, bool), np.zeros(on_edge.shape, bool)
+    abrupt = np.zeros(on_edge.shape, np.float32)
+    _edge_kinds(
+        at,
+        *(_box_counts(on_edge, size) for size in (line_size, turn_size, 3)),
+        (_box_sum(cos2, line_size), _box_sum(sin2, line_size)),
+        (_box_sum(cos2, turn_size), _box_sum(sin2, turn_size)),
+        # numpy compares a float32 array with a Python float as float32.
+        np.float32(params.straight_fill * line_size),
+        np.float32(params.straight_coherence),
+        straight,
+        abrupt,
+        ends,
+    )
 
     if noise_image is not None:
         check_grey_image(noise_image)
