@@ -88,3 +88,32 @@ def test_of_close_steps_the_outermost_is_the_border():
     assert strongest is not None and outermost is not None
     assert abs(strongest[1] - 59.5) <= 1.0
     assert abs(outermost[1] - 99.5) <= 1.0
+
+
+def test_grey_levels_given_as_a_function_are_read_only_when_a_profile_pairing_needs_them():
+    shape = (120, 160)
+    grey = _band(40, 100, 170.0, 60.0, shape)
+    region = np.zeros(shape, bool)
+    region[:, 85:115] = True
+    strip = cable_strip(region, 400)
+    limits = dict(
+        inlier_px=1.0, trials=200, min_length_share=0.5, min_inlier_share=0.3, min_width_px=5.0,
+        max_width_px=120.0, max_skew=math.radians(10.0),
+    )
+    calls = []
+
+    def levels() -> np.ndarray:
+        calls.append(1)
+        return grey
+
+    one_border = np.zeros(shape, np.float32)
+    one_border[:, 99] = 1.0
+    given_array = fit_borders(strip, one_border, np.random.default_rng(0), None, region, "parallel-profile", **limits, grey=grey)
+    given_function = fit_borders(
+        strip, one_border, np.random.default_rng(0), None, region, "parallel-profile", **limits, grey=levels
+    )
+    assert given_array is not None and given_function == given_array and len(calls) == 1
+    two_borders = one_border.copy()
+    two_borders[:, 88] = 1.0
+    paired = fit_borders(strip, two_borders, np.random.default_rng(0), None, region, "parallel-profile", **limits, grey=levels)
+    assert paired is not None and len(calls) == 1
