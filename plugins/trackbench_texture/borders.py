@@ -192,6 +192,9 @@ def _support(
     return support
 
 
+GreyLevels = Callable[[], "np.ndarray | None"]
+"""The grey levels of the image in scan coordinates, or None when there are none, worked out on the first call."""
+
 Admissible = Callable[[np.ndarray, np.ndarray], np.ndarray]
 """``(slopes, intercepts) -> bool`` per candidate line: whether RANSAC may choose it."""
 
@@ -289,7 +292,7 @@ def _by_sides(
     across: np.ndarray,
     limits: _PairLimits,
     rng: np.random.Generator,
-    scan_grey: np.ndarray | None = None,
+    scan_grey: GreyLevels | None = None,
 ) -> list[ScanLine] | None:
     """One border on each side of the strip's centreline: each side's RANSAC line."""
     left_side = across < centreline(strip).at(along)
@@ -338,12 +341,13 @@ def _parallel_partner(
     return second[0]
 
 
-def _profile_partner(line: ScanLine, scan_grey: np.ndarray | None, limits: _PairLimits) -> ScanLine | None:
+def _profile_partner(line: ScanLine, scan_grey: GreyLevels, limits: _PairLimits) -> ScanLine | None:
     """The partner of ``line`` read off the grey levels beside it (:func:`~trackbench_texture.partner.partner_line`)."""
-    if scan_grey is None:
+    levels = scan_grey()
+    if levels is None:
         raise ValueError("texture: the profile pairings need the working image's grey levels")
     found = partner_line(
-        scan_grey,
+        levels,
         line.slope,
         line.intercept,
         min_width_px=limits.min_width_px,
@@ -354,11 +358,6 @@ def _profile_partner(line: ScanLine, scan_grey: np.ndarray | None, limits: _Pair
         widest_share=limits.partner_widest_share,
     )
     return None if found is None else ScanLine(*found)
-    middle = 0.5 * (scan_grey.shape[0] - 1)
-    back = partner_of(second)
-    if back is None or abs(back.at(middle) - line.at(middle)) > MUTUAL:
-        return None
-    return second
 
 
 def _paired(
@@ -367,7 +366,7 @@ def _paired(
     across: np.ndarray,
     limits: _PairLimits,
     rng: np.random.Generator,
-    scan_grey: np.ndarray | None,
+    scan_grey: GreyLevels,
     partners: tuple[str, ...],
 ) -> list[ScanLine] | None:
     """The first border, then the first of ``partners`` (``"straight"``, ``"profile"``) that finds its partner."""
@@ -395,7 +394,7 @@ PAIRINGS: dict[str, Callable[..., list[ScanLine] | None]] = {
 }
 """How the two borders are found, by name: ``(strip, along, across, limits, rng, scan_grey)`` to the two scan
 lines in order of their across-coordinate, or None (``scan_grey``: the grey levels in scan coordinates, which
-the profile pairings need).  ``"parallel"``: the best-supported line along the strip, then the best-supported
+the profile pairings need, worked out when first asked for: :data:`GreyLevels`).  ``"parallel"``: the best-supported line along the strip, then the best-supported
 line a cable's width from it, drawn from the points off the first among lines that make at most twice the
 largest skew with it; ``"profile"``: its partner read off the grey levels beside it
 (:mod:`trackbench_texture.partner`); ``"parallel-profile"``: as ``"parallel"``, and where no straight pieces
@@ -417,7 +416,7 @@ def fit_borders(
     min_width_px: float,
     max_width_px: float,
     max_skew: float,
-    grey: np.ndarray | None = None,
+    grey: np.ndarray | Callable[[], np.ndarray] | None = None,
     partner_strength: float = MIN_STRENGTH,
     partner_widest_share: float = WIDEST_SHARE,
 ) -> CableState | None:
@@ -446,9 +445,10 @@ def fit_borders(
         The cable-shape tests of the module docstring.
     max_skew : float
         Largest ``|beta|``, rad.
-    grey : numpy.ndarray, optional
+    grey : numpy.ndarray or callable, optional
         ``(H, W)`` ``float32`` grey levels of the image ``straight`` belongs
-        to (lightly smoothed): needed by the profile pairings.
+        to (lightly smoothed): needed by the profile pairings; or a function
+        without arguments that returns them, called only if a pairing reads them.
     partner_strength : float
         The profile pairings' smallest ratio of the second border's grey-level step to the first's.
     partner_widest_share : float
@@ -468,7 +468,12 @@ def fit_borders(
     limits = _PairLimits(
         inlier_px, trials, min_inlier_share * crossed.sum(), min_width_px, max_width_px, max_skew, partner_strength, partner_widest_share
     )
-    scan_grey = None if grey is None else np.ascontiguousarray(strip.scan(grey), dtype=np.float32)
+
+    @functools.cache
+    def scan_grey() -> np.ndarray | None:
+        levels = grey() if callable(grey) else grey
+        return None if levels is None else np.ascontiguousarray(strip.scan(levels), dtype=np.float32)
+
     borders = PAIRINGS[pairing](strip, along.astype(np.float64), across.astype(np.float64), limits, rng, scan_grey)
     if borders is None:
         return None

@@ -76,6 +76,16 @@ def _box_sum(values: np.ndarray, size: int) -> np.ndarray:
 
 
 @numba.njit(cache=True, nogil=True)
+def _rounded_grey(values: np.ndarray) -> np.ndarray:
+    """``np.clip(np.rint(values), 0, 255).astype(np.uint8)`` of a ``float32`` image, in one pass."""
+    out = np.empty(values.shape, np.uint8)
+    flat, rounded = values.reshape(-1), out.reshape(-1)
+    for k in range(flat.size):
+        rounded[k] = np.uint8(min(max(np.rint(flat[k]), np.float32(0.0)), np.float32(255.0)))
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
 def _doubled_angles(gu: np.ndarray, gv: np.ndarray, at: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The doubled-angle direction vectors ``(cos 2a, sin 2a)`` of the gradients at flat indices ``at``, 0 elsewhere.
 
@@ -101,64 +111,76 @@ def _doubled_angles(gu: np.ndarray, gv: np.ndarray, at: np.ndarray) -> tuple[np.
     return cos2, sin2
 
 
-def _square_counts(on: np.ndarray, sizes: tuple[int, ...], at: np.ndarray) -> list[np.ndarray]:
-    """The number of True pixels in each odd ``size`` square around the pixels at the flat indices ``at``.
+def _box_counts(on: np.ndarray, size: int) -> np.ndarray:
+    """The number of True pixels of a ``bool`` map in the odd ``size`` (at most 255 px) square around each pixel.
 
-    Border pixels are mirrored, as in every other mask here.
+    Border pixels are mirrored, as in every other mask here; ``uint16``.
+    """
+    return cv2.boxFilter(on.view(np.uint8), cv2.CV_16U, (size, size), normalize=False, borderType=cv2.BORDER_REFLECT)
+
+
+@numba.njit(inline="always")
+def _likeness(cos2_sum: np.float32, sin2_sum: np.float32, count: np.float32) -> np.float32:
+    """How alike the directions of ``count`` edge pixels are: the length of their mean doubled-angle vector, in [0, 1].
+
+    Computed in ``float32``; the denominator is at least 1.
+    """
+    mean = np.sqrt(cos2_sum * cos2_sum + sin2_sum * sin2_sum) / max(count, np.float32(1.0))
+    return min(max(mean, np.float32(0.0)), np.float32(1.0))
+
+
+@numba.njit(cache=True, nogil=True)
+def _edge_kinds(
+    at: np.ndarray,
+    line_counts: np.ndarray,
+    turn_counts: np.ndarray,
+    around: np.ndarray,
+    line_sums: tuple[np.ndarray, np.ndarray],
+    turn_sums: tuple[np.ndarray, np.ndarray],
+    min_count: np.float32,
+    min_coherence: np.float32,
+    straight: np.ndarray,
+    abrupt: np.ndarray,
+    ends: np.ndarray,
+) -> None:
+    """Mark the straight pieces, abruptness and line ends at the edge pixels ``at`` (flat indices).
 
     Parameters
     ----------
-    on : numpy.ndarray
-        ``bool`` array of shape ``(H, W)``.
-    sizes : tuple of int
-        Odd sides of the squares, at most 255 px.
     at : numpy.ndarray
-        Flat indices of the pixels.
-
-    Returns
-    -------
-    list of numpy.ndarray
-        One ``uint16`` array of the shape of ``at`` per size.
+        Flat indices of the edge pixels.
+    line_counts, turn_counts, around : numpy.ndarray
+        ``(H, W)`` numbers of edge pixels in the line, turn and 3 x 3 squares around each pixel.
+    line_sums, turn_sums : tuple of numpy.ndarray
+        ``(H, W)`` ``float32`` sums of the doubled-angle vectors' ``cos`` and ``sin`` over the line (turn) squares.
+    min_count, min_coherence : numpy.float32
+        A straight piece has at least ``min_count`` edge pixels in its line square, whose directions agree
+        at least ``min_coherence``.
+    straight, abrupt, ends : numpy.ndarray
+        ``(H, W)`` maps, 0 (False) everywhere, written at ``at``: ``bool``, ``float32`` and ``bool``.
     """
-    values = on.view(np.uint8)
-    return [
-        cv2.boxFilter(values, cv2.CV_16U, (size, size), normalize=False, borderType=cv2.BORDER_REFLECT).reshape(-1)[at]
-        for size in sizes
-    ]
+    line_counts, turn_counts, around = line_counts.reshape(-1), turn_counts.reshape(-1), around.reshape(-1)
+    line_cos, line_sin = line_sums[0].reshape(-1), line_sums[1].reshape(-1)
+    turn_cos, turn_sin = turn_sums[0].reshape(-1), turn_sums[1].reshape(-1)
+    straight, abrupt, ends = straight.reshape(-1), abrupt.reshape(-1), ends.reshape(-1)
+    one = np.float32(1.0)
+    for k in at:
+        count = np.float32(line_counts[k])
+        straight[k] = count >= min_count and _likeness(line_cos[k], line_sin[k], count) >= min_coherence
+        turn = _likeness(turn_cos[k], turn_sin[k], np.float32(turn_counts[k]))
+        abrupt[k] = min(max(one - turn, np.float32(0.0)), one)
+        # An edge pixel's 3 x 3 square holds itself and, at a line end, one edge neighbour.
+        ends[k] = around[k] == 2
 
 
-def _coherence(count: np.ndarray, cos2: np.ndarray, sin2: np.ndarray, size: int, at: np.ndarray) -> np.ndarray:
-    """How alike the directions of the edge pixels in the ``size`` square around each pixel of ``at`` are.
-
-    The likeness is the length of the mean doubled-angle direction vector,
-    in ``[0, 1]``: 1 when all edges there run the same way.
-
-    Parameters
-    ----------
-    count : numpy.ndarray
-        ``float32`` number of edge pixels in each square.
-    cos2, sin2 : numpy.ndarray
-        ``(H, W)`` doubled-angle direction vectors (:func:`_doubled_angles`).
-    size : int
-        Odd side of the square, px.
-    at : numpy.ndarray
-        Flat indices of the pixels.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``float32`` array of the shape of ``at``.
-    """
-    c = _box_sum(cos2, size).reshape(-1)[at]
-    s = _box_sum(sin2, size).reshape(-1)[at]
-    return np.clip(np.sqrt(c * c + s * s) / np.maximum(count, 1.0), 0.0, 1.0)
-
-
-def _scatter(values: np.ndarray, at: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
-    """A map of ``shape`` holding ``values`` at the flat indices ``at`` and 0 (False) elsewhere."""
-    out = np.zeros(shape, values.dtype)
-    out.reshape(-1)[at] = values
-    return out
+@numba.njit(cache=True, nogil=True)
+def _reflected(p: int, n: int) -> int:
+    """Index ``p`` mirrored into ``range(n)`` as OpenCV's ``BORDER_REFLECT`` mirrors it (``fedcba|abcdef``)."""
+    if n == 1:
+        return 0
+    while p < 0 or p >= n:
+        p = -p - 1 if p < 0 else 2 * n - p - 1
+    return p
 
 
 @dataclass(frozen=True, eq=False)
@@ -224,7 +246,7 @@ def pixel_kinds(image: np.ndarray, params: DescriptorParams, noise_image: np.nda
     grey = raw
     if params.smoothing_sigma > 0:
         grey = cv2.GaussianBlur(raw, (0, 0), params.smoothing_sigma, borderType=cv2.BORDER_REFLECT)
-    smooth8 = np.clip(np.rint(grey), 0, 255).astype(np.uint8)
+    smooth8 = _rounded_grey(grey)
     on_edge = cv2.Canny(smooth8, params.edge_low, params.edge_high, L2gradient=True) > 0
 
     at = np.flatnonzero(on_edge)
@@ -232,16 +254,20 @@ def pixel_kinds(image: np.ndarray, params: DescriptorParams, noise_image: np.nda
     gv = cv2.Sobel(grey, cv2.CV_32F, 0, 1, ksize=3, borderType=cv2.BORDER_REFLECT)
     cos2, sin2 = _doubled_angles(gu, gv, at)
     line_size, turn_size = _odd(params.line_length_px), _odd(params.turn_window_px)
-    line_count, turn_count, around = _square_counts(on_edge, (line_size, turn_size, 3), at)
-
-    line_count = line_count.astype(np.float32)
-    line_coherence = _coherence(line_count, cos2, sin2, line_size, at)
-    is_straight = (line_count >= params.straight_fill * line_size) & (line_coherence >= params.straight_coherence)
-    straight = _scatter(is_straight, at, on_edge.shape)
-    turn_coherence = _coherence(turn_count.astype(np.float32), cos2, sin2, turn_size, at)
-    abrupt = _scatter(np.clip(1.0 - turn_coherence, 0.0, 1.0), at, on_edge.shape)
-    # An edge pixel's 3 x 3 square holds itself and, at a line end, one edge neighbour.
-    ends = _scatter(around == 2, at, on_edge.shape)
+    straight, ends = np.zeros(on_edge.shape, bool), np.zeros(on_edge.shape, bool)
+    abrupt = np.zeros(on_edge.shape, np.float32)
+    _edge_kinds(
+        at,
+        *(_box_counts(on_edge, size) for size in (line_size, turn_size, 3)),
+        (_box_sum(cos2, line_size), _box_sum(sin2, line_size)),
+        (_box_sum(cos2, turn_size), _box_sum(sin2, turn_size)),
+        # numpy compares a float32 array with a Python float as float32.
+        np.float32(params.straight_fill * line_size),
+        np.float32(params.straight_coherence),
+        straight,
+        abrupt,
+        ends,
+    )
 
     if noise_image is not None:
         check_grey_image(noise_image)
@@ -267,54 +293,117 @@ def densities(kinds: PixelKinds, window: int) -> np.ndarray:
     return np.clip(np.stack(layers, axis=-1), 0.0, 1.0)
 
 
-def _window_counts(layers: list[np.ndarray], window: int, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
-    """The number of non-zero pixels of each 0/1 layer in the ``window`` square around the pixels of a grid.
+_LANE = 16
+"""Bits of each count in :func:`_grid_window_sums`' packed sums: a square of at most 255 x 255 px holds < 2**16."""
 
-    The squares' sums are read off one integral image of the layers
-    (border pixels mirrored, as :func:`_density` mirrors them), so they
-    are exact integers.
+
+@numba.njit(cache=True, nogil=True)
+def _packed(counted: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray], y: int, x: int) -> np.uint64:
+    """The four 0/1 layers' values at ``(y, x)``, one in each :data:`_LANE`-bit lane of a ``uint64``."""
+    straight, ends, specks, soft = counted
+    return (
+        np.uint64(straight[y, x])
+        | (np.uint64(ends[y, x]) << _LANE)
+        | (np.uint64(specks[y, x]) << 2 * _LANE)
+        | (np.uint64(soft[y, x]) << 3 * _LANE)
+    )
+
+
+@numba.njit(cache=True, nogil=True)
+def _grid_window_sums(
+    counted: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    abrupt: np.ndarray,
+    size: int,
+    rows: np.ndarray,
+    cols: np.ndarray,
+    out: np.ndarray,
+) -> None:
+    """Fill ``out[i, j]`` with the five densities of the ``size`` square around pixel ``(rows[i], cols[j])``.
+
+    Border pixels are mirrored as :func:`_density` mirrors them.  The sums
+    are differences of running sums, down the mirrored rows to the grid's
+    rows, then along each grid row's mirrored column sums.  The four 0/1
+    layers of ``counted`` are summed at once, packed into the
+    :data:`_LANE`-bit lanes of one ``uint64`` per pixel: the arithmetic is
+    modulo ``2**64`` and linear, so a difference is exactly the packed
+    counts of its square, each below ``2**16``.  The abruptness values are
+    summed in ``float64``, exactly as well: each is a multiple of ``2**-24``
+    in ``[0, 1]`` (one minus a ``float32`` coherence in ``[0, 1]``), so
+    every running sum of fewer than ``2**29`` of them needs at most 53 bits.
+    Each exact sum is scaled as OpenCV's normalised box filter scales it:
+    times ``1 / size**2`` in ``float64``, rounded to ``float32``.
 
     Parameters
     ----------
-    layers : list of numpy.ndarray
-        ``uint8`` arrays of shape ``(H, W)`` holding 0 or 1.
-    window : int
-        Side of the square, px (even values rounded up to odd).
+    counted : tuple of numpy.ndarray
+        Straight, ends, specks and soft: ``uint8`` 0/1 arrays of shape ``(H, W)``.
+    abrupt : numpy.ndarray
+        ``float32`` abruptness of shape ``(H, W)``.
+    size : int
+        Odd side of the square, px, at most 255.
     rows, cols : numpy.ndarray
         Indices of the grid's rows and columns.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``int32`` array of shape ``(len(layers), len(rows), len(cols))``.
+    out : numpy.ndarray
+        ``float32`` array of shape ``(len(rows), len(cols), 5)``, in the order of :data:`NAMES`.
     """
-    size = _odd(window)
+    height, width = abrupt.shape
     half = size // 2
-    height, width = layers[0].shape
-    padded = np.empty((len(layers), height + 2 * half, width + 2 * half), np.uint8)
-    for layer, out in zip(layers, padded):
-        cv2.copyMakeBorder(layer, half, half, half, half, cv2.BORDER_REFLECT, dst=out)
-    # The layers are stacked one below the other: the sums of a layer's squares never reach into another.
-    total = cv2.integral(padded.reshape(-1, padded.shape[2]), sdepth=cv2.CV_32S)
-    tops = (np.arange(len(layers))[:, None] * padded.shape[1] + rows).reshape(-1)
-    bands = total[tops + size] - total[tops]
-    return (bands[:, cols + size] - bands[:, cols]).reshape(len(layers), len(rows), len(cols))
+    scale = 1.0 / (size * size)
+    # Running sums over the rows of the image mirrored ``half`` rows beyond each edge: before mirrored row ``e``.
+    running_counts = np.zeros(width, np.uint64)
+    running_abrupt = np.zeros(width, np.float64)
+    column_counts = np.empty((len(rows), width), np.uint64)
+    column_abrupt = np.empty((len(rows), width), np.float64)
+    for e in range(height + 2 * half + 1):
+        for i in range(len(rows)):
+            if rows[i] == e:
+                for x in range(width):
+                    column_counts[i, x] = np.uint64(0) - running_counts[x]
+                    column_abrupt[i, x] = -running_abrupt[x]
+            if rows[i] + size == e:
+                for x in range(width):
+                    column_counts[i, x] += running_counts[x]
+                    column_abrupt[i, x] += running_abrupt[x]
+        if e < height + 2 * half:
+            y = _reflected(e - half, height)
+            for x in range(width):
+                running_counts[x] += _packed(counted, y, x)
+                running_abrupt[x] += abrupt[y, x]
+    lane = np.uint64((1 << _LANE) - 1)
+    prefix_counts = np.empty(width + 2 * half + 1, np.uint64)
+    prefix_abrupt = np.empty(width + 2 * half + 1, np.float64)
+    for i in range(len(rows)):
+        prefix_counts[0], prefix_abrupt[0] = 0, 0.0
+        for e in range(width + 2 * half):
+            x = _reflected(e - half, width)
+            prefix_counts[e + 1] = prefix_counts[e] + column_counts[i, x]
+            prefix_abrupt[e + 1] = prefix_abrupt[e] + column_abrupt[i, x]
+        for j in range(len(cols)):
+            counts = prefix_counts[cols[j] + size] - prefix_counts[cols[j]]
+            values = (
+                float(counts & lane),
+                prefix_abrupt[cols[j] + size] - prefix_abrupt[cols[j]],
+                float((counts >> _LANE) & lane),
+                float((counts >> 2 * _LANE) & lane),
+                float((counts >> 3 * _LANE) & lane),
+            )
+            for k in range(5):
+                out[i, j, k] = min(max(np.float32(values[k] * scale), np.float32(0.0)), np.float32(1.0))
 
 
 def densities_at(kinds: PixelKinds, window: int, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
     """The five descriptors at the pixels of a grid, ``densities(kinds, window)[np.ix_(rows, cols)]``.
 
-    Only the grid's values are computed.  The densities of the kinds that
-    are counts (all but abruptness) come from :func:`_window_counts`: the
-    normalised box filter's sum of 0/1 values is that exact count, scaled
-    as the filter scales it.
+    Only the grid's values are computed, by :func:`_grid_window_sums`: the
+    normalised box filter's sum of each layer over a square is exact, and
+    so is that function's, so both scale the same number the same way.
 
     Parameters
     ----------
     kinds : PixelKinds
         The pixels each descriptor counts.
     window : int
-        Side of the neighbourhood, px (even values rounded up to odd).
+        Side of the neighbourhood, px (even values rounded up to odd), at most 255.
     rows, cols : numpy.ndarray
         Indices of the grid's rows and columns.
 
@@ -324,12 +413,17 @@ def densities_at(kinds: PixelKinds, window: int, rows: np.ndarray, cols: np.ndar
         ``float32`` array of shape ``(len(rows), len(cols), 5)`` with values in ``[0, 1]``, in the order of
         :data:`NAMES`.
     """
-    size = _odd(window)
-    counted = [kinds.straight, kinds.ends, kinds.specks, kinds.soft]
-    counts = _window_counts([layer.view(np.uint8) for layer in counted], size, rows, cols)
-    straightness, discontinuity, granularity, blurriness = (counts * (1.0 / (size * size))).astype(np.float32)
-    abruptness = _density(kinds.abrupt, size)[rows][:, cols]
-    return np.clip(np.stack([straightness, abruptness, discontinuity, granularity, blurriness], axis=-1), 0.0, 1.0)
+    counted = tuple(np.ascontiguousarray(layer).view(np.uint8) for layer in (kinds.straight, kinds.ends, kinds.specks, kinds.soft))
+    out = np.empty((len(rows), len(cols), len(NAMES)), np.float32)
+    _grid_window_sums(
+        counted,
+        np.ascontiguousarray(kinds.abrupt, dtype=np.float32),
+        _odd(window),
+        np.asarray(rows, np.intp),
+        np.asarray(cols, np.intp),
+        out,
+    )
+    return out
 
 
 def texture_descriptors(image: np.ndarray, params: DescriptorParams) -> np.ndarray:

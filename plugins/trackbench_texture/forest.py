@@ -102,23 +102,28 @@ def _add_leaf_values(rows: np.ndarray, reachable: np.ndarray, leaf_values: np.nd
     """Add to ``raw[i, c]`` the values of the leaves point ``i`` reaches in the trees of column ``c``, in order.
 
     ``rows`` is :func:`_bin_rows`' result; the other arrays are those of :class:`Forest`.  Points are taken
-    two at a time (an odd last one paired with itself): each sum is a chain of dependent additions, and the
-    two points' chains run side by side.
+    four at a time (the last ones paired with the last point): each sum is a chain of dependent additions,
+    and the four points' chains run side by side.
     """
     n, columns = raw.shape
     per_column = reachable.shape[1] // columns
     mask_a = np.empty(reachable.shape[1], reachable.dtype)
-    mask_b = np.empty_like(mask_a)
-    for a in range(0, n, 2):
-        b = min(a + 1, n - 1)
+    mask_b, mask_c, mask_d = np.empty_like(mask_a), np.empty_like(mask_a), np.empty_like(mask_a)
+    for a in range(0, n, 4):
+        b, c, d = min(a + 1, n - 1), min(a + 2, n - 1), min(a + 3, n - 1)
         _and_rows(rows, a, reachable, mask_a)
         _and_rows(rows, b, reachable, mask_b)
-        for c in range(columns):
-            total_a, total_b = raw[a, c], raw[b, c]
-            for t in range(c * per_column, (c + 1) * per_column):
-                total_a += leaf_values[t, trailing_zeros(mask_a[t])]
-                total_b += leaf_values[t, trailing_zeros(mask_b[t])]
-            raw[a, c], raw[b, c] = total_a, total_b
+        _and_rows(rows, c, reachable, mask_c)
+        _and_rows(rows, d, reachable, mask_d)
+        for column in range(columns):
+            total_a, total_b, total_c, total_d = raw[a, column], raw[b, column], raw[c, column], raw[d, column]
+            for t in range(column * per_column, (column + 1) * per_column):
+                values = leaf_values[t]
+                total_a += values[trailing_zeros(mask_a[t])]
+                total_b += values[trailing_zeros(mask_b[t])]
+                total_c += values[trailing_zeros(mask_c[t])]
+                total_d += values[trailing_zeros(mask_d[t])]
+            raw[a, column], raw[b, column], raw[c, column], raw[d, column] = total_a, total_b, total_c, total_d
 
 
 def _search_cells(thresholds: np.ndarray) -> tuple[float, float, np.ndarray]:

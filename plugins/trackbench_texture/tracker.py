@@ -31,6 +31,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import functools
 import math
 from collections.abc import Sequence as SequenceOf
 
@@ -201,7 +202,10 @@ class TextureTracker(Tracker[CameraTruth, CableState]):
             min_width_px=p.min_width_px,
             max_width_px=p.max_width_px,
             max_skew=math.radians(p.max_skew_deg),
-            grey=_smoothed(work.grey, p.smoothing_sigma) if p.border_pairing in borders.PROFILE_PAIRINGS else None,
+            # Smoothed only if a profile pairing reads the grey levels: most frames pair straight pieces.
+            grey=functools.partial(_smoothed, work.grey, p.smoothing_sigma)
+            if p.border_pairing in borders.PROFILE_PAIRINGS
+            else None,
         )
         if state is None or p.foot_reach_px == 0:
             return state

@@ -59,10 +59,11 @@ def _unchanged(image: np.ndarray, spread: float, scale_px: float) -> np.ndarray:
 
 def _global(image: np.ndarray, spread: float, scale_px: float) -> np.ndarray:
     """The whole image shifted and scaled to mean :data:`REFERENCE_GREY` and standard deviation ``spread``."""
-    values = image.astype(np.float32)
-    mean, sd = cv2.meanStdDev(values)
+    mean, sd = cv2.meanStdDev(image.astype(np.float32))
     gain = spread / max(float(sd[0, 0]), 1.0)
-    return _to_grey((values - np.float32(mean[0, 0])) * np.float32(gain))
+    # Each grey level maps to the same value wherever it is: the map is worked out once per level.
+    levels = np.arange(256, dtype=np.float32)
+    return cv2.LUT(image, _to_grey((levels - np.float32(mean[0, 0])) * np.float32(gain)))
 
 
 def _local(image: np.ndarray, spread: float, scale_px: float) -> np.ndarray:

@@ -1,10 +1,10 @@
 """The descriptors' pixels and grid densities equal those of their straightforward formulation, bit for bit.
 
-:func:`pixel_kinds` works only at edge pixels where it can, counts edge
-pixels with integer box sums, finds specks with saturated ``uint8``
-differences, and :func:`densities_at` reads the count densities off an
-integral image.  The oracles here are the first, whole-image ``float32``
-formulations.
+:func:`pixel_kinds` works only at edge pixels where it can (one compiled
+pass over them), counts edge pixels with integer box sums, finds specks
+with saturated ``uint8`` differences, and :func:`densities_at` sums the
+grid's squares exactly with compiled running sums.  The oracles here are
+the first, whole-image ``float32`` formulations.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ import cv2
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from trackbench_texture.descriptors import densities_at, pixel_kinds
+from trackbench_texture.descriptors import _rounded_grey, densities_at, pixel_kinds
 from trackbench_texture.params import DescriptorParams
 
 _NEIGHBOURS = np.array([[1, 1, 1], [1, 0, 1], [1, 1, 1]], np.float32)
@@ -149,3 +149,22 @@ def test_the_grid_densities_are_the_normalised_box_filters_of_the_layers(data, w
     actual = densities_at(kinds, window, rows, cols)
     assert actual.dtype == np.float32
     assert actual.tobytes() == np.clip(expected, 0.0, 1.0).tobytes()
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    values=st.lists(
+        st.one_of(
+            st.floats(-300.0, 600.0, width=32),
+            st.integers(-2, 257).map(lambda k: k + 0.5),
+            st.integers(-2, 257).map(float),
+        ),
+        min_size=1,
+        max_size=200,
+    ),
+    width=st.integers(1, 7),
+)
+def test_the_smoothed_image_is_rounded_and_saturated_as_numpy_rounds_and_clips_it(values, width):
+    grey = np.array(values * width, np.float32).reshape(width, -1)
+    expected = np.clip(np.rint(grey), 0, 255).astype(np.uint8)
+    assert _rounded_grey(grey).tobytes() == expected.tobytes()

@@ -58,18 +58,26 @@ def test_the_partner_keeps_to_the_width_limits():
     assert partner_line(grey, 0.0, 39.5, **{**LIMITS, "max_width_px": 30.0}) is None
 
 
-def test_the_profile_pairing_finds_a_border_the_region_does_not_reach():
-    shape = (120, 160)
+BORDER_LIMITS = dict(
+    inlier_px=1.0, trials=200, min_length_share=0.5, min_inlier_share=0.3, min_width_px=5.0,
+    max_width_px=120.0, max_skew=math.radians(10.0),
+)
+"""The settings of fit_borders in the tests of the profile pairing."""
+
+
+def _one_border_scene(shape=(120, 160)):
+    """A cable band from column 40 to 100, a region reaching only its right border, one straight piece on it."""
     grey = _band(40, 100, 170.0, 60.0, shape)
     straight = np.zeros(shape, np.float32)
     straight[:, 99] = 1.0
     region = np.zeros(shape, bool)
     region[:, 85:115] = True
-    strip = cable_strip(region, 400)
-    limits = dict(
-        inlier_px=1.0, trials=200, min_length_share=0.5, min_inlier_share=0.3, min_width_px=5.0,
-        max_width_px=120.0, max_skew=math.radians(10.0),
-    )
+    return grey, straight, region, cable_strip(region, 400)
+
+
+def test_the_profile_pairing_finds_a_border_the_region_does_not_reach():
+    grey, straight, region, strip = _one_border_scene()
+    limits = BORDER_LIMITS
     rng = np.random.default_rng(0)
     assert fit_borders(strip, straight, rng, None, region, "parallel", **limits) is None
     found = fit_borders(
@@ -88,3 +96,23 @@ def test_of_close_steps_the_outermost_is_the_border():
     assert strongest is not None and outermost is not None
     assert abs(strongest[1] - 59.5) <= 1.0
     assert abs(outermost[1] - 99.5) <= 1.0
+
+
+def test_grey_levels_given_as_a_function_are_read_only_when_a_profile_pairing_needs_them():
+    grey, one_border, region, strip = _one_border_scene()
+    calls = []
+
+    def levels() -> np.ndarray:
+        calls.append(1)
+        return grey
+
+    def fit(straight, grey_levels):
+        return fit_borders(
+            strip, straight, np.random.default_rng(0), None, region, "parallel-profile", **BORDER_LIMITS, grey=grey_levels
+        )
+
+    given_array, given_function = fit(one_border, grey), fit(one_border, levels)
+    assert given_array is not None and given_function == given_array and len(calls) == 1
+    two_borders = one_border.copy()
+    two_borders[:, 88] = 1.0
+    assert fit(two_borders, levels) is not None and len(calls) == 1

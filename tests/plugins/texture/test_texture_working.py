@@ -5,7 +5,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from trackbench_texture.working import NORMALISERS, REFERENCE_GREY, working_image
 
@@ -82,3 +82,26 @@ def test_normalised_images_do_not_depend_on_exposure_or_contrast(gain, offset, n
 def test_a_bad_frame_is_named():
     with pytest.raises(ValueError, match="uint8 grey image"):
         working_image(np.zeros((4, 4, 3), np.float32), 240, "none", 40.0, 0.1)
+
+
+def _global_pixel_by_pixel(image: np.ndarray, spread: float) -> np.ndarray:
+    """The global normaliser's first formulation: every pixel shifted, scaled and rounded in ``float32``."""
+    values = image.astype(np.float32)
+    mean, sd = cv2.meanStdDev(values)
+    gain = spread / max(float(sd[0, 0]), 1.0)
+    centred = (values - np.float32(mean[0, 0])) * np.float32(gain)
+    return np.clip(np.rint(centred + np.float32(REFERENCE_GREY)), 0, 255).astype(np.uint8)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    shape=st.tuples(st.integers(1, 40), st.integers(1, 40)),
+    seed=st.integers(0, 2**32 - 1),
+    low=st.integers(0, 255),
+    levels=st.integers(1, 256),
+    spread=st.floats(0.5, 400.0),
+)
+def test_the_global_normalisers_table_of_grey_levels_equals_normalising_each_pixel(shape, seed, low, levels, spread):
+    image = np.random.default_rng(seed).integers(low, min(low + levels, 256), shape, endpoint=False).astype(np.uint8)
+    out = NORMALISERS["global"](image, spread, 1.0)
+    assert out.dtype == np.uint8 and out.tobytes() == _global_pixel_by_pixel(image, spread).tobytes()
