@@ -16,6 +16,11 @@ registered under the ``trackbench`` entry-point group):
     cells (higher is better).  The cable is out of view for longer than
     ``LOST_S`` at the first frame whose time is more than ``LOST_S`` after
     the last frame that had it in view (or after the run's first frame).
+    A run never lost whose vehicle passed the route's end after its last
+    frame followed the whole route: its ``followed_m`` is the route's
+    length, not the last frame's place short of the end, which differs
+    between runs by a fraction of a frame's travel and would rank them by
+    chance.
 ``followed_pct``
     The share of the route followed: the distance followed over the
     route's length (``loop_route_m``), per cent; cells pool by adding
@@ -73,7 +78,9 @@ def _column(frames: pd.DataFrame, column: str) -> np.ndarray:
     return frames[column].to_numpy(dtype=float) if column in frames else np.full(len(frames), np.nan)
 
 
-def followed_distance(along_m: np.ndarray, time_s: np.ndarray, in_view: np.ndarray, lost_s: float = LOST_S) -> float:
+def followed_distance(
+    along_m: np.ndarray, time_s: np.ndarray, in_view: np.ndarray, lost_s: float = LOST_S, route_m: float = np.nan
+) -> float:
     """The distance one run followed: the farthest ``along_m`` in view before the cable was out of view over ``lost_s``.
 
     Parameters
@@ -84,6 +91,10 @@ def followed_distance(along_m: np.ndarray, time_s: np.ndarray, in_view: np.ndarr
         Per frame, whether the cable was in view (bool, or 1.0 and 0.0).
     lost_s : float
         How long the cable may be out of view.
+    route_m : float, optional
+        The route's length, m.  A run never lost whose last frame lies
+        within one frame's travel (the largest step between frames) of it
+        passed the route's end: it followed all of it.
 
     Returns
     -------
@@ -95,6 +106,8 @@ def followed_distance(along_m: np.ndarray, time_s: np.ndarray, in_view: np.ndarr
         return 0.0
     last_seen_s = np.maximum.accumulate(np.where(seen, time_s, time_s[0]))
     lost = np.flatnonzero(~seen & (time_s - last_seen_s > lost_s))
+    if lost.size == 0 and seen.size > 1 and along_m[-1] + np.max(np.diff(along_m)) >= route_m:
+        return float(route_m)
     end = lost[0] if lost.size else seen.size
     return float(np.max(along_m[:end][seen[:end]], initial=0.0))
 
@@ -111,7 +124,13 @@ def followed_per_cell(frames: pd.DataFrame, lost_s: float = LOST_S) -> np.ndarra
     """:func:`followed_distance` of each cell of a frame table with ``loop_*`` values, in order."""
     rows, cells = _loop_rows(frames)
     along, time, in_view = (_column(frames, column)[rows] for column in (ALONG, TIME, IN_VIEW))
-    return np.array([followed_distance(along[a:b], time[a:b], in_view[a:b] > 0.5, lost_s) for a, b in cells])
+    routes = route_per_cell(frames)
+    return np.array(
+        [
+            followed_distance(along[a:b], time[a:b], in_view[a:b] > 0.5, lost_s, route)
+            for (a, b), route in zip(cells, routes, strict=True)
+        ]
+    )
 
 
 def route_per_cell(frames: pd.DataFrame) -> np.ndarray:

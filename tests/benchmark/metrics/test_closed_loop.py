@@ -71,6 +71,16 @@ def test_followed_distance_takes_its_time_limit() -> None:
     assert followed_distance(along, time, seen, lost_s=1.5) == 1.0
 
 
+def test_a_run_never_lost_that_passed_the_route_s_end_followed_all_of_it() -> None:
+    along, time = np.array([0.0, 1.0, 2.0, 3.0]), np.arange(4.0)
+    seen = np.array([True, True, True, True])
+    assert followed_distance(along, time, seen, route_m=4.0) == 4.0  # one step on from the last frame: the end
+    assert followed_distance(along, time, seen, route_m=4.5) == 3.0  # more than a step short of it
+    assert followed_distance(along, time, seen) == 3.0  # no route length said
+    lost = np.array([True, False, False, False])
+    assert followed_distance(along, time, lost, lost_s=1.5, route_m=4.0) == 0.0  # lost before the end
+
+
 def test_pooled_cells_are_split_and_followed_is_their_mean() -> None:
     first, second = loop_frames([1] * 5, cell_id=1), loop_frames([1, 1, 0, 0, 0, 0, 0, 1], cell_id=2)
     pooled = pd.concat([first, second], ignore_index=True)
