@@ -137,7 +137,8 @@ def route_per_cell(frames: pd.DataFrame) -> np.ndarray:
     """The route's length of each cell of a frame table with ``loop_*`` values, in order; NaN where none is said."""
     rows, cells = _loop_rows(frames)
     route = _column(frames, ROUTE)[rows]
-    return np.array([np.nanmax(route[a:b], initial=np.nan) if b > a else np.nan for a, b in cells])
+    said = np.isfinite(route)
+    return np.array([route[a:b][said[a:b]].max() if said[a:b].any() else np.nan for a, b in cells])
 
 
 def _followed_sums(frames: pd.DataFrame, scale: float) -> tuple[float, float]:
