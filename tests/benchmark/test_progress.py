@@ -26,7 +26,7 @@ def result(status: str, tracker: str = "hough") -> CellResult:
     """A finished cell, as far as progress reads one."""
     return types.SimpleNamespace(  # type: ignore[return-value]
         status=status, tracker=tracker, dataset="camera/S6", seed=0, scores=[], elapsed_s=0.5,
-        message="" if status == "ok" else "RuntimeError: lost", summary=lambda: {},
+        message="" if status == "ok" else "RuntimeError: lost", summary=lambda: {}, real_time="",
     )
 
 

@@ -54,7 +54,7 @@ def test_sequences_get_the_defaults_and_the_suite_prefix(kinds) -> None:
         (
             GOOD.replace('kind = "camera"', 'kind = "lidar"'),
             r"^bad\.toml: suite\.kind: must be one of the registered scene kinds "
-            r"\['camera', 'sonar', 'stereo', 'stereo-images'\], got 'lidar'$",
+            r"\['camera', 'camera-route', 'sonar', 'stereo', 'stereo-images'\], got 'lidar'$",
         ),
         (GOOD.replace('name = "B"', 'name = "A"'), r"^bad\.toml: sequence name\(s\) 'A' appear twice$"),
         (GOOD.replace('name = "B"\n', ""), r"^bad\.toml: sequence\[1\]: missing required key 'name'$"),

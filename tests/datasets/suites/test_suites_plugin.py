@@ -57,6 +57,7 @@ def test_hook_fills_a_fresh_plugin_manager() -> None:
         "camera-dev",
         "camera-test",
         "camera-train",
+        "routes",
         "sonar",
         "sonar-dev",
         "sonar-test",
@@ -64,8 +65,8 @@ def test_hook_fills_a_fresh_plugin_manager() -> None:
         "stereo",
         "stereo-images",
     }
-    assert [name for name, suite in registry.suites.items() if not suite.scored] == ["camera-train", "sonar-train"]
-    trained = ("camera", "camera-clutter", "camera-dev", "camera-test")
+    assert [name for name, suite in registry.suites.items() if not suite.scored] == ["camera-train", "routes", "sonar-train"]
+    trained = ("camera", "camera-clutter", "camera-dev", "camera-test", "routes")
     assert {registry.suites[name].training for name in trained} == {"camera-train"}
     assert {registry.suites[name].training for name in ("sonar-dev", "sonar-test")} == {"sonar-train"}
 
@@ -81,9 +82,12 @@ def test_the_suites_need_the_scene_kinds_of_registered_modalities() -> None:
     registry = Registry()
     registry.add_modality(CAMERA)
     trackbench_suites.trackbench_register_datasets(registry)
-    assert {"camera", "camera-clutter", "camera-dev", "camera-test", "camera-train"} == set(registry.suites)
+    assert {"camera", "camera-clutter", "camera-dev", "camera-test", "camera-train", "routes"} == set(registry.suites)
     assert registry.problems and all(
-        re.search(r"registered scene kinds \['camera'\], got '(sonar|stereo|stereo-images)' \(suite left out\)$", problem)
+        re.search(
+            r"registered scene kinds \['camera', 'camera-route'\], got '(sonar|stereo|stereo-images)' \(suite left out\)$",
+            problem,
+        )
         for problem in registry.problems
     )
 
