@@ -17,12 +17,16 @@ from click.testing import CliRunner
 
 from benchmark.cli import main
 from benchmark.errors import ParameterError
+from benchmark.io import export_sequence
 from benchmark.modalities.camera.modality import CAMERA
 from benchmark.modalities.camera.scenes.scene import CameraScene
+from benchmark.plugins import load_registry
 from benchmark.scaffold import ScaffoldError
 from benchmark.scaffold import new_tracker as write_skeleton
 from benchmark.testing import assert_conforms, check_tracker
 from benchmark.tracker import Tracker
+
+from ..site.conftest import Clip
 
 FILES = (
     "pyproject.toml",
@@ -170,6 +174,10 @@ def test_pytest_plugin_fixture_and_entry_point(pytestconfig: pytest.Config, trac
     assert pytestconfig.pluginmanager.has_plugin("trackbench")
 
 
+CLIP_FRAMES = 20
+"""Frames of the sequence the installed skeleton is run on."""
+
+
 def _run(*command: object, timeout: float = 600) -> subprocess.CompletedProcess[str]:
     return subprocess.run([str(part) for part in command], capture_output=True, text=True, timeout=timeout)
 
@@ -181,22 +189,26 @@ def test_end_to_end_install_check_and_run(tmp_path: Path) -> None:
     The venv sees this environment's packages (the harness and its
     dependencies) through a ``.pth`` file, since ``--system-site-packages``
     reaches only the base interpreter's; it gets its own ``trackbench``
-    script, as pip writes for the harness's console script.
+    script, as pip writes for the harness's console script.  This
+    environment's pip installs into the venv (``pip --python``), which so
+    needs no pip of its own; the run reads a clip of :data:`CLIP_FRAMES`
+    frames of camera/S2 written as files, not the whole rendered sequence.
     """
     code, output = new_tracker("demo", "--out", str(tmp_path))
     assert code == 0, output
     env = tmp_path / "venv"
-    venv.EnvBuilder(system_site_packages=True, with_pip=True).create(env)
+    venv.EnvBuilder(system_site_packages=True, with_pip=False).create(env)
     python = env / "bin" / "python"
+    pip = [sys.executable, "-m", "pip", "--python", python]
     site_packages = Path(_run(python, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])").stdout.strip())
     parent = sysconfig.get_paths()["purelib"]
     (site_packages / "trackbench-parent.pth").write_text(f"import site; site.addsitedir({parent!r})\n")
     has_backend = _run(python, "-c", "import setuptools.command.bdist_wheel")
     if has_backend.returncode != 0 and _run(python, "-c", "import wheel").returncode != 0:
-        fetched = _run(python, "-m", "pip", "install", "--retries", "0", "--timeout", "10", "wheel", timeout=120)
+        fetched = _run(*pip, "install", "--retries", "0", "--timeout", "10", "wheel", timeout=120)
         if fetched.returncode != 0:
             pytest.skip(f"building the plugin needs the 'wheel' package, which pip could not fetch: {fetched.stderr}")
-    install = _run(python, "-m", "pip", "install", "--no-deps", "--no-build-isolation", "--no-index", tmp_path / "demo")
+    install = _run(*pip, "install", "--no-deps", "--no-build-isolation", "--no-index", tmp_path / "demo")
     assert install.returncode == 0, install.stdout + install.stderr
     trackbench = env / "bin" / "trackbench"
     trackbench.write_text(f"#!{python}\nimport sys\nfrom benchmark.cli import main\nsys.exit(main())\n")
@@ -205,9 +217,11 @@ def test_end_to_end_install_check_and_run(tmp_path: Path) -> None:
     check = _run(trackbench, "check", "demo", "--frames", "5")
     assert check.returncode == 0, check.stdout + check.stderr
     assert "13 passed, 0 failed, 1 skipped (1 trackers)" in check.stdout
+    registry = load_registry()
+    clip = export_sequence(Clip(registry.sequence("camera/S2"), CLIP_FRAMES), tmp_path / "clip", registry.modalities)
     out = tmp_path / "board"
-    run = _run(trackbench, "run", "--tracker", "demo", "--dataset", "camera/S2", "--in-process", "--out", out)
+    run = _run(trackbench, "run", "--tracker", "demo", "--dataset", clip, "--in-process", "--out", out)
     assert run.returncode == 0, run.stdout + run.stderr
     assert "demo" in run.stdout
     board = (out / "leaderboard.csv").read_text()
-    assert "demo" in board and "camera/S2" in board
+    assert "demo" in board and str(clip) in board
