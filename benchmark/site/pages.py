@@ -283,7 +283,7 @@ def grouped_changes(
     metrics, and ``rows``, its changes as shown (with links to ``cells``).
     """
     shown: dict[str, dict[str, list[dict[str, Any]]]] = {
-        verdict: {"accuracy": [], "speed": []} for verdict in ("regression", "improvement")
+        verdict: {"accuracy": [], "speed": []} for verdict in ("regression", "improvement", "unconfirmed")
     }
     if changes is None or changes.empty:
         return shown

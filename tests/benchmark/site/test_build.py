@@ -391,6 +391,22 @@ def test_pages_show_the_changes_the_nightly_kept(fakes: types.ModuleType, tmp_pa
     assert re.findall(r'<td class="num[^"]*">(\d+|–)</td>', runs)[3:] == ["1", "0"]
 
 
+def test_a_speed_change_a_repeat_did_not_hold_has_its_own_section(fakes: types.ModuleType, tmp_path: Path) -> None:
+    registry, history = fake_history(fakes, tmp_path, [10, 11])
+    kept = pd.DataFrame([dict(
+        tracker="noisy", dataset="fake/S1", metric="cpu_fps", kind="speed", before=900.0, after=700.0,
+        change=-200.0, low=-250.0, high=-150.0, verdict="unconfirmed", cause="", effects=2.0,
+        note="repeat 880: within the noise, not held",
+    )])
+    history.record_changes(2, kept)
+    site = tmp_path / "site"
+    build_site(history, site, registry.modalities)
+    page = site / "runs" / "2.html"
+    held = section(page, "Speed changes a repeat did not hold", "Leaderboards")
+    assert "cpu_fps -200" in held and "within the noise, not held" in held
+    assert "cpu_fps" not in section(page, "Regressions", "Improvements")
+
+
 def test_run_pages_show_the_boards_the_nightly_kept(
     fakes: types.ModuleType, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
