@@ -34,6 +34,7 @@ and time.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Iterator, Mapping
 from dataclasses import field
@@ -49,7 +50,7 @@ from benchmark.closedloop.real_time import intervals_until_next
 from benchmark.closedloop.route import Leg, Route, RouteSpec
 from benchmark.closedloop.vehicle import Kinematics, VehicleState
 from benchmark.identity import OMIT_AT_DEFAULT, DatasetIdentity, digest, generator_source
-from benchmark.modalities.camera.model import CableState, CameraCalibration, VehicleSpeeds
+from benchmark.modalities.camera.model import CableState, VehicleSpeeds
 from benchmark.modalities.camera.geometry import Line
 from benchmark.modalities.camera.scenes.burial import image_chord
 from benchmark.modalities.camera.scenes.scene import CameraScene
@@ -219,23 +220,10 @@ class ClosedLoopScene(Sequence):
 
     @property
     def info(self) -> SequenceInfo:
-        """As a camera scene's, with at most :attr:`ClosedLoopSpec.max_frames` frames and the route's length."""
-        spec = self._spec
-        return SequenceInfo(
-            name=spec.name,
-            modality="camera",
-            n_frames=spec.max_frames,
-            frame_size=spec.frame_size,
-            frame_interval_s=spec.frame_interval_s,
-            calibration=CameraCalibration(spec.focal_px, spec.pipe_diameter_m, math.radians(spec.mount.tilt_deg)),
-            extra={
-                "description": spec.description,
-                "seed": spec.seed,
-                "source": "rendered, closed loop",
-                "route_m": spec.route.length_m,
-                "conditions": dict(self._conditions),
-            },
-        )
+        """As the camera scene's that renders it (at most :attr:`ClosedLoopSpec.max_frames` frames), with the route's length."""
+        info = self._look.info
+        extra = {**info.extra, "source": "rendered, closed loop", "route_m": self._spec.route.length_m}
+        return dataclasses.replace(info, extra={**extra, "conditions": dict(self._conditions)})
 
     @cached_property
     def identity(self) -> DatasetIdentity:
