@@ -279,6 +279,11 @@ def ratio(sums: np.ndarray, scale: float) -> np.ndarray:
         return sums[..., 1] / sums[..., 0]
 
 
+def single(sums: np.ndarray, scale: float) -> np.ndarray:
+    """The one sum of a metric that keeps one (a largest value, a longest run), as its value."""
+    return sums[..., 0]
+
+
 def _finite(frames: pd.DataFrame, column: str) -> np.ndarray:
     values = frames[column].to_numpy(dtype=float) if column in frames else np.array([])
     return values[np.isfinite(values)]
@@ -536,5 +541,6 @@ __all__ = [
     "sequence_starts",
     "percentage",
     "ratio",
+    "single",
     "unit_scale",
 ]

@@ -49,7 +49,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from benchmark.hookspecs import hookimpl
-from benchmark.metrics import Effect, Metric, percentage, ratio, sequence_starts
+from benchmark.metrics import Effect, Metric, percentage, ratio, sequence_starts, single
 from benchmark.results import LoopValues
 
 if TYPE_CHECKING:
@@ -122,23 +122,24 @@ def _loop_rows(frames: pd.DataFrame) -> tuple[np.ndarray, list[tuple[int, int]]]
 
 def followed_per_cell(frames: pd.DataFrame, lost_s: float = LOST_S) -> np.ndarray:
     """:func:`followed_distance` of each cell of a frame table with ``loop_*`` values, in order."""
-    rows, cells = _loop_rows(frames)
-    along, time, in_view = (_column(frames, column)[rows] for column in (ALONG, TIME, IN_VIEW))
-    routes = route_per_cell(frames)
-    return np.array(
-        [
-            followed_distance(along[a:b], time[a:b], in_view[a:b] > 0.5, lost_s, route)
-            for (a, b), route in zip(cells, routes, strict=True)
-        ]
-    )
+    return _followed_and_routes(frames, lost_s)[0]
 
 
-def route_per_cell(frames: pd.DataFrame) -> np.ndarray:
-    """The route's length of each cell of a frame table with ``loop_*`` values, in order; NaN where none is said."""
-    rows, cells = _loop_rows(frames)
-    route = _column(frames, ROUTE)[rows]
+def _route_lengths(route: np.ndarray, cells: list[tuple[int, int]]) -> np.ndarray:
     said = np.isfinite(route)
     return np.array([route[a:b][said[a:b]].max() if said[a:b].any() else np.nan for a, b in cells])
+
+
+def _followed_and_routes(frames: pd.DataFrame, lost_s: float = LOST_S) -> tuple[np.ndarray, np.ndarray]:
+    """Each cell's distance followed and route length, the cells split once."""
+    rows, cells = _loop_rows(frames)
+    along, time, in_view, route = (_column(frames, column)[rows] for column in (ALONG, TIME, IN_VIEW, ROUTE))
+    routes = _route_lengths(route, cells)
+    followed = [
+        followed_distance(along[a:b], time[a:b], in_view[a:b] > 0.5, lost_s, length)
+        for (a, b), length in zip(cells, routes, strict=True)
+    ]
+    return np.array(followed), routes
 
 
 def _followed_sums(frames: pd.DataFrame, scale: float) -> tuple[float, float]:
@@ -149,7 +150,7 @@ def _followed_sums(frames: pd.DataFrame, scale: float) -> tuple[float, float]:
 
 def _share_sums(frames: pd.DataFrame, scale: float) -> tuple[float, float]:
     """The length of the routes of the cells that say it, and the distance those cells followed, m."""
-    followed, route = followed_per_cell(frames), route_per_cell(frames)
+    followed, route = _followed_and_routes(frames)
     known = np.isfinite(route)
     return float(route[known].sum()), float(followed[known].sum())
 
@@ -169,10 +170,6 @@ def _largest_sums(frames: pd.DataFrame, scale: float) -> tuple[float]:
     """The largest absolute offset; NaN without one, so that pooling skips it."""
     values = _absolute(frames, OFFSET)
     return (float(values.max()) if values.size else float("nan"),)
-
-
-def _first(sums: np.ndarray, scale: float) -> np.ndarray:
-    return sums[..., 0]
 
 
 FOLLOWED = Metric(
@@ -230,7 +227,7 @@ OFFSET_MAX = Metric(
     columns=(OFFSET,),
     requires=(OFFSET,),
     sums=_largest_sums,
-    value=_first,
+    value=single,
     pool="max",
     digits=3,
     minimum_effect=Effect(0.20, relative=True),

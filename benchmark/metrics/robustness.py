@@ -34,7 +34,7 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from benchmark.hookspecs import hookimpl
-from benchmark.metrics import Effect, Metric, outcomes, percentage, ratio, scored, sequence_starts
+from benchmark.metrics import Effect, Metric, outcomes, percentage, ratio, scored, sequence_starts, single
 from benchmark.model import Outcome
 
 if TYPE_CHECKING:
@@ -95,10 +95,6 @@ def _longest_sums(frames: pd.DataFrame, scale: float) -> tuple[float]:
     return (float(np.max(runs.lengths, initial=0)) if runs.scored else float("nan"),)
 
 
-def _longest(sums: np.ndarray, scale: float) -> np.ndarray:
-    return sums[..., 0]
-
-
 FAILURES = Metric(
     name="failures_per100",
     better="lower",
@@ -143,7 +139,7 @@ LONGEST_FAILURE = Metric(
     kind="robustness",
     columns=("outcome",),
     sums=_longest_sums,
-    value=_longest,
+    value=single,
     pool="max",
     digits=0,
     minimum_effect=Effect(0.20, relative=True),
