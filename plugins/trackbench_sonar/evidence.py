@@ -86,6 +86,9 @@ evidence_kernel = lazy_module("trackbench_sonar.evidence_kernel")
 MIN_RETURNS = 6
 """Fewest returns in a candidate's window for it to be scored (the pipe model has four unknowns)."""
 
+SECTION_NUMBERS = 8
+"""How many of the scan's numbers (:attr:`FootprintLikelihood.settings`) come before the semicircle table's."""
+
 
 @dataclass(frozen=True, eq=False)
 class Evidence:
@@ -184,27 +187,10 @@ class FootprintLikelihood:
             nothing = np.zeros(count)
             return Evidence(centre, nothing, np.full(count, np.nan), nothing.astype(np.int64), nothing.astype(bool))
         low, high, sigma_f = self.windows(profile)
-        offsets, sigmas, table = semicircle_table()
+        _, _, table = semicircle_table()
+        numbers = self._numbers
         evidence, pedestal, scored = evidence_kernel.footprint_evidence(
-            x,
-            z,
-            centre,
-            sigma_f,
-            low,
-            high,
-            self.section.half_width_m,
-            self.section.half_height_m,
-            self.reach_m,
-            self.relief_widths,
-            self.robust_sigmas * self.sigma_m,
-            self.sigma_m,
-            self.iterations,
-            MIN_RETURNS,
-            table,
-            float(offsets[0]),
-            TABLE_OFFSET_STEP,
-            TABLE_SIGMA_STEP,
-            TABLE_REACH,
+            x, z, centre, sigma_f, low, high, *numbers[:SECTION_NUMBERS], table, *numbers[SECTION_NUMBERS:]
         )
         return Evidence(centre, evidence, pedestal, high - low, scored)
 
@@ -231,8 +217,13 @@ class FootprintLikelihood:
     @cached_property
     def settings(self) -> np.ndarray:
         """The numbers of :func:`~trackbench_sonar.evidence_kernel.footprint_evidence`, as :func:`~trackbench_sonar.evidence_kernel.seabed_costs` takes them."""
+        return np.array(self._numbers, dtype=float)
+
+    @cached_property
+    def _numbers(self) -> tuple[float, ...]:
+        """The scan's numbers in the kernels' order: the section's and the fit's, then the semicircle table's."""
         offsets, _, _ = semicircle_table()
-        numbers = (
+        return (
             self.section.half_width_m,
             self.section.half_height_m,
             self.reach_m,
@@ -246,7 +237,6 @@ class FootprintLikelihood:
             TABLE_SIGMA_STEP,
             TABLE_REACH,
         )
-        return np.array(numbers, dtype=float)
 
     def scan(self, profile: Profile) -> EvidenceScan | LikelihoodScan:
         """The evidence over the profile's grid (seeds/003, Fig. 2), computed where read; empty for an empty profile."""
