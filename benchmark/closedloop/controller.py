@@ -67,9 +67,9 @@ class FollowerGains(TableSpec):
     drives it on every route): with them the truth brings the vehicle from
     0.3 m beside the cable to within its 0.1 m radius in 5.3 s on the
     ``straight`` route, and keeps it within 2.7 cm of the cable and 2.6 deg
-    of its heading over the ``s-bends``.  The hold (1 s) covers a tracker's brief misses; the search sway (0.1 m/s)
-    crabs the vehicle at 12.5 deg to its surge, slow enough to keep the
-    seabed it searches in view.
+    of its heading over the ``s-bends``.  The hold (1 s) covers a
+    tracker's brief misses; the search sway (0.1 m/s) crabs the vehicle at
+    12.5 deg to its 0.45 m/s surge.
     """
 
     k_offset_mps: NonNegative = 0.25
