@@ -10,13 +10,19 @@ parameters).  The measurement of each frame is the truth seen through
 eq. (11), worked out once per frame and shared by both sides, so that only
 the filters are timed.
 
-* ``EKF predict+update``: :func:`benchmark.filters.kalman.predict` and
-  :func:`~benchmark.filters.kalman.update` with ``h`` a function and ``H``
-  its Jacobian, against FilterPy's ``ExtendedKalmanFilter`` given the same
-  function objects (issue 34: at least 10 times faster);
-* ``KF predict+update``: the same steps with the measurement made linear
-  (``H x`` of the truth measured by the matrix ``H``), against FilterPy's
-  ``KalmanFilter``; shown for information.
+* ``EKF predict+update``: the stereo tracker's own filter step,
+  :meth:`trackbench_stereo_ekf.target_filter.TargetFilter.advance` (one
+  compiled call a frame that evaluates ``h`` and ``H`` itself, corrects and
+  predicts the next frame), given each frame's measurement, CH's navigation
+  and ``Q`` as the tracker gives them (:func:`~trackbench_stereo_ekf.target_filter.measurement_inputs`),
+  against FilterPy's ``ExtendedKalmanFilter`` given ``h`` and its Jacobian
+  as Python functions, as a user of FilterPy writes them (issue 34: at
+  least 10 times faster);
+* ``KF predict+update``: :func:`benchmark.filters.kalman.predict` and
+  :func:`~benchmark.filters.kalman.update`, the Kalman core other trackers
+  use, with the measurement made linear (``H x`` of the truth measured by
+  the matrix ``H``), against FilterPy's ``KalmanFilter``; shown for
+  information.
 
 FilterPy is in the ``test`` extra; without it the rows say so.
 """
@@ -35,6 +41,7 @@ from benchmark.model import Frame, SequenceInfo
 from benchmark.speed.bounds import BoundContext, BoundUnavailable, PerFrame, SpeedBound, SpeedBounds, TimesFaster
 from trackbench_stereo_ekf.measurement import observation_jacobian, observe
 from trackbench_stereo_ekf.motion import control_vector, process_noise, transition_matrix
+from trackbench_stereo_ekf.target_filter import TargetFilter, measurement_inputs
 from trackbench_stereo_ekf.tracker import StereoEkfParams
 
 DATASET = "stereo/case2-medium"
@@ -44,8 +51,9 @@ MEASUREMENT_STD_M = (0.5, 0.1)
 START_COVARIANCE = np.diag([4.0, 4.0, 1.0, 1.0])
 """The belief's covariance at the first frame's truth."""
 
-Step = tuple[np.ndarray, Callable[[np.ndarray], np.ndarray], np.ndarray, np.ndarray]
-"""A frame's ``z`` (eq. 11 of the truth), ``h``, ``H`` (eq. 12) and the linear measurement ``H x`` of the truth."""
+Step = tuple[np.ndarray, Callable[[np.ndarray], np.ndarray], np.ndarray, np.ndarray, np.ndarray]
+"""A frame's ``z`` (eq. 11 of the truth), ``h``, ``H`` (eq. 12), the linear measurement ``H x`` of the truth,
+and the inputs of the tracker's filter step (``z``, CH's navigation and ``Q``)."""
 
 
 class FilterSteps:
@@ -68,13 +76,13 @@ class FilterSteps:
         self.process = process_noise(self.interval, self.sigma_a)
         self.start = _truth_state(init)
 
-    @staticmethod
-    def _step(frame: Frame) -> Step:
+    def _step(self, frame: Frame) -> Step:
         truth = frame.truth
         navigation = ChaseNavigation(tuple(truth.chase_position_m), float(truth.chase_heading))
         state = _truth_state(truth)
         H = observation_jacobian(navigation)
-        return observe(state, navigation), lambda x: observe(x, navigation), H, H @ state
+        z = observe(state, navigation)
+        return z, lambda x: observe(x, navigation), H, H @ state, measurement_inputs(z, navigation, self.noise)
 
 
 def _truth_state(truth: Any) -> np.ndarray:
@@ -83,9 +91,31 @@ def _truth_state(truth: Any) -> np.ndarray:
 
 
 class OursExtended:
-    """:mod:`benchmark.filters.kalman`, ``h`` a function."""
+    """The stereo tracker's :class:`~trackbench_stereo_ekf.target_filter.TargetFilter`, its model compiled.
 
-    linear = False
+    Its reset predicts the first frame (as FilterPy's first ``predict``
+    does); each step then corrects it and predicts the next, one predict
+    and one update a frame as on FilterPy's side.
+    """
+
+    def __init__(self, context: BoundContext) -> None:
+        self.model = FilterSteps()
+        self.filter: TargetFilter | None = None
+
+    def reset(self, info: SequenceInfo, rng: np.random.Generator, init: Any = None) -> None:
+        m = self.model
+        m.reset(info, init)
+        self.filter = TargetFilter(m.interval, m.acceleration, m.sigma_a)
+        self.filter.start(Gaussian(m.start, START_COVARIANCE))
+        self.filter.predict()
+
+    def step(self, frame: Frame) -> np.ndarray:
+        self.filter.advance(self.model.of(frame)[4])
+        return self.filter.mean
+
+
+class OursLinear:
+    """:mod:`benchmark.filters.kalman`, ``H`` a matrix."""
 
     def __init__(self, context: BoundContext) -> None:
         self.model = FilterSteps()
@@ -97,19 +127,10 @@ class OursExtended:
 
     def step(self, frame: Frame) -> Gaussian:
         m = self.model
-        z, h, H, z_linear = m.of(frame)
+        _, _, H, z_linear, _ = m.of(frame)
         belief = predict(self.belief, m.transition, None, m.process, control=m.control)
-        if self.linear:
-            self.belief = update(belief, z_linear, H, None, m.noise)
-        else:
-            self.belief = update(belief, z, h, H, m.noise)
+        self.belief = update(belief, z_linear, H, None, m.noise)
         return self.belief
-
-
-class OursLinear(OursExtended):
-    """:mod:`benchmark.filters.kalman`, ``H`` a matrix."""
-
-    linear = True
 
 
 class FilterPyExtended:
@@ -135,7 +156,7 @@ class FilterPyExtended:
         self.u = np.array([m.acceleration])
 
     def step(self, frame: Frame) -> np.ndarray:
-        z, h, H, _ = self.model.of(frame)
+        z, h, H, _, _ = self.model.of(frame)
         jacobian = self.jacobians.setdefault(frame.index, lambda x, H=H: H)
         self.filter.predict(u=self.u)
         self.filter.update(z, jacobian, h, R=self.model.noise)
@@ -152,7 +173,7 @@ class FilterPyLinear(FilterPyExtended):
         self.make = lambda: KalmanFilter(dim_x=4, dim_z=2, dim_u=1)
 
     def step(self, frame: Frame) -> np.ndarray:
-        _, _, H, z_linear = self.model.of(frame)
+        _, _, H, z_linear, _ = self.model.of(frame)
         self.filter.predict(u=self.u)
         self.filter.update(z_linear, R=self.model.noise, H=H)
         return self.filter.x

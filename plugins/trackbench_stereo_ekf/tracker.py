@@ -12,6 +12,10 @@ Each frame runs the filter of seeds/002, Table 2:
    (:mod:`trackbench_stereo_ekf.measurement`) and the measurement noise
    ``Q_t`` of eq. (20) or eq. (18) (:mod:`trackbench_stereo_ekf.noise`).
 
+Both run in one compiled call a frame (:class:`trackbench_stereo_ekf.target_filter.TargetFilter`),
+which corrects the prediction the previous frame's call made and predicts
+the next frame: ``Q_t`` at the prediction is computed before the call.
+
 A frame's observation is a StereoMeasurement (or None), or an image pair
 that the front end of :mod:`benchmark.modalities.stereo.frontend` measures
 first (:func:`benchmark.modalities.stereo.observation.read_frame`); its settings
@@ -63,7 +67,7 @@ import pydantic
 from annotated_types import Ge
 
 from benchmark.errors import DataError
-from benchmark.filters.kalman import Gaussian, GaussianBeliefView, compile_kernels, predict, update
+from benchmark.filters.kalman import Gaussian, GaussianBeliefView
 from benchmark.modalities.stereo.geometry import in_front, project, rotation, to_north_east
 from benchmark.modalities.stereo.model import (
     ChaseNavigation,
@@ -77,9 +81,9 @@ from benchmark.modalities.stereo.observation import FrontEndSettings, front_end_
 from benchmark.model import SequenceInfo
 from benchmark.parameters import Finite, NonNegative, Positive
 from benchmark.tracker import Tracker
-from trackbench_stereo_ekf.measurement import observation_jacobian, observe
-from trackbench_stereo_ekf.motion import process_noise, propagate, transition_matrix
+from trackbench_stereo_ekf.measurement import observe
 from trackbench_stereo_ekf.noise import CovarianceForm, measurement_noise, navigation_noise
+from trackbench_stereo_ekf.target_filter import NO_MEASUREMENT, TargetFilter, measurement_inputs
 
 NoisePoint = Literal["prediction", "measurement"]
 """Where ``Q_t`` may be evaluated: at the predicted or at the measured pixel coordinates."""
@@ -156,20 +160,21 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
         super().__init__(params)
         self._front_end = front_end_params(self.params)
         self._info: SequenceInfo | None = None
-        self._belief: Gaussian | None = None
-        self._prior: Gaussian | None = None
+        self._filter: TargetFilter | None = None
+        self._has_belief = False
+        self._has_prior = False
         self._last_index: int | None = None
         self._moving = False
 
     @property
     def belief(self) -> Gaussian | None:
-        """The filter's mean and covariance of ``[X, Y, X_dot, Y_dot]``, None before the first one."""
-        return self._belief
+        """The filter's mean and covariance of ``[X, Y, X_dot, Y_dot]`` (copies), None before the first one."""
+        return self._filter.belief if self._has_belief else None
 
     @property
     def prior(self) -> Gaussian | None:
         """``mu_bar``, ``Sigma_bar`` (Table 2, lines 2-3) that this frame's measurement corrected; None without one."""
-        return self._prior
+        return self._filter.prior if self._has_prior else None
 
     def reset(self, info: SequenceInfo, rng: np.random.Generator, init: StereoTruth | None = None) -> None:
         """Start a sequence, from the first frame's truth (``init``) or from nothing.
@@ -189,22 +194,23 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
         DataError
             If the sequence lacks its stereo calibration or frame interval.
         """
-        compile_kernels()
         if not isinstance(info.calibration, StereoCalibration):
             raise DataError(f"sequence {info.name!r}: a stereo tracker needs a StereoCalibration")
         if info.frame_interval_s is None or not info.frame_interval_s > 0.0:
             raise DataError(f"sequence {info.name!r}: frame_interval_s must be positive, not {info.frame_interval_s}")
         self._info = info
-        self._belief = None
-        self._prior = None
+        p = self.params
+        self._filter = TargetFilter(info.frame_interval_s, p.control_acceleration_mps2, p.sigma_a_mps2)
+        self._has_belief = False
+        self._has_prior = False
         self._last_index = None
         self._moving = init is not None
         if init is None:
             return
-        p = self.params
         mean = np.array([*init.target.position_m, *init.target.velocity_mps], dtype=float)
         stds = [p.init_position_std_m] * 2 + [p.init_velocity_std_mps] * 2
-        self._belief = Gaussian(mean, np.diag(np.square(stds)))
+        self._filter.start(Gaussian(mean, np.diag(np.square(stds))))
+        self._has_belief = True
 
     def step(self, frame: StereoFrame) -> TargetEstimate | None:
         """Predict to this frame, update with its measurement if usable, and report the mean.
@@ -219,26 +225,23 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
         if self._info is None:
             raise RuntimeError("reset must be called before step")
         measurement = self._measurement(frame)
-        self._prior = None
-        if self._belief is None:
+        self._has_prior = False
+        if not self._has_belief:
             if measurement is not None:
                 self._start_from(frame.index, *measurement)
         else:
             self._predict_to(frame.index)
-            if measurement is not None:
+            if measurement is None:
+                self._filter.advance(NO_MEASUREMENT)
+            else:
                 observation, z, navigation = measurement
-                self._prior = self._belief
-                self._belief = update(
-                    self._belief,
-                    z,
-                    lambda x: observe(x, navigation),
-                    observation_jacobian(navigation),
-                    self._measurement_noise(observation, z, navigation),
-                )
+                noise = self._measurement_noise(observation, z, navigation)
+                self._filter.advance(measurement_inputs(z, navigation, noise))
+                self._has_prior = True
                 self._moving = True
-        if self._belief is None or not self._moving:
+        if not self._has_belief or not self._moving:
             return None
-        mean = self._belief.mean
+        mean = self._filter.mean
         return TargetEstimate((float(mean[0]), float(mean[1])), (float(mean[2]), float(mean[3])))
 
     def _measurement(self, frame: StereoFrame) -> tuple[StereoMeasurement, np.ndarray, ChaseNavigation] | None:
@@ -259,8 +262,8 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
         p = self.params
         calibration = self._info.calibration
         left, right, relative = observation.left_px, observation.right_px, z
-        if p.noise_at == "prediction" and self._belief is not None:
-            predicted = observe(self._belief.mean, navigation)
+        if p.noise_at == "prediction" and self._has_belief:
+            predicted = observe(self._filter.ahead_mean, navigation)
             if predicted[0] > 0.0:
                 (left, right), relative = project(predicted[0], predicted[1], calibration), predicted
         noise = measurement_noise(left, right, calibration, p.pixel_variance_px2, p.covariance, p.lateral_k)
@@ -270,21 +273,20 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
         return noise
 
     def _predict_to(self, index: int) -> None:
-        """Advance the belief from the last frame to frame ``index`` (one ``T`` per frame)."""
+        """Have the filter's prior at frame ``index`` (one ``T`` per frame).
+
+        The filter predicted one frame ahead after its last step; a frame
+        further on is predicted again over its own number of intervals.
+        The first frame after a start from truth is not predicted.
+        """
         if self._last_index is None:
             self._last_index = index
             return
         steps = index - self._last_index
         if steps <= 0:
             raise DataError(f"sequence {self._info.name!r}: frame {index} follows frame {self._last_index}")
-        interval = steps * self._info.frame_interval_s
-        p = self.params
-        self._belief = predict(
-            self._belief,
-            lambda x: propagate(x, interval, p.control_acceleration_mps2),
-            transition_matrix(interval),
-            process_noise(interval, p.sigma_a_mps2),
-        )
+        if steps != 1:
+            self._filter.predict_over(steps)
         self._last_index = index
 
     def _start_from(
@@ -296,6 +298,8 @@ class StereoEkfTracker(GaussianBeliefView, Tracker[StereoTruth, TargetEstimate])
         covariance[:2, :2] = R @ self._measurement_noise(observation, z, navigation) @ R.T
         covariance[2:, 2:] = np.eye(2) * self.params.unknown_velocity_std_mps**2
         north, east = to_north_east(z[0], z[1], navigation.position_m, navigation.heading)
-        self._belief = Gaussian(np.array([north, east, 0.0, 0.0]), covariance)
+        self._filter.start(Gaussian(np.array([north, east, 0.0, 0.0]), covariance))
+        self._filter.predict()
+        self._has_belief = True
         self._last_index = index
 

@@ -219,3 +219,22 @@ def test_an_image_pair_is_read_as_the_front_ends_measurement(stereo_clip, stereo
         runs.append([tracker.step(frame) for frame in sequence])
     assert runs[0] == runs[1]
     assert all(estimate is not None for estimate in runs[0])
+
+
+def test_a_gap_in_the_frames_is_predicted_over_its_length_and_frames_may_not_go_back(scene):
+    frames = scene.straight_chase(12, seed=7, lost=lambda index: index == 7)
+    kept = frames[:5] + frames[7:]  # frames 5 and 6 never arrive; frame 7 has no measurement
+    tracker = StereoEkfTracker()
+    tracker.reset(scene.info(len(frames)), np.random.default_rng(0), init=frames[0].truth)
+    estimates, priors = [], []
+    for frame in kept:
+        estimates.append(tracker.step(frame))
+        priors.append(tracker.prior)
+    before, after = estimates[4], estimates[5]
+    previous = np.array([*before.position_m, *before.velocity_mps])
+    expected = propagate(previous, 3 * scene.INTERVAL_S, tracker.params.control_acceleration_mps2)
+    np.testing.assert_allclose([*after.position_m, *after.velocity_mps], expected, atol=1e-12)
+    assert priors[5] is None and priors[6] is not None
+    assert all(estimate is not None for estimate in estimates)
+    with pytest.raises(DataError, match="frame 3 follows frame 11"):
+        tracker.step(frames[3])
