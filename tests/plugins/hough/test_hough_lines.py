@@ -11,7 +11,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
-from trackbench_hough.line_loops import distance, remainder_half_turn
+from trackbench_hough.line_loops import distance, most_votes_first, remainder_half_turn
 from trackbench_hough.lines import (
     HoughLine,
     accumulator_maxima,
@@ -216,3 +216,9 @@ def test_hough_lines_are_every_maximum_strongest_first():
     assert bits(hough_lines(edges, 1.0, math.radians(1.0), 50)) == bits(
         distinct_lines_by_objects(raw, SIZE, 0.0, 0.0, None, None)
     )
+
+
+@settings(max_examples=100, deadline=None)
+@given(votes=hnp.arrays(np.float32, st.integers(0, 60), elements=st.sampled_from([1.0, 2.0, 3.0, 10.0, 250.0])))
+def test_most_votes_first_is_numpys_stable_argsort(votes):
+    np.testing.assert_array_equal(most_votes_first(votes), np.argsort(-votes, kind="stable"))
