@@ -34,91 +34,59 @@ def _marks(a: np.float32, b: np.float32, min_jump: np.float32) -> tuple[bool, bo
 
 
 @numba.njit(cache=True, nogil=True)
-def strong_crossings(response: np.ndarray, min_jump: np.float32) -> np.ndarray:
-    """``uint8`` image, 255 on the nearer-to-zero pixel of each crossing whose jump reaches ``min_jump``.
-
-    A crossing lies between vertical or horizontal neighbours ``a``, ``b`` of
-    opposite sign bits with ``|a - b| >= min_jump`` (``float32``); it marks
-    ``a`` when ``|a| <= |b|``, else ``b``.  Each crossing is judged once, row
-    by row: the marks a row gets from its horizontal crossings and from the
-    row below are gathered in buffers of one row, whose loops vectorise, and
-    the marks the row below gets are kept for it.
-    """
-    height, width = response.shape
-    edges = np.empty((height, width), np.uint8)
-    from_above = np.zeros(width, np.uint8)
-    from_left = np.zeros(width, np.uint8)
-    from_right = np.zeros(width, np.uint8)
-    for i in range(height):
-        row, out = response[i], edges[i]
-        for j in range(width - 1):
-            first, second = _marks(row[j], row[j + 1], min_jump)
-            from_right[j] = first
-            from_left[j + 1] = second
-        if i + 1 < height:
-            below = response[i + 1]
-            for j in range(width):
-                first, second = _marks(row[j], below[j], min_jump)
-                out[j] = (from_above[j] | first | from_right[j] | from_left[j]) * np.uint8(255)
-                from_above[j] = second
-        else:
-            for j in range(width):
-                out[j] = (from_above[j] | from_right[j] | from_left[j]) * np.uint8(255)
-    return edges
-
-
-@numba.njit(cache=True, nogil=True, inline="always")
-def _judge(first: np.ndarray, second: np.ndarray, min_jump: np.float32, marks_first: np.ndarray, marks_second: np.ndarray) -> None:
-    """Judge the crossings between ``first[t]`` and ``second[t]``: whether each (if strong) marks its first pixel, its second."""
-    for t in range(first.size):
-        marks_first[t], marks_second[t] = _marks(first[t], second[t], min_jump)
-
-
-@numba.njit(cache=True, nogil=True)
 def strong_crossings_in(response: np.ndarray, min_jump: np.float32, rectangles: np.ndarray) -> np.ndarray:
-    """:func:`strong_crossings` of the whole response inside the rectangles, 0 elsewhere.
+    """``uint8`` image, inside the rectangles 255 on the nearer-to-zero pixel of each crossing whose jump
+    reaches ``min_jump``, 0 elsewhere.
 
     ``rectangles`` holds rows ``(row0, row1, col0, col1)``, ends excluded.
-    Each rectangle is swept as :func:`strong_crossings` sweeps the frame,
-    with the crossings to the pixels just outside it judged too, so that
-    every pixel inside gets the value it gets in the whole frame, without
-    cutting the response.  The loops run over slices, whose indices the
-    compiler knows to be non-negative, so that they vectorise.
+    A crossing lies between vertical or horizontal neighbours ``a``, ``b``
+    (``a`` left of or above ``b``) of opposite sign bits with
+    ``|a - b| >= min_jump`` (``float32``); it marks ``a`` when
+    ``|a| <= |b|``, else ``b`` (:func:`_marks`).  Each crossing is judged
+    once, row by row: the marks a row gets from its horizontal crossings
+    and from the row below are gathered in buffers of one row, and the
+    marks the row below gets are kept for it.  The crossings with the
+    pixels just outside a rectangle are judged too, so that every pixel
+    inside gets the value it gets in the whole frame, without cutting the
+    response.  The pixels are read from the flat response at unsigned
+    offsets, which spares every read the check for a negative index.
     """
     height, width = response.shape
     edges = np.zeros((height, width), np.uint8)
+    pixels, marked = response.ravel(), edges.ravel()
     from_above = np.zeros(width, np.uint8)
     from_left = np.zeros(width, np.uint8)
     from_right = np.zeros(width, np.uint8)
-    first = np.zeros(width, np.uint8)
+    row_length, one = np.uint64(width), np.uint64(1)
     for rectangle in range(rectangles.shape[0]):
         row0, row1 = max(rectangles[rectangle, 0], 0), min(rectangles[rectangle, 1], height)
         col0, col1 = max(rectangles[rectangle, 2], 0), min(rectangles[rectangle, 3], width)
         if col0 >= col1 or row0 >= row1:
             continue
+        first, last = np.uint64(col0), np.uint64(col1)
         # Horizontal crossings (j, j + 1) that touch the rectangle's columns; from_left[0] and
         # from_right[width - 1] stay 0, as no crossing marks them.
-        pair0, pair1 = max(col0 - 1, 0), min(col1, width - 1)
-        above, left, right, below = from_above[col0:col1], from_left[col0:col1], from_right[col0:col1], first[col0:col1]
+        pair0, pair1 = np.uint64(max(col0 - 1, 0)), np.uint64(min(col1, width - 1))
         if row0 > 0:
-            _judge(response[row0 - 1, col0:col1], response[row0, col0:col1], min_jump, below, above)
+            start = np.uint64(row0) * row_length
+            for j in range(first, last):
+                from_above[j] = _marks(pixels[start - row_length + j], pixels[start + j], min_jump)[1]
         else:
-            for t in range(above.size):
-                above[t] = 0
+            for j in range(first, last):
+                from_above[j] = 0
         for i in range(row0, row1):
-            row, out = response[i], edges[i, col0:col1]
-            if pair0 < pair1:
-                _judge(row[pair0:pair1], row[pair0 + 1 : pair1 + 1], min_jump, from_right[pair0:pair1], from_left[pair0 + 1 : pair1 + 1])
-            for t in range(out.size):
-                out[t] = left[t] | right[t] | above[t]
+            start = np.uint64(i) * row_length
+            for j in range(pair0, pair1):
+                from_right[j], from_left[j + one] = _marks(pixels[start + j], pixels[start + j + one], min_jump)
             if i + 1 < height:
-                # The crossings with the row below: their first marks are this row's, their second the next row's.
-                _judge(row[col0:col1], response[i + 1, col0:col1], min_jump, below, above)
-                for t in range(out.size):
-                    out[t] = (out[t] | below[t]) * _MARK
+                below = start + row_length
+                for j in range(first, last):
+                    down, up = _marks(pixels[start + j], pixels[below + j], min_jump)
+                    marked[start + j] = (from_above[j] | down | from_right[j] | from_left[j]) * _MARK
+                    from_above[j] = up
             else:
-                for t in range(out.size):
-                    out[t] *= _MARK
+                for j in range(first, last):
+                    marked[start + j] = (from_above[j] | from_right[j] | from_left[j]) * _MARK
     return edges
 
 
@@ -128,24 +96,28 @@ def crossing_jumps(response: np.ndarray, stride: int) -> np.ndarray:
     ``stride``-th row, then between vertical neighbours on every ``stride``-th column, each in row-major order.
 
     Every pair's jump is written and the count advances only at a crossing,
-    so the loop does not branch on the signs of noise.
+    so the loop does not branch on the signs of noise.  The pixels are
+    read from the flat response at unsigned offsets, which spares every
+    read the check for a negative index.
     """
     height, width = response.shape
     sampled_rows, sampled_columns = (height + stride - 1) // stride, (width + stride - 1) // stride
     jumps = np.empty(sampled_rows * max(width - 1, 0) + max(height - 1, 0) * sampled_columns + 1, np.float32)
-    count = 0
+    pixels = response.ravel()
+    row_length, one = np.uint64(width), np.uint64(1)
+    count = np.uint64(0)
     for i in range(0, height, stride):
-        row = response[i]
-        for j in range(width - 1):
-            a, b = row[j], row[j + 1]
+        start = np.uint64(i) * row_length
+        for j in range(np.uint64(0), np.uint64(max(width - 1, 0))):
+            a, b = pixels[start + j], pixels[start + j + one]
             jumps[count] = abs(a - b)
-            count += _sign_bit(a) != _sign_bit(b)
+            count += np.uint64(_sign_bit(a) != _sign_bit(b))
     for i in range(height - 1):
-        row, below = response[i], response[i + 1]
-        for j in range(0, width, stride):
-            a, b = row[j], below[j]
+        start = np.uint64(i) * row_length
+        for j in range(np.uint64(0), row_length, np.uint64(stride)):
+            a, b = pixels[start + j], pixels[start + row_length + j]
             jumps[count] = abs(a - b)
-            count += _sign_bit(a) != _sign_bit(b)
+            count += np.uint64(_sign_bit(a) != _sign_bit(b))
     return jumps[:count]
 
 
@@ -207,7 +179,6 @@ def middle_jumps(response: np.ndarray, stride: int) -> tuple[np.ndarray, bool, n
 def compile_kernels() -> None:
     """Compile (or load from numba's cache) the kernels now, on a tiny response."""
     tiny = np.zeros((2, 2), np.float32)
-    strong_crossings(tiny, np.float32(1.0))
     strong_crossings_in(tiny, np.float32(1.0), np.zeros((1, 4), np.int64))
     crossing_jumps(tiny, 1)
     order_statistics(np.ones(2, np.float32), 1)

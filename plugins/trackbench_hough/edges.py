@@ -184,7 +184,8 @@ def zero_crossings(response: np.ndarray, sigma: float, min_step: float) -> np.nd
     response = _floating(response)
     # The jump is compared in the response's own precision, as numpy compares an array with a Python float.
     min_jump = response.dtype.type(min_step / step_height_scale(sigma))
-    return crossings.strong_crossings(response, min_jump)
+    height, width = response.shape
+    return crossings.strong_crossings_in(response, min_jump, np.array([[0, height, 0, width]], np.int64))
 
 
 def zero_crossings_in(
