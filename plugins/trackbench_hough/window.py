@@ -35,7 +35,8 @@ line_loops = lazy_module("trackbench_hough.line_loops")
 
 STRIP_ROWS = 60
 """Rows of one strip of :meth:`SearchWindow.voting_strips`: on 640 x 480 frames, eight strips follow a slanted
-cable closely enough, and each costs one call of the zero-crossing loop."""
+cable closely enough (the zero-crossing loop sweeps them all in one call,
+:func:`trackbench_hough.crossings.strong_crossings_in`)."""
 
 
 @dataclass(frozen=True, slots=True)
