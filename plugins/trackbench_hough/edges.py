@@ -119,7 +119,7 @@ def median_crossing_step(response: np.ndarray, sigma: float, stride: int = 2) ->
 
     Scaling by ``step_height_scale(sigma) > 0`` keeps the order of the
     jumps, so the middle one or two ``float32`` jumps are found by counting
-    (:func:`trackbench_hough.crossings.order_statistics`) instead of
+    (:func:`trackbench_hough.crossings.middle_jumps`) instead of
     partitioning every step, then scaled and averaged in ``float64`` as
     ``numpy.median`` averages the two middle steps.
 
@@ -139,12 +139,10 @@ def median_crossing_step(response: np.ndarray, sigma: float, stride: int = 2) ->
     """
     if stride < 1:
         raise ValueError(f"stride must be at least 1, got {stride}")
-    jumps = crossings.crossing_jumps(_floating(response), stride)
+    jumps, has_nan, below, middle = crossings.middle_jumps(_floating(response), stride)
     scale = step_height_scale(sigma)
-    if jumps.size < 2 or np.isnan(jumps).any():
+    if jumps.size < 2 or has_nan:
         return float(np.median(jumps.astype(np.float64) * scale)) if jumps.size else None
-    rank = jumps.size // 2
-    below, middle = crossings.order_statistics(jumps, rank)
     if jumps.size % 2:
         return float(np.float64(middle) * scale)
     return float((np.float64(below) * scale + np.float64(middle) * scale) / 2.0)
@@ -186,25 +184,26 @@ def zero_crossings(response: np.ndarray, sigma: float, min_step: float) -> np.nd
     response = _floating(response)
     # The jump is compared in the response's own precision, as numpy compares an array with a Python float.
     min_jump = response.dtype.type(min_step / step_height_scale(sigma))
-    return crossings.strong_crossings(response, min_jump)
+    height, width = response.shape
+    return crossings.strong_crossings_in(response, min_jump, np.array([[0, height, 0, width]], np.int64))
 
 
 def zero_crossings_in(
-    response: np.ndarray, sigma: float, min_step: float, rectangles: list[tuple[int, int, int, int]]
+    response: np.ndarray, sigma: float, min_step: float, rectangles: np.ndarray | list[tuple[int, int, int, int]]
 ) -> np.ndarray:
     """:func:`zero_crossings` inside the rectangles, 0 elsewhere.
 
-    Each rectangle ``(row0, row1, col0, col1)`` (ends excluded) is cut out of
-    the response with one more pixel each side where the frame has one, so
-    that the pixels inside see the same four neighbours as in the whole
-    frame and get the same value.
+    Each rectangle ``(row0, row1, col0, col1)`` (ends excluded) is judged in
+    place, each pixel against the same four neighbours as in the whole
+    frame, so it gets the same value
+    (:func:`trackbench_hough.crossings.strong_crossings_in`).
 
     Parameters
     ----------
     response, sigma, min_step
         As :func:`zero_crossings`.
-    rectangles : list of tuple of int
-        Where the edge image is wanted
+    rectangles : numpy.ndarray or list of tuple of int
+        Rows ``(row0, row1, col0, col1)``: where the edge image is wanted
         (:meth:`trackbench_hough.window.SearchWindow.voting_strips`).
 
     Returns
@@ -217,15 +216,8 @@ def zero_crossings_in(
     seeds/000, section 2.1.
     """
     response = _floating(response)
-    height, width = response.shape
     min_jump = response.dtype.type(min_step / step_height_scale(sigma))
-    edges = np.zeros((height, width), np.uint8)
-    for row0, row1, col0, col1 in rectangles:
-        top, left = max(row0 - 1, 0), max(col0 - 1, 0)
-        cut = np.ascontiguousarray(response[top : min(row1 + 1, height), left : min(col1 + 1, width)])
-        found = crossings.strong_crossings(cut, min_jump)
-        edges[row0:row1, col0:col1] = found[row0 - top : row1 - top, col0 - left : col1 - left]
-    return edges
+    return crossings.strong_crossings_in(response, min_jump, np.asarray(rectangles, np.int64).reshape(-1, 4))
 
 
 def edge_image(image: np.ndarray, sigma: float, min_step: float) -> np.ndarray:

@@ -18,20 +18,24 @@ distances in ``(r, phi)`` stay meaningful where OpenCV's ``theta`` wraps from
 previous result (seeds/000, section 2.1, after Balasuriya et al.).
 
 The accumulator's local maxima still come in clusters along one blurred
-edge; :func:`suppress_duplicates` keeps the strongest line of each cluster
+edge; :func:`distinct_lines` keeps the strongest line of each cluster
 so that the two borders of a pair are two different edges.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import cv2
 import numpy as np
 
+from benchmark.lazy import lazy_module
 from benchmark.modalities.camera.geometry import ImageSize, Line
+
+# The compiled loops load on the first frame, so that listing the trackers does not import numba.
+line_loops = lazy_module("trackbench_hough.line_loops")
 
 
 def wrap_half_turn(angle: float) -> float:
@@ -157,17 +161,16 @@ def hough_lines(
     Returns
     -------
     list of HoughLine
-        Strongest first.
+        Most votes first; lines of equal votes in OpenCV's order, interval by interval.
 
     References
     ----------
     seeds/000, section 2.1 (Hough transform [HA62], limited parameter space);
     seeds/004, section IV (normal parametrisation, Fig. 7a).
     """
-    size = (edges.shape[1], edges.shape[0])
-    return [HoughLine.from_opencv(rho, theta, votes, size) for rho, theta, votes in accumulator_maxima(
-        edges, rho_step, theta_step, min_votes, intervals
-    ).tolist()]
+    raw = accumulator_maxima(edges, rho_step, theta_step, min_votes, intervals)
+    # No tolerance: no line is another's duplicate, so every line is kept.
+    return distinct_lines(raw, (edges.shape[1], edges.shape[0]), 0.0, 0.0, max(len(raw), 1))
 
 
 def accumulator_maxima(
@@ -177,17 +180,17 @@ def accumulator_maxima(
     min_votes: int,
     intervals: list[tuple[float, float]] | None = None,
 ) -> np.ndarray:
-    """OpenCV's ``(rho, theta, votes)`` of the lines :func:`hough_lines` returns, in its order.
+    """OpenCV's ``(rho, theta, votes)`` of the accumulator maxima above ``min_votes``, as OpenCV gives them.
 
     The transform without the bookkeeping, so that a caller that reads only
     the strongest few lines makes a :class:`HoughLine` of only those
-    (:meth:`HoughLine.from_opencv`).  Parameters as :func:`hough_lines`.
+    (:func:`distinct_lines`).  Parameters as :func:`hough_lines`.
 
     Returns
     -------
     numpy.ndarray
-        ``float64`` array of shape ``(n, 3)``, most votes first; lines of
-        equal votes in OpenCV's order, interval by interval.
+        ``float32`` array of shape ``(n, 3)``: each interval's maxima in
+        OpenCV's order (most votes first), one interval after the other.
 
     References
     ----------
@@ -202,47 +205,76 @@ def accumulator_maxima(
             edges, rho_step, theta_step, int(min_votes), min_theta=float(low), max_theta=float(high)
         )
         if raw is not None:
-            found.append(np.asarray(raw, dtype=np.float64).reshape(-1, 3))
+            found.append(raw.reshape(-1, 3))
     if not found:
-        return np.zeros((0, 3))
-    lines = found[0] if len(found) == 1 else np.concatenate(found)
-    return lines[np.argsort(-lines[:, 2], kind="stable")]
+        return np.zeros((0, 3), np.float32)
+    return found[0] if len(found) == 1 else np.concatenate(found)
 
 
-def suppress_duplicates(
-    lines: Iterable[HoughLine], r_tolerance: float, phi_tolerance: float, limit: int | None = None
+def distinct_lines(
+    raw: np.ndarray,
+    size: ImageSize,
+    r_tolerance: float,
+    phi_tolerance: float,
+    limit: int,
+    borders: Sequence[tuple[float, float]] = (),
+    r_half: float = math.inf,
+    phi_half: float = math.inf,
 ) -> list[HoughLine]:
-    """Non-maximum suppression in ``(r, phi)``.
+    """The strongest lines of the transform that a window admits, after non-maximum suppression in ``(r, phi)``.
 
-    Walking from the strongest line down, a line is dropped when a kept one
-    lies within ``r_tolerance`` px and ``phi_tolerance`` rad of it.  The walk
+    Walking from the strongest line down, a line is admitted when it lies
+    within ``r_half`` px and ``phi_half`` rad of one of ``borders`` (every
+    line when there are none), and dropped when a kept one lies within
+    less than ``r_tolerance`` px and ``phi_tolerance`` rad of it.  The walk
     stops once ``limit`` lines are kept, which gives the first ``limit``
-    lines of the whole walk.
+    lines of the whole walk.  One compiled loop
+    (:func:`trackbench_hough.line_loops.distinct_lines`) makes the
+    :class:`HoughLine` of only the lines kept.
 
     Parameters
     ----------
-    lines : iterable of HoughLine
-        Candidate lines, strongest first; read only as far as needed.
+    raw : numpy.ndarray
+        OpenCV's ``(rho, theta, votes)`` rows (:func:`accumulator_maxima`), read most
+        votes first, lines of equal votes in their order.
+    size : tuple of int
+        Image ``(W, H)`` in px.
     r_tolerance : float
         Distance in px below which two lines are the same edge.
     phi_tolerance : float
         Angle in rad below which two lines are the same edge.
-    limit : int, optional
-        Most lines to keep; all when None.
+    limit : int
+        Most lines to keep.
+    borders : sequence of (float, float)
+        ``(r, phi)`` of the borders a window is open around
+        (:class:`trackbench_hough.window.SearchWindow`); empty: no window.
+    r_half, phi_half : float
+        The window's half-widths, px and rad.
 
     Returns
     -------
     list of HoughLine
         The kept lines, strongest first.
+
+    References
+    ----------
+    seeds/000, section 2.1 (the limited parameter space of Balasuriya et al.).
     """
-    kept: list[HoughLine] = []
-    for line in lines:
-        for other in kept:
-            dr, dphi = line.distance_to(other.r, other.phi)
-            if dr < r_tolerance and dphi < phi_tolerance:
-                break
-        else:
-            kept.append(line)
-            if limit is not None and len(kept) >= limit:
-                break
-    return kept
+    cu, cv = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
+    rows = line_loops.distinct_lines(
+        np.ascontiguousarray(raw),
+        cu,
+        cv,
+        np.array(borders, dtype=np.float64).reshape(-1, 2),
+        float(r_half),
+        float(phi_half),
+        float(r_tolerance),
+        float(phi_tolerance),
+        int(limit),
+    )
+    return [HoughLine(*row) for row in rows.tolist()]
+
+
+def compile_kernels() -> None:
+    """Compile (or load from numba's cache) the loops of the lines and pairs now, before the first timed frame."""
+    line_loops.compile_kernels()

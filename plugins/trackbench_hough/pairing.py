@@ -36,10 +36,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
+from benchmark.lazy import lazy_module
 from benchmark.modalities.camera.geometry import ImageSize, Line, cable_from_borders
 from benchmark.modalities.camera.model import CableState
 from trackbench_hough.lines import HoughLine
 from trackbench_hough.window import SearchWindow
+
+# The compiled loops load on the first frame, so that listing the trackers does not import numba.
+line_loops = lazy_module("trackbench_hough.line_loops")
 
 
 @dataclass(frozen=True, slots=True)
@@ -111,23 +117,22 @@ def compatible_pairs(
     seeds/004, section IV (grouping: no crossing, no divergence);
     seeds/000, section 2.1 and Table 5.2 (width and skew ranges).
     """
-    models = [line.line(size) for line in lines]
+    rows = np.array([(line.rho, line.theta, line.votes, line.r, line.phi) for line in lines], np.float64)
+    candidates = line_loops.near_parallel_pairs(
+        rows.reshape(-1, 5), float(anchor_votes), 2.0 * max(max_skew, max_divergence)
+    )
+    models: dict[int, Line] = {}
     pairs: list[BorderPair] = []
-    angle_limit = 2.0 * max(max_skew, max_divergence)
-    for i, first in enumerate(lines):
-        for j in range(i + 1, len(lines)):
-            second = lines[j]
-            if max(first.votes, second.votes) < anchor_votes:
-                continue
-            if first.distance_to(second.r, second.phi)[1] > angle_limit:
-                continue
-            a, b = models[i], models[j]
-            if _crossing_inside(a, b, size):
-                continue
-            state = cable_from_borders(a, b)
-            if not (-max_divergence <= state.beta <= max_skew and min_width <= state.w <= max_width):
-                continue
-            pairs.append(BorderPair(first, second, (a, b), state, first.votes + second.votes))
+    for i, j in candidates.tolist():
+        first, second = lines[i], lines[j]
+        a = models[i] if i in models else models.setdefault(i, first.line(size))
+        b = models[j] if j in models else models.setdefault(j, second.line(size))
+        if _crossing_inside(a, b, size):
+            continue
+        state = cable_from_borders(a, b)
+        if not (-max_divergence <= state.beta <= max_skew and min_width <= state.w <= max_width):
+            continue
+        pairs.append(BorderPair(first, second, (a, b), state, first.votes + second.votes))
     return pairs
 
 

@@ -42,7 +42,8 @@ from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTru
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
 from trackbench_hough.edges import compile_kernels, log_response, zero_crossings, zero_crossings_in
-from trackbench_hough.lines import HoughLine, accumulator_maxima, suppress_duplicates
+from trackbench_hough.lines import accumulator_maxima, distinct_lines
+from trackbench_hough.lines import compile_kernels as compile_line_kernels
 from trackbench_hough.pairing import choose_pair, compatible_pairs
 from trackbench_hough.params import HoughParams
 from trackbench_hough.sizes import FrameSizes
@@ -88,6 +89,7 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
             cable, when known, centre the first search window.
         """
         compile_kernels()
+        compile_line_kernels()
         self._window = None
         self._searched = None
         self._misses = 0
@@ -175,10 +177,14 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
             sizes.min_votes,
             window.theta_intervals() if window is not None else None,
         )
-        # Lines are made one by one as duplicate suppression reads them: it stops after max_lines.
-        lines = (HoughLine.from_opencv(rho, theta, votes, sizes.size) for rho, theta, votes in raw.tolist())
-        admitted = lines if window is None else (line for line in lines if window.admits(line))
-        lines = suppress_duplicates(admitted, sizes.duplicate_rho, math.radians(p.duplicate_theta_deg), p.max_lines)
+        lines = distinct_lines(
+            raw,
+            sizes.size,
+            sizes.duplicate_rho,
+            math.radians(p.duplicate_theta_deg),
+            p.max_lines,
+            *((window.borders, window.r_half, window.phi_half) if window is not None else ()),
+        )
         pairs = compatible_pairs(
             lines,
             sizes.size,

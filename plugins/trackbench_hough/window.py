@@ -24,13 +24,19 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
+from benchmark.lazy import lazy_module
 from benchmark.modalities.camera.geometry import Line
 from trackbench_hough.lines import HoughLine, normal_form, theta_intervals, wrap_half_turn
 
+# The compiled loops load on the first frame, so that listing the trackers does not import numba.
+line_loops = lazy_module("trackbench_hough.line_loops")
 
 STRIP_ROWS = 60
 """Rows of one strip of :meth:`SearchWindow.voting_strips`: on 640 x 480 frames, eight strips follow a slanted
-cable closely enough, and each costs one call of the zero-crossing loop."""
+cable closely enough (the zero-crossing loop sweeps them all in one call,
+:func:`trackbench_hough.crossings.strong_crossings_in`)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -123,9 +129,7 @@ class SearchWindow:
             best = worst if best is None else min(best, worst)
         return best
 
-    def voting_strips(
-        self, size: tuple[int, int], rho_step: float, theta_step: float
-    ) -> list[tuple[int, int, int, int]]:
+    def voting_strips(self, size: tuple[int, int], rho_step: float, theta_step: float) -> np.ndarray:
         """Rectangles ``(row0, row1, col0, col1)``, ends excluded, holding every pixel that can vote for a line admitted.
 
         HoughLines keeps an accumulator cell when it beats its four
@@ -155,8 +159,10 @@ class SearchWindow:
 
         Returns
         -------
-        list of tuple of int
-            Non-empty rectangles, top to bottom.
+        numpy.ndarray
+            ``int64`` rows ``(row0, row1, col0, col1)`` of non-empty
+            rectangles, top to bottom
+            (:func:`trackbench_hough.line_loops.voting_strips`).
 
         References
         ----------
@@ -164,8 +170,7 @@ class SearchWindow:
         range of angles and distances around the previous result.
         """
         width, height = size
-        cu, cv = (width - 1) / 2.0, (height - 1) / 2.0
-        half_diagonal = math.hypot(cu, cv)
+        half_diagonal = math.hypot((width - 1) / 2.0, (height - 1) / 2.0)
         reach = (
             self.r_half
             + 1.5 * rho_step
@@ -175,26 +180,4 @@ class SearchWindow:
         )
         # Per border, the columns within reach of its line at pixel row v are an interval whose ends are
         # linear in v (cos(phi) > 0), so a strip's extremes are at its first and last rows.
-        spans = []
-        for r, phi in self.borders:
-            cos_phi, sin_phi = math.cos(phi), math.sin(phi)
-            spans.append((r, sin_phi, cos_phi if cos_phi > 1e-6 else 0.0))
-        strips = []
-        for row0 in range(0, height, STRIP_ROWS):
-            row1 = min(row0 + STRIP_ROWS, height)
-            lowest, highest = math.inf, -math.inf
-            for r, sin_phi, cos_phi in spans:
-                offsets = [r - (cv - v) * sin_phi for v in (row0, row1 - 1)]
-                if cos_phi:
-                    ends = [(offset + side * reach) / cos_phi + cu for offset in offsets for side in (-1, 1)]
-                    lowest, highest = min(lowest, *ends), max(highest, *ends)
-                elif min(offsets) <= reach + 1.0 and max(offsets) >= -reach - 1.0:
-                    # A horizontal border: whole rows are near it.
-                    lowest, highest = -math.inf, math.inf
-            if lowest > highest:
-                continue
-            col0 = max(0, math.floor(lowest) - 1) if math.isfinite(lowest) else 0
-            col1 = min(width, math.ceil(highest) + 2) if math.isfinite(highest) else width
-            if col0 < col1:
-                strips.append((row0, row1, col0, col1))
-        return strips
+        return line_loops.voting_strips(np.array(self.borders, np.float64), reach, width, height, STRIP_ROWS)

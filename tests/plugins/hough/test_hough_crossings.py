@@ -3,6 +3,8 @@ what the array formulations they replace gave."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -123,3 +125,17 @@ def test_zero_crossings_in_rectangles_are_those_of_the_whole_frame(response, min
     for row0, row1, col0, col1 in rectangles:
         expected[row0:row1, col0:col1] = whole[row0:row1, col0:col1]
     np.testing.assert_array_equal(zero_crossings_in(response, 2.0, min_step, rectangles), expected)
+
+
+@settings(max_examples=60, deadline=None)
+@given(response=responses, stride=st.integers(1, 3), where=st.integers(0, 143))
+def test_a_nan_in_the_response_gives_numpys_median_too(response, stride, where):
+    response = response.copy()
+    response.flat[where % response.size] = np.nan
+    steps = crossing_steps_by_arrays(response, 2.0, stride)
+    found = median_crossing_step(response, 2.0, stride)
+    if steps.size == 0:
+        assert found is None
+    else:
+        expected = float(np.median(steps))
+        assert found == expected or (math.isnan(found) and math.isnan(expected))

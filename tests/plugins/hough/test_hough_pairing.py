@@ -103,3 +103,56 @@ def test_the_stronger_border_must_reach_the_anchor_votes():
     # ... two faint ones do not make a cable.
     assert compatible_pairs(cable_lines(cable, (99.0, 99.0)), SIZE, **LIMITS, anchor_votes=100.0) == []
     assert compatible_pairs(cable_lines(cable, (99.0, 99.0)), SIZE, **LIMITS) != []
+
+
+def compatible_pairs_by_objects(lines: list[HoughLine], size, *, max_skew, max_divergence, min_width, max_width, anchor_votes=0.0):
+    """trackbench_hough.pairing.compatible_pairs as it was before its first two tests were compiled."""
+    from trackbench_hough.pairing import BorderPair, _crossing_inside
+
+    from benchmark.modalities.camera.geometry import cable_from_borders
+
+    models = [line.line(size) for line in lines]
+    pairs = []
+    angle_limit = 2.0 * max(max_skew, max_divergence)
+    for i, first in enumerate(lines):
+        for j in range(i + 1, len(lines)):
+            second = lines[j]
+            if max(first.votes, second.votes) < anchor_votes:
+                continue
+            if first.distance_to(second.r, second.phi)[1] > angle_limit:
+                continue
+            a, b = models[i], models[j]
+            if _crossing_inside(a, b, size):
+                continue
+            state = cable_from_borders(a, b)
+            if not (-max_divergence <= state.beta <= max_skew and min_width <= state.w <= max_width):
+                continue
+            pairs.append(BorderPair(first, second, (a, b), state, first.votes + second.votes))
+    return pairs
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    raw=st.lists(
+        st.tuples(
+            st.floats(-400.0, 400.0),
+            st.floats(0.0, math.pi - 0.05),
+            st.integers(1, 200),
+            st.floats(-120.0, 120.0),
+            st.floats(-0.04, 0.04),
+            st.integers(1, 200),
+        ),
+        max_size=6,
+    ),
+    anchor_votes=st.sampled_from([0.0, 60.0, 150.0]),
+    max_skew_deg=st.sampled_from([1.0, 10.0]),
+)
+def test_compatible_pairs_are_those_the_line_objects_gave(raw, anchor_votes, max_skew_deg):
+    # Lines in nearly parallel couples, so that some pairs pass the first tests and reach the geometry.
+    lines = [
+        HoughLine.from_opencv(rho + shift * side, (theta + turn * side) % math.pi, votes, SIZE)
+        for rho, theta, votes, shift, turn, other_votes in raw
+        for side, votes in ((0, votes), (1, other_votes))
+    ]
+    limits = dict(LIMITS, max_skew=math.radians(max_skew_deg), anchor_votes=anchor_votes)
+    assert compatible_pairs(lines, SIZE, **limits) == compatible_pairs_by_objects(lines, SIZE, **limits)

@@ -8,7 +8,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from trackbench_hough.lines import HoughLine
-from trackbench_hough.window import SearchWindow
+from trackbench_hough.window import STRIP_ROWS, SearchWindow
 
 from benchmark.modalities.camera.geometry import cable_borders
 from benchmark.modalities.camera.model import CableState
@@ -99,7 +99,7 @@ def test_edges_outside_the_voting_strips_change_no_admitted_line(
 def test_voting_strips_cover_the_rows_near_a_horizontal_border():
     window = SearchWindow(((0.0, math.pi / 2), (10.0, math.pi / 2)), 2.0, math.radians(1.0))
     strips = window.voting_strips((640, 480), 1.0, math.radians(0.5))
-    assert strips and all(col0 == 0 and col1 == 640 for _, _, col0, col1 in strips)
+    assert len(strips) and all(col0 == 0 and col1 == 640 for _, _, col0, col1 in strips)
     assert all(row0 > 0 and row1 < 480 for row0, row1, _, _ in strips)  # but not the far rows
 
 
@@ -108,3 +108,51 @@ def test_voting_strips_follow_a_vertical_border():
     strips = window.voting_strips((640, 480), 1.0, math.radians(0.5))
     assert [(row0, row1) for row0, row1, _, _ in strips] == [(row0, row0 + 60) for row0 in range(0, 480, 60)]
     assert all(100 < col0 < 319.5 < 339.5 < col1 < 540 for _, _, col0, col1 in strips)
+
+
+def voting_strips_by_objects(window: SearchWindow, size, rho_step, theta_step) -> list[tuple[int, int, int, int]]:
+    """SearchWindow.voting_strips as it was before it was compiled."""
+    width, height = size
+    cu, cv = (width - 1) / 2.0, (height - 1) / 2.0
+    half_diagonal = math.hypot(cu, cv)
+    reach = (
+        window.r_half + 1.5 * rho_step + half_diagonal * theta_step + 1.0 + half_diagonal * (window.phi_half + theta_step)
+    )
+    spans = []
+    for r, phi in window.borders:
+        cos_phi, sin_phi = math.cos(phi), math.sin(phi)
+        spans.append((r, sin_phi, cos_phi if cos_phi > 1e-6 else 0.0))
+    strips = []
+    for row0 in range(0, height, STRIP_ROWS):
+        row1 = min(row0 + STRIP_ROWS, height)
+        lowest, highest = math.inf, -math.inf
+        for r, sin_phi, cos_phi in spans:
+            offsets = [r - (cv - v) * sin_phi for v in (row0, row1 - 1)]
+            if cos_phi:
+                ends = [(offset + side * reach) / cos_phi + cu for offset in offsets for side in (-1, 1)]
+                lowest, highest = min(lowest, *ends), max(highest, *ends)
+            elif min(offsets) <= reach + 1.0 and max(offsets) >= -reach - 1.0:
+                lowest, highest = -math.inf, math.inf
+        if lowest > highest:
+            continue
+        col0 = max(0, math.floor(lowest) - 1) if math.isfinite(lowest) else 0
+        col1 = min(width, math.ceil(highest) + 2) if math.isfinite(highest) else width
+        if col0 < col1:
+            strips.append((row0, row1, col0, col1))
+    return strips
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    size=st.sampled_from([(320, 240), (640, 480), (64, 48), (50, 200)]),
+    first=st.tuples(st.floats(-400.0, 400.0), border_angles | st.sampled_from([math.pi / 2, 1.5707953, 0.0])),
+    second=st.tuples(st.floats(-400.0, 400.0), border_angles | st.sampled_from([math.pi / 2, -1.5707953])),
+    r_half=st.floats(1.0, 60.0),
+    phi_half=st.floats(0.005, 0.3),
+    steps=st.sampled_from([(1.0, math.radians(1.0)), (2.0, math.radians(0.5))]),
+)
+def test_voting_strips_are_those_the_python_loop_gave(size, first, second, r_half, phi_half, steps):
+    window = SearchWindow((first, second), r_half, phi_half)
+    found = window.voting_strips(size, *steps)
+    assert found.dtype == np.int64
+    assert [tuple(row) for row in found.tolist()] == voting_strips_by_objects(window, size, *steps)
