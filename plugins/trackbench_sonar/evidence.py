@@ -287,7 +287,8 @@ class EvidenceScan:
         self._table = semicircle_table()[2]
         self._settings = model.settings
         self._arrays = (x, profile.returns_depth_m, self.positions, sigma_f, low, high)
-        self._floor = evidence_kernel.seabed_costs(*self._arrays, self._settings)
+        self._bounds = evidence_kernel.line_bounds(x, profile.returns_depth_m, self.positions, low, high, self._settings)
+        self._floor = np.full(count, evidence_kernel.UNFITTED)
 
     def _evaluate(self, wanted: np.ndarray) -> None:
         if not np.all(self._known[wanted]):
@@ -300,7 +301,7 @@ class EvidenceScan:
         if self._best is None:
             self._best = int(
                 evidence_kernel.evidence_maximum(
-                    *self._arrays, self._floor, self._settings, self._table, self._values, self._known
+                    *self._arrays, self._bounds, self._floor, self._settings, self._table, self._values, self._known
                 )
             )
         return self._best

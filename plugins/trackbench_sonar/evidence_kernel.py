@@ -275,6 +275,39 @@ def footprint_evidence(
     return evidence, pedestal, scored
 
 
+UNFITTED = -1.0
+"""``floor[i]`` of a candidate whose seafloor is not fitted yet (a robust cost is ``>= 0`` or ``nan``)."""
+_EPS = 2.220446049250313e-16
+_BOUND_SLACK = 1e-9
+"""Relative and absolute (in ``n (1 + a^2 + (b R)^2)``, m^2) slack of :func:`line_bounds` for the fits' ridge and rounding."""
+
+
+@numba.njit(cache=True, nogil=True)
+def _seabed_cost(
+    i: int,
+    x: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+    settings: np.ndarray,
+    work: tuple,
+) -> float:  # pragma: no cover - compiled
+    """Candidate ``i``'s seafloor cost ``C_floor`` as :func:`footprint_evidence` fits it (``nan``: not scored).
+
+    Leaves the seafloor's design and the depths of the window in ``work`` when the candidate is scored.
+    """
+    design, target, _, coefficients, normal = work
+    n = high[i] - low[i]
+    half_width, reach, relief_widths = settings[0], settings[2], settings[3]
+    if n < int(settings[7]) or not _seabed_design(
+        x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target
+    ):
+        return math.nan
+    return _fused_fit(design, target, n, 3, settings[4], int(settings[6]), coefficients, normal)
+
+
 @numba.njit(cache=True, nogil=True)
 def seabed_costs(
     x: np.ndarray,
@@ -293,18 +326,90 @@ def seabed_costs(
     with ``C_pipe >= 0``, and rounding is monotone, so ``E <= max(C_floor / sigma^2, 0)`` to the last bit;
     where ``C_floor`` is not finite, ``E`` is 0.
     """
-    half_width, reach, relief_widths = settings[0], settings[2], settings[3]
-    robust_scale, iterations, min_returns = settings[4], int(settings[6]), int(settings[7])
     count = centre.size
-    floor = np.full(count, np.nan)
-    design, target, _, coefficients, normal = _work(low, high)
+    floor = np.empty(count)
+    work = _work(low, high)
     for i in range(count):
-        n = high[i] - low[i]
-        if n >= min_returns and _seabed_design(
-            x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target
-        ):
-            floor[i] = _fused_fit(design, target, n, 3, robust_scale, iterations, coefficients, normal)
+        floor[i] = _seabed_cost(i, x, z, centre, sigma, low, high, settings, work)
     return floor
+
+
+@numba.njit(cache=True, nogil=True)
+def line_bounds(
+    x: np.ndarray, z: np.ndarray, centre: np.ndarray, low: np.ndarray, high: np.ndarray, settings: np.ndarray
+) -> np.ndarray:  # pragma: no cover - compiled
+    """An upper bound of every candidate's evidence ``E`` from the least-squares line through its window, in O(1) each.
+
+    The seafloor's cost bounds ``E`` (:func:`seabed_costs`), and that cost is bounded by the residual sum
+    of squares of the straight line fitted to the window, which running sums over the returns give for
+    every window at once:
+
+    * the fit is iteratively reweighted least squares with the Cauchy loss ``rho(r) = k^2 log(1 + r^2 /
+      k^2)``, concave in ``r^2``: each round after the first minimises a quadratic that lies above
+      ``rho`` and touches it at the previous round's residuals (majorise-minimise), so the cost of the
+      last round's coefficients is at most that of the first round's, the ordinary least squares fit;
+    * ``rho(r) <= r^2``, so that cost is at most the fit's residual sum of squares, which is at most
+      that of any other coefficients of the seafloor, among them the line ``f0 + f1 u`` (``f2 = 0``).
+
+    The chain holds in exact arithmetic for the solves as written, without their ridge ``1e-12`` of the
+    trace.  The bound adds a slack for the ridge and the rounding: :data:`_BOUND_SLACK` of the sum of
+    squares and of ``n (1 + a^2 + (b R)^2)`` (the line's coefficients ``a``, ``b`` at the window's
+    centre, ``R`` the window's half-width; the ridge's own share is ``3e-12 n`` of that per solve), and
+    the rounding of the running sums, ``4 (N + 4) eps`` of their totals.  Where the returns in a window
+    are too few, or all on one side of the pipe's span, the candidate is not scored and its bound is 0
+    (the returns are sorted, so the first and last of the window decide as :func:`_seabed_design`'s
+    loop does).  Where the window's positions are all but equal the bound is the sum of squares about the
+    mean (the constant's fit).
+
+    ``settings``: as :func:`seabed_costs` takes them.  Returns the bounds of ``E`` (``C / sigma^2``).
+    """
+    half_width, reach, noise, min_returns = settings[0], settings[2], settings[5], int(settings[7])
+    count = centre.size
+    bounds = np.zeros(count)
+    m = x.size
+    if m == 0:
+        return bounds
+    x0, z0 = x[m // 2], z[m // 2]
+    sx = np.zeros(m + 1)
+    sz = np.zeros(m + 1)
+    sxx = np.zeros(m + 1)
+    sxz = np.zeros(m + 1)
+    szz = np.zeros(m + 1)
+    total_xz = 0.0
+    for j in range(m):
+        dx, dz = x[j] - x0, z[j] - z0
+        sx[j + 1] = sx[j] + dx
+        sz[j + 1] = sz[j] + dz
+        sxx[j + 1] = sxx[j] + dx * dx
+        sxz[j + 1] = sxz[j] + dx * dz
+        szz[j + 1] = szz[j] + dz * dz
+        total_xz += abs(dx * dz)
+    rounding = 4.0 * (m + 4) * _EPS
+    scale = noise * noise
+    for i in range(count):
+        first, last = low[i], high[i]
+        n = last - first
+        if n < min_returns or n < 2:
+            continue
+        c = centre[i]
+        if not (x[first] - c <= -half_width and x[last - 1] - c >= half_width):
+            continue
+        mx = (sx[last] - sx[first]) / n
+        mz = (sz[last] - sz[first]) / n
+        cxx = max((sxx[last] - sxx[first]) - n * mx * mx, 0.0)
+        cxz = (sxz[last] - sxz[first]) - n * mx * mz
+        czz = max((szz[last] - szz[first]) - n * mz * mz, 0.0)
+        slope = 0.0
+        residual = czz
+        if cxx > rounding * sxx[m]:
+            slope = cxz / cxx
+            residual = max(czz - slope * cxz, 0.0)
+        intercept = z0 + mz + slope * (c - x0 - mx)
+        error = rounding * (szz[m] + 2.0 * abs(slope) * total_xz + slope * slope * sxx[m])
+        coefficients = n * (1.0 + intercept * intercept + (slope * reach) ** 2)
+        bound = ((1.0 + _BOUND_SLACK) * residual + error + _BOUND_SLACK * coefficients) / scale
+        bounds[i] = bound if bound >= 0.0 else math.inf
+    return bounds
 
 
 @numba.njit(cache=True, nogil=True)
@@ -323,16 +428,22 @@ def _candidate(
     known: np.ndarray,
     work: tuple,
 ) -> None:  # pragma: no cover - compiled
-    """Candidate ``i``'s ``E`` into ``values[i]``, as :func:`footprint_evidence` gives it, from its seafloor cost ``floor[i]``."""
+    """Candidate ``i``'s ``E`` into ``values[i]``, as :func:`footprint_evidence` gives it.
+
+    Its seafloor cost is ``floor[i]``, fitted here first when it is :data:`UNFITTED`.
+    """
     known[i] = True
+    design, target, raised, coefficients, normal = work
+    n = high[i] - low[i]
+    half_width, half_height, reach, relief_widths = settings[0], settings[1], settings[2], settings[3]
+    if floor[i] == UNFITTED:
+        floor[i] = _seabed_cost(i, x, z, centre, sigma, low, high, settings, work)
+    elif math.isfinite(floor[i]):
+        _seabed_design(x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target)
     floor_cost = floor[i]
     if not math.isfinite(floor_cost):
         values[i] = 0.0
         return
-    design, target, raised, coefficients, normal = work
-    n = high[i] - low[i]
-    half_width, half_height, reach, relief_widths = settings[0], settings[1], settings[2], settings[3]
-    _seabed_design(x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target)
     _pipe_design(
         x, centre[i], sigma[i], low[i], n, half_width, half_height, table, settings[8], settings[9],
         settings[10], settings[11], design, target, raised,
@@ -357,7 +468,7 @@ def evidence_at(
     values: np.ndarray,
     known: np.ndarray,
 ) -> None:  # pragma: no cover - compiled
-    """``E`` of the candidates ``wanted`` not yet ``known`` into ``values`` (``floor``: :func:`seabed_costs`'s)."""
+    """``E`` of the candidates ``wanted`` not yet ``known`` into ``values`` (``floor``: seafloor costs, :data:`UNFITTED` where not fitted yet)."""
     work = _work(low, high)
     for i in wanted:
         if not known[i]:
@@ -421,43 +532,50 @@ def evidence_maximum(
     sigma: np.ndarray,
     low: np.ndarray,
     high: np.ndarray,
+    bounds: np.ndarray,
     floor: np.ndarray,
     settings: np.ndarray,
     table: np.ndarray,
     values: np.ndarray,
     known: np.ndarray,
 ) -> int:  # pragma: no cover - compiled
-    """The first candidate of largest ``E`` (-1 when every ``E`` is 0), evaluating only those that can be it.
+    """The first candidate of largest ``E`` (-1 when every ``E`` is 0), fitting only what can decide it.
 
-    Candidates are taken in decreasing order of their bound ``C_floor / sigma^2`` (:func:`seabed_costs`; 0
-    where that cost is not finite), the largest first and then off a heap of those whose bound reaches
-    its evidence; once the bound falls below the largest ``E`` found, no candidate left can reach it.
-    Every candidate evaluated is left in ``values`` and ``known``.
+    Every candidate starts with its cheapest bound: its ``E`` where known, else ``C_floor / sigma^2``
+    where its seafloor is fitted (0 where that cost is not finite), else :func:`line_bounds`'s.  The
+    candidates are taken off a max-heap of their bounds: one bounded by its line has its seafloor
+    fitted and goes back with that tighter bound; one bounded by its seafloor has its pipe fitted and
+    its ``E`` may raise the best found.  Once the largest bound left is below the best ``E`` found, no
+    candidate left can reach it.  Candidates whose bound equals the best are still fitted, so every
+    candidate of largest ``E`` is known and the first of them is returned.  Every seafloor fitted is
+    left in ``floor``, every ``E`` in ``values`` and ``known``.
     """
     count = centre.size
     scale = settings[5] * settings[5]
-    bound = np.zeros(count)
-    top = 0
+    key = np.empty(count)
     for i in range(count):
-        if math.isfinite(floor[i]):
-            bound[i] = floor[i] / scale
-        if bound[i] > bound[top]:
-            top = i
-    if not bound[top] > 0.0:
-        return -1
-    work = _work(low, high)
-    if not known[top]:
-        _candidate(top, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
-    best = values[top]
-    heap = np.flatnonzero((bound > 0.0) & (bound >= best))
+        if known[i]:
+            key[i] = values[i]
+        elif floor[i] != UNFITTED:
+            key[i] = floor[i] / scale if math.isfinite(floor[i]) else 0.0
+        else:
+            key[i] = bounds[i]
+    heap = np.flatnonzero(key > 0.0)
     size = heap.size
     for start in range(size // 2 - 1, -1, -1):
-        _sift_down(heap, start, size, bound)
-    while size > 0 and bound[heap[0]] >= best:
+        _sift_down(heap, start, size, key)
+    work = _work(low, high)
+    best = 0.0
+    while size > 0 and key[heap[0]] >= best:
         i = heap[0]
+        if not known[i] and floor[i] == UNFITTED:
+            floor[i] = _seabed_cost(i, x, z, centre, sigma, low, high, settings, work)
+            key[i] = floor[i] / scale if math.isfinite(floor[i]) else 0.0
+            _sift_down(heap, 0, size, key)
+            continue
         size -= 1
         heap[0] = heap[size]
-        _sift_down(heap, 0, size, bound)
+        _sift_down(heap, 0, size, key)
         if not known[i]:
             _candidate(i, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
         best = max(best, values[i])
