@@ -413,99 +413,80 @@ def line_bounds(
 
 
 @numba.njit(cache=True, nogil=True)
-def _candidate(
-    i: int,
-    x: np.ndarray,
-    z: np.ndarray,
-    centre: np.ndarray,
-    sigma: np.ndarray,
-    low: np.ndarray,
-    high: np.ndarray,
-    floor: np.ndarray,
-    settings: np.ndarray,
-    table: np.ndarray,
-    values: np.ndarray,
-    known: np.ndarray,
-    work: tuple,
-) -> None:  # pragma: no cover - compiled
-    """Candidate ``i``'s ``E`` into ``values[i]``, as :func:`footprint_evidence` gives it.
+def _fit_floor(i: int, data: tuple, state: tuple, settings: np.ndarray, work: tuple) -> None:  # pragma: no cover - compiled
+    """Candidate ``i``'s seafloor cost into ``floor[i]`` and its bound ``C_floor / sigma^2`` into ``key[i]``."""
+    x, z, centre, sigma, low, high = data
+    _, _, floor, key = state
+    floor[i] = _seabed_cost(i, x, z, centre, sigma, low, high, settings, work)
+    key[i] = floor[i] / (settings[5] * settings[5]) if math.isfinite(floor[i]) else 0.0
 
-    Its seafloor cost is ``floor[i]``, fitted here first when it is :data:`UNFITTED`.
+
+@numba.njit(cache=True, nogil=True)
+def _candidate(
+    i: int, data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray, work: tuple
+) -> None:  # pragma: no cover - compiled
+    """Candidate ``i``'s ``E`` into ``values[i]`` and ``key[i]``, as :func:`footprint_evidence` gives it.
+
+    ``data``: the returns ``x``, ``z``, the candidates' centres, footprint sigmas and windows ``low``,
+    ``high``.  ``state``: ``values``, ``known``, ``floor`` (the seafloor costs, :data:`UNFITTED` where
+    not fitted yet; fitted here first then) and ``key`` (each candidate's tightest upper bound of ``E``).
     """
-    known[i] = True
+    x, z, centre, sigma, low, high = data
+    values, known, floor, key = state
     design, target, raised, coefficients, normal = work
     n = high[i] - low[i]
     half_width, half_height, reach, relief_widths = settings[0], settings[1], settings[2], settings[3]
     if floor[i] == UNFITTED:
-        floor[i] = _seabed_cost(i, x, z, centre, sigma, low, high, settings, work)
+        _fit_floor(i, data, state, settings, work)
     elif math.isfinite(floor[i]):
         _seabed_design(x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target)
+    known[i] = True
     floor_cost = floor[i]
-    if not math.isfinite(floor_cost):
+    if math.isfinite(floor_cost):
+        _pipe_design(
+            x, centre[i], sigma[i], low[i], n, half_width, half_height, table, settings[8], settings[9],
+            settings[10], settings[11], design, target, raised,
+        )
+        values[i] = _pipe_fit(
+            design, raised, n, floor_cost, settings[4], settings[5], int(settings[6]), coefficients, normal
+        )[0]
+    else:
         values[i] = 0.0
-        return
-    _pipe_design(
-        x, centre[i], sigma[i], low[i], n, half_width, half_height, table, settings[8], settings[9],
-        settings[10], settings[11], design, target, raised,
-    )
-    values[i] = _pipe_fit(
-        design, raised, n, floor_cost, settings[4], settings[5], int(settings[6]), coefficients, normal
-    )[0]
+    key[i] = values[i]
 
 
 @numba.njit(cache=True, nogil=True)
 def evidence_at(
-    wanted: np.ndarray,
-    x: np.ndarray,
-    z: np.ndarray,
-    centre: np.ndarray,
-    sigma: np.ndarray,
-    low: np.ndarray,
-    high: np.ndarray,
-    floor: np.ndarray,
-    settings: np.ndarray,
-    table: np.ndarray,
-    values: np.ndarray,
-    known: np.ndarray,
+    wanted: np.ndarray, data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray
 ) -> None:  # pragma: no cover - compiled
-    """``E`` of the candidates ``wanted`` not yet ``known`` into ``values`` (``floor``: seafloor costs, :data:`UNFITTED` where not fitted yet)."""
-    work = _work(low, high)
+    """``E`` of the candidates ``wanted`` not yet ``known`` into ``values`` (``data``, ``state``: :func:`_candidate`'s)."""
+    known = state[1]
+    work = _work(data[4], data[5])
     for i in wanted:
         if not known[i]:
-            _candidate(i, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
+            _candidate(i, data, state, settings, table, work)
 
 
 @numba.njit(cache=True, nogil=True)
 def evidence_around(
-    across: np.ndarray,
-    first_position: float,
-    spacing: float,
-    x: np.ndarray,
-    z: np.ndarray,
-    centre: np.ndarray,
-    sigma: np.ndarray,
-    low: np.ndarray,
-    high: np.ndarray,
-    floor: np.ndarray,
-    settings: np.ndarray,
+    across: np.ndarray, first_position: float, spacing: float, data: tuple, state: tuple, settings: np.ndarray,
     table: np.ndarray,
-    values: np.ndarray,
-    known: np.ndarray,
 ) -> None:  # pragma: no cover - compiled
     """:func:`evidence_at` of the grid positions about each finite position of ``across``.
 
     For each, the cells ``k - 1 .. k + 2`` with ``k = floor((across - first_position) / spacing)``,
     clipped into the grid: the two cells interpolation reads lie among them whatever the rounding.
     """
-    count = centre.size
-    work = _work(low, high)
+    known = state[1]
+    count = known.size
+    work = _work(data[4], data[5])
     for a in across:
         if not math.isfinite(a):
             continue
         cell = int(math.floor(min(max((a - first_position) / spacing, -2.0), float(count))))
         for i in range(max(cell - 1, 0), min(cell + 3, count)):
             if not known[i]:
-                _candidate(i, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
+                _candidate(i, data, state, settings, table, work)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -525,66 +506,85 @@ def _sift_down(heap: np.ndarray, start: int, size: int, key: np.ndarray) -> None
 
 
 @numba.njit(cache=True, nogil=True)
-def evidence_maximum(
-    x: np.ndarray,
-    z: np.ndarray,
-    centre: np.ndarray,
-    sigma: np.ndarray,
-    low: np.ndarray,
-    high: np.ndarray,
-    bounds: np.ndarray,
-    floor: np.ndarray,
-    settings: np.ndarray,
-    table: np.ndarray,
-    values: np.ndarray,
-    known: np.ndarray,
-) -> int:  # pragma: no cover - compiled
+def _heap_above(key: np.ndarray, level: float) -> np.ndarray:  # pragma: no cover - compiled
+    """The candidates whose bound ``key`` is above ``level``, as a max-heap."""
+    heap = np.flatnonzero(key > level)
+    for start in range(heap.size // 2 - 1, -1, -1):
+        _sift_down(heap, start, heap.size, key)
+    return heap
+
+
+@numba.njit(cache=True, nogil=True)
+def _settle_top(
+    heap: np.ndarray, size: int, data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray, work: tuple
+) -> tuple[int, int]:  # pragma: no cover - compiled
+    """Tighten the bound of the heap's top candidate one step: ``(i, size)`` when its ``E`` is known, ``(-1, size)`` when not.
+
+    A top bounded by the line through its window has its seafloor fitted and is sifted down with that
+    bound; one bounded by its seafloor (or by its ``E``) leaves the heap with its ``E`` computed.
+    """
+    values, known, floor, key = state
+    i = heap[0]
+    if not known[i] and floor[i] == UNFITTED:
+        _fit_floor(i, data, state, settings, work)
+        _sift_down(heap, 0, size, key)
+        return -1, size
+    size -= 1
+    heap[0] = heap[size]
+    _sift_down(heap, 0, size, key)
+    if not known[i]:
+        _candidate(i, data, state, settings, table, work)
+    return i, size
+
+
+@numba.njit(cache=True, nogil=True)
+def evidence_maximum(data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray) -> int:  # pragma: no cover - compiled
     """The first candidate of largest ``E`` (-1 when every ``E`` is 0), fitting only what can decide it.
 
-    Every candidate starts with its cheapest bound: its ``E`` where known, else ``C_floor / sigma^2``
-    where its seafloor is fitted (0 where that cost is not finite), else :func:`line_bounds`'s.  The
-    candidates are taken off a max-heap of their bounds: one bounded by its line has its seafloor
-    fitted and goes back with that tighter bound; one bounded by its seafloor has its pipe fitted and
-    its ``E`` may raise the best found.  Once the largest bound left is below the best ``E`` found, no
-    candidate left can reach it.  Candidates whose bound equals the best are still fitted, so every
-    candidate of largest ``E`` is known and the first of them is returned.  Every seafloor fitted is
-    left in ``floor``, every ``E`` in ``values`` and ``known``.
+    Every candidate's ``key`` is its tightest bound so far: its ``E`` where known, else ``C_floor /
+    sigma^2`` where its seafloor is fitted (0 where that cost is not finite), else :func:`line_bounds`'s.
+    The candidates are taken off a max-heap of their bounds (:func:`_settle_top`): one bounded by its
+    line has its seafloor fitted and goes back with that tighter bound; one bounded by its seafloor has
+    its pipe fitted and its ``E`` may raise the best found.  Once the largest bound left is below the
+    best ``E`` found, no candidate left can reach it.  Candidates whose bound equals the best are still
+    fitted, so every candidate of largest ``E`` is known and the first of them is returned.
     """
-    count = centre.size
-    scale = settings[5] * settings[5]
-    key = np.empty(count)
-    for i in range(count):
-        if known[i]:
-            key[i] = values[i]
-        elif floor[i] != UNFITTED:
-            key[i] = floor[i] / scale if math.isfinite(floor[i]) else 0.0
-        else:
-            key[i] = bounds[i]
-    heap = np.flatnonzero(key > 0.0)
+    values, known = state[0], state[1]
+    key = state[3]
+    heap = _heap_above(key, 0.0)
     size = heap.size
-    for start in range(size // 2 - 1, -1, -1):
-        _sift_down(heap, start, size, key)
-    work = _work(low, high)
+    work = _work(data[4], data[5])
     best = 0.0
     while size > 0 and key[heap[0]] >= best:
-        i = heap[0]
-        if not known[i] and floor[i] == UNFITTED:
-            floor[i] = _seabed_cost(i, x, z, centre, sigma, low, high, settings, work)
-            key[i] = floor[i] / scale if math.isfinite(floor[i]) else 0.0
-            _sift_down(heap, 0, size, key)
-            continue
-        size -= 1
-        heap[0] = heap[size]
-        _sift_down(heap, 0, size, key)
-        if not known[i]:
-            _candidate(i, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
-        best = max(best, values[i])
+        i, size = _settle_top(heap, size, data, state, settings, table, work)
+        if i >= 0:
+            best = max(best, values[i])
     if not best > 0.0:
         return -1
-    for i in range(count):
+    for i in range(known.size):
         if known[i] and values[i] == best:
             return i
     return -1
+
+
+@numba.njit(cache=True, nogil=True)
+def evidence_exceeds(
+    level: float, data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray
+) -> bool:  # pragma: no cover - compiled
+    """Whether some candidate's ``E`` is above ``level``, fitting only what can decide it.
+
+    As :func:`evidence_maximum`, with the best found fixed at ``level``: candidates are taken off the heap of
+    bounds above it until one's ``E`` is above it (True) or no bound left is (False).
+    """
+    values, key = state[0], state[3]
+    heap = _heap_above(key, level)
+    size = heap.size
+    work = _work(data[4], data[5])
+    while size > 0 and key[heap[0]] > level:
+        i, size = _settle_top(heap, size, data, state, settings, table, work)
+        if i >= 0 and values[i] > level:
+            return True
+    return False
 
 
 @numba.njit(cache=True, nogil=True)
