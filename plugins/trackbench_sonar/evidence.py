@@ -55,10 +55,12 @@ whose window holds fewer than :data:`MIN_RETURNS` returns, or none beyond
 the pipe's span on one side, scores 0.
 
 The scan (Fig. 2 of the paper) holds ``E`` at every grid position.  It is
-computed where it is read (:class:`EvidenceScan`): the seafloor's fit
-about every candidate bounds that candidate's evidence, so the scan's
-maximum needs the pipe fitted only where the bound reaches it, and a
-particle filter's weights only where its particles are.
+computed where it is read (:class:`EvidenceScan`): the straight line
+through a candidate's window bounds its seafloor's cost, which bounds its
+evidence, so the scan's maximum needs the seafloor fitted only where the
+line's bound reaches the best evidence found and the pipe only where the
+seafloor's does, and a particle filter's weights only where its particles
+are.
 """
 
 from __future__ import annotations

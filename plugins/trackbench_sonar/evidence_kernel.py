@@ -20,6 +20,14 @@ the array form's to ``1e-9`` of the larger of it and 1
 (tests/plugins/sonar/test_sonar_evidence_kernel.py; about ``1e-13`` on the
 pings of the sonar suites).
 
+A scan read lazily (:class:`trackbench_sonar.evidence.EvidenceScan`)
+bounds each candidate's evidence before it fits anything: from running
+sums over the returns, the line through every window at once
+(:func:`line_bounds`), then the seafloor's cost of the candidates whose
+line can matter, then their pipes (:func:`evidence_maximum`,
+:func:`evidence_exceeds`).  The values it fits are those of
+:func:`footprint_evidence`, the same functions on the same numbers.
+
 References
 ----------
 seeds/003, section 2, eq. (1) and Fig. 2.
@@ -355,7 +363,10 @@ def line_bounds(
     trace.  The bound adds a slack for the ridge and the rounding: :data:`_BOUND_SLACK` of the sum of
     squares and of ``n (1 + a^2 + (b R)^2)`` (the line's coefficients ``a``, ``b`` at the window's
     centre, ``R`` the window's half-width; the ridge's own share is ``3e-12 n`` of that per solve), and
-    the rounding of the running sums, ``4 (N + 4) eps`` of their totals.  Where the returns in a window
+    the rounding of the running sums, ``4 (N + 4) eps`` of their totals.  Where the line fits the returns
+    exactly the chain has no slack of its own: there the seafloor's cost comes out at up to ``2e-17``
+    m^2 above the line's sum of squares (the ridge), against a slack of ``1e-9 n (1 + a^2)``, about
+    ``1e-5`` m^2 at 30 m depth (tests/plugins/sonar/test_sonar_evidence_scan.py).  Where the returns in a window
     are too few, or all on one side of the pipe's span, the candidate is not scored and its bound is 0
     (the returns are sorted, so the first and last of the window decide as :func:`_seabed_design`'s
     loop does).  Where the window's positions are all but equal the bound is the sum of squares about the
