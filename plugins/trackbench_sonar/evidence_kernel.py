@@ -675,13 +675,24 @@ def candidate_windows(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover - compiled
     """Each candidate's window of returns ``x[low:high]`` within ``reach`` and the footprint's sigma there.
 
-    As :meth:`~trackbench_sonar.evidence.FootprintLikelihood.windows` gives them: the binary searches of
-    ``numpy.searchsorted`` and :func:`~trackbench_sonar.footprint.footprint_sigma`'s arithmetic, ``(c^2 +
-    z^2) phi / z`` over ``fwhm_per_sigma`` (``inf`` at or above the transducer, 0 for rays).
+    As :meth:`~trackbench_sonar.evidence.FootprintLikelihood.windows` gives them: the indices of
+    ``numpy.searchsorted(x, centre - reach, side="left")`` and ``numpy.searchsorted(x, centre + reach,
+    side="right")``, found by walking up ``x`` (sorted, finite) as the centres (increasing) move on, and
+    :func:`~trackbench_sonar.footprint.footprint_sigma`'s arithmetic, ``(c^2 + z^2) phi / z`` over
+    ``fwhm_per_sigma`` (``inf`` at or above the transducer, 0 for rays).
     """
-    low = np.searchsorted(x, centre - reach, side="left")
-    high = np.searchsorted(x, centre + reach, side="right")
-    sigma = np.zeros(centre.size)
+    count, size = centre.size, x.size
+    low = np.empty(count, dtype=np.int64)
+    high = np.empty(count, dtype=np.int64)
+    first = last = 0
+    for i in range(count):
+        start, end = centre[i] - reach, centre[i] + reach
+        while first < size and x[first] < start:
+            first += 1
+        while last < size and x[last] <= end:
+            last += 1
+        low[i], high[i] = first, last
+    sigma = np.zeros(count)
     if beam_width > 0.0:
         for i in range(centre.size):
             c, z = centre[i], depth[i]
