@@ -1,13 +1,15 @@
 """The evidence scan computed where it is read, against the scan computed everywhere (seeds/003, eq. 1 as evidence).
 
-:class:`~trackbench_sonar.evidence.EvidenceScan` fits the seafloor of
-every candidate, bounds each candidate's evidence by that fit's cost and
-fits the pipe only where a value is read or the bound can reach the
-maximum.  Everything it reports must be what the scan of every candidate
-(:meth:`FootprintLikelihood.candidates`) gives, bit for bit: the values,
-the maximum, the peak and the values between grid positions.  The fits
-themselves (:func:`~trackbench_sonar.evidence_kernel._fused_fit`, fewer
-passes over the returns) must equal the form they replaced,
+:class:`~trackbench_sonar.evidence.EvidenceScan` bounds each candidate's
+evidence by the straight line through its window, then by its seafloor's
+fit, and fits the pipe only where a value is read or a bound can reach the
+maximum or the level asked about.  Everything it reports must be what the
+scan of every candidate (:meth:`FootprintLikelihood.candidates`) gives,
+bit for bit: the values, the maximum, the peak, whether a level is
+exceeded and the values between grid positions, in whatever order they
+are read.  The line's bound must hold wherever the seafloor is fitted.
+The fits themselves (:func:`~trackbench_sonar.evidence_kernel._fused_fit`,
+fewer passes over the returns) must equal the form they replaced,
 :func:`old_robust_fit` below (the plugin's code before, kept here as the
 reference), to the last bit.
 """
