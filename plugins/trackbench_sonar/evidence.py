@@ -327,7 +327,8 @@ class EvidenceScan:
         """Whether some value is above ``level`` (``maximum() > level``), fitting no more than that takes."""
         if self._best is not None or self._state is None:
             return self.maximum() > level
-        return bool(evidence_kernel.evidence_exceeds(float(level), self._data, self._state, self._settings, self._table))
+        exceeded = evidence_kernel.evidence_exceeds(float(level), self._data, self._state, self._settings, self._table)
+        return bool(exceeded)
 
     def maximum(self) -> float:
         """The largest value."""

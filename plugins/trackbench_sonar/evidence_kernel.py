@@ -287,7 +287,7 @@ UNFITTED = -1.0
 """``floor[i]`` of a candidate whose seafloor is not fitted yet (a robust cost is ``>= 0`` or ``nan``)."""
 _EPS = 2.220446049250313e-16
 _BOUND_SLACK = 1e-9
-"""Relative and absolute (in ``n (1 + a^2 + (b R)^2)``, m^2) slack of :func:`line_bounds` for the fits' ridge and rounding."""
+"""Slack of :func:`line_bounds` for the fits' ridge and rounding: relative, and in ``n (1 + a^2 + (b R)^2)`` m^2."""
 
 
 @numba.njit(cache=True, nogil=True)
@@ -424,7 +424,9 @@ def line_bounds(
 
 
 @numba.njit(cache=True, nogil=True)
-def _fit_floor(i: int, data: tuple, state: tuple, settings: np.ndarray, work: tuple) -> None:  # pragma: no cover - compiled
+def _fit_floor(
+    i: int, data: tuple, state: tuple, settings: np.ndarray, work: tuple
+) -> None:  # pragma: no cover - compiled
     """Candidate ``i``'s seafloor cost into ``floor[i]`` and its bound ``C_floor / sigma^2`` into ``key[i]``."""
     x, z, centre, sigma, low, high = data
     _, _, floor, key = state
@@ -549,7 +551,9 @@ def _settle_top(
 
 
 @numba.njit(cache=True, nogil=True)
-def evidence_maximum(data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray) -> int:  # pragma: no cover - compiled
+def evidence_maximum(
+    data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray
+) -> int:  # pragma: no cover - compiled
     """The first candidate of largest ``E`` (-1 when every ``E`` is 0), fitting only what can decide it.
 
     Every candidate's ``key`` is its tightest bound so far: its ``E`` where known, else ``C_floor /
