@@ -22,6 +22,10 @@ import math
 
 import numpy as np
 
+from benchmark.lazy import lazy_module
+
+estimate_kernel = lazy_module("trackbench_sonar.estimate_kernel")
+
 
 def peak_mean(positions: np.ndarray, weights: np.ndarray, halfwidth: float) -> float:
     """The weighted mean of the particles in the heaviest window of half-width ``halfwidth``.
@@ -50,14 +54,5 @@ def peak_mean(positions: np.ndarray, weights: np.ndarray, halfwidth: float) -> f
     weights = np.asarray(weights, dtype=float)
     if halfwidth <= 0.0 or math.isinf(halfwidth):
         return float(weights @ positions / weights.sum())
-    order = np.argsort(positions, kind="stable")
-    x, w = positions[order], weights[order]
-    mass = np.concatenate([[0.0], np.cumsum(w)])
-    moment = np.concatenate([[0.0], np.cumsum(w * x)])
-    low = np.searchsorted(x, x - halfwidth, side="left")
-    high = np.searchsorted(x, x + halfwidth, side="right")
-    window = mass[high] - mass[low]
-    best = int(np.argmax(window))
-    if not window[best] > 0.0:
-        return float(np.mean(positions))
-    return float((moment[high[best]] - moment[low[best]]) / window[best])
+    window, estimate = estimate_kernel.heaviest_window_mean(positions, weights, float(halfwidth))
+    return float(estimate) if window > 0.0 else float(np.mean(positions))

@@ -55,10 +55,12 @@ whose window holds fewer than :data:`MIN_RETURNS` returns, or none beyond
 the pipe's span on one side, scores 0.
 
 The scan (Fig. 2 of the paper) holds ``E`` at every grid position.  It is
-computed where it is read (:class:`EvidenceScan`): the seafloor's fit
-about every candidate bounds that candidate's evidence, so the scan's
-maximum needs the pipe fitted only where the bound reaches it, and a
-particle filter's weights only where its particles are.
+computed where it is read (:class:`EvidenceScan`): the straight line
+through a candidate's window bounds its seafloor's cost, which bounds its
+evidence, so the scan's maximum needs the seafloor fitted only where the
+line's bound reaches the best evidence found and the pipe only where the
+seafloor's does, and a particle filter's weights only where its particles
+are.
 """
 
 from __future__ import annotations
@@ -249,14 +251,19 @@ class EvidenceScan:
     """The evidence of a :class:`FootprintLikelihood` over a profile's grid, candidate by candidate where it is read.
 
     A :class:`~trackbench_sonar.likelihood.LikelihoodScan` whose values are
-    computed when asked for: every candidate's seafloor is fitted at once
-    (:func:`~trackbench_sonar.evidence_kernel.seabed_costs`, a third of
-    the work), and its cost bounds the candidate's evidence, so that the
-    scan's maximum (:meth:`maximum`, :meth:`peak`) needs the pipe fitted
-    only where that bound reaches the best evidence found, and the values
-    at a few positions (:meth:`at`, a particle filter's weights) only at
-    the grid positions either side of them.  Every value is the one
-    :meth:`FootprintLikelihood.candidates` gives, to the last bit.
+    computed when asked for.  Each candidate's evidence is bounded from
+    above in three steps, each tighter and dearer than the one before: by
+    the straight line through its window (every candidate at once, from
+    running sums over the returns: :func:`~trackbench_sonar.evidence_kernel.line_bounds`),
+    by the cost of its seafloor's fit, and by its evidence itself once its
+    pipe is fitted.  The scan's maximum (:meth:`maximum`, :meth:`peak`) and
+    whether some value is above a level (:meth:`exceeds`, :attr:`is_empty`)
+    tighten only the candidates whose bound reaches the best found or the
+    level (:func:`~trackbench_sonar.evidence_kernel.evidence_maximum`,
+    :func:`~trackbench_sonar.evidence_kernel.evidence_exceeds`), and the
+    values at a few positions (:meth:`at`, a particle filter's weights)
+    need only the grid positions either side of them.  Every value is the
+    one :meth:`FootprintLikelihood.candidates` gives, to the last bit.
 
     Parameters
     ----------
@@ -277,8 +284,8 @@ class EvidenceScan:
         self._values = np.zeros(count)
         self._known = np.zeros(count, dtype=bool)
         self._best: int | None = None
-        self._floor: np.ndarray | None = None
-        x = profile.returns_across_m
+        self._state: tuple[np.ndarray, ...] | None = None
+        x, z = profile.returns_across_m, profile.returns_depth_m
         if x.size < MIN_RETURNS:
             self._known[:] = True
             self._best = -1
@@ -286,23 +293,18 @@ class EvidenceScan:
         low, high, sigma_f = model.windows(profile)
         self._table = semicircle_table()[2]
         self._settings = model.settings
-        self._arrays = (x, profile.returns_depth_m, self.positions, sigma_f, low, high)
-        self._floor = evidence_kernel.seabed_costs(*self._arrays, self._settings)
+        self._data = (x, z, self.positions, sigma_f, low, high)
+        bounds = evidence_kernel.line_bounds(x, z, self.positions, low, high, self._settings)
+        self._state = (self._values, self._known, np.full(count, evidence_kernel.UNFITTED), bounds)
 
     def _evaluate(self, wanted: np.ndarray) -> None:
         if not np.all(self._known[wanted]):
-            evidence_kernel.evidence_at(
-                wanted, *self._arrays, self._floor, self._settings, self._table, self._values, self._known
-            )
+            evidence_kernel.evidence_at(wanted, self._data, self._state, self._settings, self._table)
 
     def _strongest(self) -> int:
         """The first grid index of the largest value, -1 when every value is 0."""
         if self._best is None:
-            self._best = int(
-                evidence_kernel.evidence_maximum(
-                    *self._arrays, self._floor, self._settings, self._table, self._values, self._known
-                )
-            )
+            self._best = int(evidence_kernel.evidence_maximum(self._data, self._state, self._settings, self._table))
         return self._best
 
     @property
@@ -319,7 +321,14 @@ class EvidenceScan:
     @property
     def is_empty(self) -> bool:
         """True when no value is positive."""
-        return self._strongest() < 0
+        return not self.exceeds(0.0)
+
+    def exceeds(self, level: float) -> bool:
+        """Whether some value is above ``level`` (``maximum() > level``), fitting no more than that takes."""
+        if self._best is not None or self._state is None:
+            return self.maximum() > level
+        exceeded = evidence_kernel.evidence_exceeds(float(level), self._data, self._state, self._settings, self._table)
+        return bool(exceeded)
 
     def maximum(self) -> float:
         """The largest value."""
@@ -329,10 +338,10 @@ class EvidenceScan:
     def at(self, across_m: np.ndarray) -> np.ndarray:
         """The evidence at arbitrary positions, as :meth:`LikelihoodScan.at <trackbench_sonar.likelihood.LikelihoodScan.at>` reads it."""
         across = np.asarray(across_m, dtype=float)
-        if self._floor is not None:
+        if self._state is not None:
             evidence_kernel.evidence_around(
-                across.ravel(), float(self.positions[0]), self._spacing, *self._arrays, self._floor,
-                self._settings, self._table, self._values, self._known,
+                across.ravel(), float(self.positions[0]), self._spacing, self._data, self._state, self._settings,
+                self._table,
             )
         return interpolate(self.positions, self._values, across)
 

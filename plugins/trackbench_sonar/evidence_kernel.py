@@ -20,6 +20,14 @@ the array form's to ``1e-9`` of the larger of it and 1
 (tests/plugins/sonar/test_sonar_evidence_kernel.py; about ``1e-13`` on the
 pings of the sonar suites).
 
+A scan read lazily (:class:`trackbench_sonar.evidence.EvidenceScan`)
+bounds each candidate's evidence before it fits anything: from running
+sums over the returns, the line through every window at once
+(:func:`line_bounds`), then the seafloor's cost of the candidates whose
+line can matter, then their pipes (:func:`evidence_maximum`,
+:func:`evidence_exceeds`).  The values it fits are those of
+:func:`footprint_evidence`, the same functions on the same numbers.
+
 References
 ----------
 seeds/003, section 2, eq. (1) and Fig. 2.
@@ -275,6 +283,39 @@ def footprint_evidence(
     return evidence, pedestal, scored
 
 
+UNFITTED = -1.0
+"""``floor[i]`` of a candidate whose seafloor is not fitted yet (a robust cost is ``>= 0`` or ``nan``)."""
+_EPS = 2.220446049250313e-16
+_BOUND_SLACK = 1e-9
+"""Slack of :func:`line_bounds` for the fits' ridge and rounding: relative, and in ``n (1 + a^2 + (b R)^2)`` m^2."""
+
+
+@numba.njit(cache=True, nogil=True)
+def _seabed_cost(
+    i: int,
+    x: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+    settings: np.ndarray,
+    work: tuple,
+) -> float:  # pragma: no cover - compiled
+    """Candidate ``i``'s seafloor cost ``C_floor`` as :func:`footprint_evidence` fits it (``nan``: not scored).
+
+    Leaves the seafloor's design and the depths of the window in ``work`` when the candidate is scored.
+    """
+    design, target, _, coefficients, normal = work
+    n = high[i] - low[i]
+    half_width, reach, relief_widths = settings[0], settings[2], settings[3]
+    if n < int(settings[7]) or not _seabed_design(
+        x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target
+    ):
+        return math.nan
+    return _fused_fit(design, target, n, 3, settings[4], int(settings[6]), coefficients, normal)
+
+
 @numba.njit(cache=True, nogil=True)
 def seabed_costs(
     x: np.ndarray,
@@ -293,108 +334,172 @@ def seabed_costs(
     with ``C_pipe >= 0``, and rounding is monotone, so ``E <= max(C_floor / sigma^2, 0)`` to the last bit;
     where ``C_floor`` is not finite, ``E`` is 0.
     """
-    half_width, reach, relief_widths = settings[0], settings[2], settings[3]
-    robust_scale, iterations, min_returns = settings[4], int(settings[6]), int(settings[7])
     count = centre.size
-    floor = np.full(count, np.nan)
-    design, target, _, coefficients, normal = _work(low, high)
+    floor = np.empty(count)
+    work = _work(low, high)
     for i in range(count):
-        n = high[i] - low[i]
-        if n >= min_returns and _seabed_design(
-            x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target
-        ):
-            floor[i] = _fused_fit(design, target, n, 3, robust_scale, iterations, coefficients, normal)
+        floor[i] = _seabed_cost(i, x, z, centre, sigma, low, high, settings, work)
     return floor
 
 
 @numba.njit(cache=True, nogil=True)
-def _candidate(
-    i: int,
-    x: np.ndarray,
-    z: np.ndarray,
-    centre: np.ndarray,
-    sigma: np.ndarray,
-    low: np.ndarray,
-    high: np.ndarray,
-    floor: np.ndarray,
-    settings: np.ndarray,
-    table: np.ndarray,
-    values: np.ndarray,
-    known: np.ndarray,
-    work: tuple,
+def line_bounds(
+    x: np.ndarray, z: np.ndarray, centre: np.ndarray, low: np.ndarray, high: np.ndarray, settings: np.ndarray
+) -> np.ndarray:  # pragma: no cover - compiled
+    """An upper bound of every candidate's evidence ``E`` from the least-squares line through its window, in O(1) each.
+
+    The seafloor's cost bounds ``E`` (:func:`seabed_costs`), and that cost is bounded by the residual sum
+    of squares of the straight line fitted to the window, which running sums over the returns give for
+    every window at once:
+
+    * the fit is iteratively reweighted least squares with the Cauchy loss ``rho(r) = k^2 log(1 + r^2 /
+      k^2)``, concave in ``r^2``: each round after the first minimises a quadratic that lies above
+      ``rho`` and touches it at the previous round's residuals (majorise-minimise), so the cost of the
+      last round's coefficients is at most that of the first round's, the ordinary least squares fit;
+    * ``rho(r) <= r^2``, so that cost is at most the fit's residual sum of squares, which is at most
+      that of any other coefficients of the seafloor, among them the line ``f0 + f1 u`` (``f2 = 0``).
+
+    The chain holds in exact arithmetic for the solves as written, without their ridge ``1e-12`` of the
+    trace.  The bound adds a slack for the ridge and the rounding: :data:`_BOUND_SLACK` of the sum of
+    squares and of ``n (1 + a^2 + (b R)^2)`` (the line's coefficients ``a``, ``b`` at the window's
+    centre, ``R`` the window's half-width; the ridge's own share is ``3e-12 n`` of that per solve), and
+    the rounding of the running sums, ``4 (N + 4) eps`` of their totals.  Where the line fits the returns
+    exactly the chain has no slack of its own: there the seafloor's cost comes out at up to ``2e-17``
+    m^2 above the line's sum of squares (the ridge), against a slack of ``1e-9 n (1 + a^2)``, about
+    ``1e-5`` m^2 at 30 m depth (tests/plugins/sonar/test_sonar_evidence_scan.py).  Where the returns in a window
+    are too few, or all on one side of the pipe's span, the candidate is not scored and its bound is 0
+    (the returns are sorted, so the first and last of the window decide as :func:`_seabed_design`'s
+    loop does).  Where the window's positions are all but equal the bound is the sum of squares about the
+    mean (the constant's fit).
+
+    ``settings``: as :func:`seabed_costs` takes them.  Returns the bounds of ``E`` (``C / sigma^2``).
+    """
+    half_width, reach, noise, min_returns = settings[0], settings[2], settings[5], int(settings[7])
+    count = centre.size
+    bounds = np.zeros(count)
+    m = x.size
+    if m == 0:
+        return bounds
+    x0, z0 = x[m // 2], z[m // 2]
+    sx = np.zeros(m + 1)
+    sz = np.zeros(m + 1)
+    sxx = np.zeros(m + 1)
+    sxz = np.zeros(m + 1)
+    szz = np.zeros(m + 1)
+    total_xz = 0.0
+    for j in range(m):
+        dx, dz = x[j] - x0, z[j] - z0
+        sx[j + 1] = sx[j] + dx
+        sz[j + 1] = sz[j] + dz
+        sxx[j + 1] = sxx[j] + dx * dx
+        sxz[j + 1] = sxz[j] + dx * dz
+        szz[j + 1] = szz[j] + dz * dz
+        total_xz += abs(dx * dz)
+    rounding = 4.0 * (m + 4) * _EPS
+    scale = noise * noise
+    for i in range(count):
+        first, last = low[i], high[i]
+        n = last - first
+        if n < min_returns or n < 2:
+            continue
+        c = centre[i]
+        if not (x[first] - c <= -half_width and x[last - 1] - c >= half_width):
+            continue
+        mx = (sx[last] - sx[first]) / n
+        mz = (sz[last] - sz[first]) / n
+        cxx = max((sxx[last] - sxx[first]) - n * mx * mx, 0.0)
+        cxz = (sxz[last] - sxz[first]) - n * mx * mz
+        czz = max((szz[last] - szz[first]) - n * mz * mz, 0.0)
+        slope = 0.0
+        residual = czz
+        if cxx > rounding * sxx[m]:
+            slope = cxz / cxx
+            residual = max(czz - slope * cxz, 0.0)
+        intercept = z0 + mz + slope * (c - x0 - mx)
+        error = rounding * (szz[m] + 2.0 * abs(slope) * total_xz + slope * slope * sxx[m])
+        coefficients = n * (1.0 + intercept * intercept + (slope * reach) ** 2)
+        bound = ((1.0 + _BOUND_SLACK) * residual + error + _BOUND_SLACK * coefficients) / scale
+        bounds[i] = bound if bound >= 0.0 else math.inf
+    return bounds
+
+
+@numba.njit(cache=True, nogil=True)
+def _fit_floor(
+    i: int, data: tuple, state: tuple, settings: np.ndarray, work: tuple
 ) -> None:  # pragma: no cover - compiled
-    """Candidate ``i``'s ``E`` into ``values[i]``, as :func:`footprint_evidence` gives it, from its seafloor cost ``floor[i]``."""
-    known[i] = True
-    floor_cost = floor[i]
-    if not math.isfinite(floor_cost):
-        values[i] = 0.0
-        return
+    """Candidate ``i``'s seafloor cost into ``floor[i]`` and its bound ``C_floor / sigma^2`` into ``key[i]``."""
+    x, z, centre, sigma, low, high = data
+    _, _, floor, key = state
+    floor[i] = _seabed_cost(i, x, z, centre, sigma, low, high, settings, work)
+    key[i] = floor[i] / (settings[5] * settings[5]) if math.isfinite(floor[i]) else 0.0
+
+
+@numba.njit(cache=True, nogil=True)
+def _candidate(
+    i: int, data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray, work: tuple
+) -> None:  # pragma: no cover - compiled
+    """Candidate ``i``'s ``E`` into ``values[i]`` and ``key[i]``, as :func:`footprint_evidence` gives it.
+
+    ``data``: the returns ``x``, ``z``, the candidates' centres, footprint sigmas and windows ``low``,
+    ``high``.  ``state``: ``values``, ``known``, ``floor`` (the seafloor costs, :data:`UNFITTED` where
+    not fitted yet; fitted here first then) and ``key`` (each candidate's tightest upper bound of ``E``).
+    """
+    x, z, centre, sigma, low, high = data
+    values, known, floor, key = state
     design, target, raised, coefficients, normal = work
     n = high[i] - low[i]
     half_width, half_height, reach, relief_widths = settings[0], settings[1], settings[2], settings[3]
-    _seabed_design(x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target)
-    _pipe_design(
-        x, centre[i], sigma[i], low[i], n, half_width, half_height, table, settings[8], settings[9],
-        settings[10], settings[11], design, target, raised,
-    )
-    values[i] = _pipe_fit(
-        design, raised, n, floor_cost, settings[4], settings[5], int(settings[6]), coefficients, normal
-    )[0]
+    if floor[i] == UNFITTED:
+        _fit_floor(i, data, state, settings, work)
+    elif math.isfinite(floor[i]):
+        _seabed_design(x, z, centre[i], sigma[i], low[i], n, half_width, reach, relief_widths, design, target)
+    known[i] = True
+    floor_cost = floor[i]
+    if math.isfinite(floor_cost):
+        _pipe_design(
+            x, centre[i], sigma[i], low[i], n, half_width, half_height, table, settings[8], settings[9],
+            settings[10], settings[11], design, target, raised,
+        )
+        values[i] = _pipe_fit(
+            design, raised, n, floor_cost, settings[4], settings[5], int(settings[6]), coefficients, normal
+        )[0]
+    else:
+        values[i] = 0.0
+    key[i] = values[i]
 
 
 @numba.njit(cache=True, nogil=True)
 def evidence_at(
-    wanted: np.ndarray,
-    x: np.ndarray,
-    z: np.ndarray,
-    centre: np.ndarray,
-    sigma: np.ndarray,
-    low: np.ndarray,
-    high: np.ndarray,
-    floor: np.ndarray,
-    settings: np.ndarray,
-    table: np.ndarray,
-    values: np.ndarray,
-    known: np.ndarray,
+    wanted: np.ndarray, data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray
 ) -> None:  # pragma: no cover - compiled
-    """``E`` of the candidates ``wanted`` not yet ``known`` into ``values`` (``floor``: :func:`seabed_costs`'s)."""
-    work = _work(low, high)
+    """``E`` of the candidates ``wanted`` not yet ``known`` into ``values`` (``data``, ``state``: :func:`_candidate`'s)."""
+    known = state[1]
+    work = _work(data[4], data[5])
     for i in wanted:
         if not known[i]:
-            _candidate(i, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
+            _candidate(i, data, state, settings, table, work)
 
 
 @numba.njit(cache=True, nogil=True)
 def evidence_around(
-    across: np.ndarray,
-    first_position: float,
-    spacing: float,
-    x: np.ndarray,
-    z: np.ndarray,
-    centre: np.ndarray,
-    sigma: np.ndarray,
-    low: np.ndarray,
-    high: np.ndarray,
-    floor: np.ndarray,
-    settings: np.ndarray,
+    across: np.ndarray, first_position: float, spacing: float, data: tuple, state: tuple, settings: np.ndarray,
     table: np.ndarray,
-    values: np.ndarray,
-    known: np.ndarray,
 ) -> None:  # pragma: no cover - compiled
     """:func:`evidence_at` of the grid positions about each finite position of ``across``.
 
     For each, the cells ``k - 1 .. k + 2`` with ``k = floor((across - first_position) / spacing)``,
     clipped into the grid: the two cells interpolation reads lie among them whatever the rounding.
     """
-    count = centre.size
-    work = _work(low, high)
+    known = state[1]
+    count = known.size
+    work = _work(data[4], data[5])
     for a in across:
         if not math.isfinite(a):
             continue
         cell = int(math.floor(min(max((a - first_position) / spacing, -2.0), float(count))))
         for i in range(max(cell - 1, 0), min(cell + 3, count)):
             if not known[i]:
-                _candidate(i, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
+                _candidate(i, data, state, settings, table, work)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -414,59 +519,87 @@ def _sift_down(heap: np.ndarray, start: int, size: int, key: np.ndarray) -> None
 
 
 @numba.njit(cache=True, nogil=True)
-def evidence_maximum(
-    x: np.ndarray,
-    z: np.ndarray,
-    centre: np.ndarray,
-    sigma: np.ndarray,
-    low: np.ndarray,
-    high: np.ndarray,
-    floor: np.ndarray,
-    settings: np.ndarray,
-    table: np.ndarray,
-    values: np.ndarray,
-    known: np.ndarray,
-) -> int:  # pragma: no cover - compiled
-    """The first candidate of largest ``E`` (-1 when every ``E`` is 0), evaluating only those that can be it.
+def _heap_above(key: np.ndarray, level: float) -> np.ndarray:  # pragma: no cover - compiled
+    """The candidates whose bound ``key`` is above ``level``, as a max-heap."""
+    heap = np.flatnonzero(key > level)
+    for start in range(heap.size // 2 - 1, -1, -1):
+        _sift_down(heap, start, heap.size, key)
+    return heap
 
-    Candidates are taken in decreasing order of their bound ``C_floor / sigma^2`` (:func:`seabed_costs`; 0
-    where that cost is not finite), the largest first and then off a heap of those whose bound reaches
-    its evidence; once the bound falls below the largest ``E`` found, no candidate left can reach it.
-    Every candidate evaluated is left in ``values`` and ``known``.
+
+@numba.njit(cache=True, nogil=True)
+def _settle_top(
+    heap: np.ndarray, size: int, data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray, work: tuple
+) -> tuple[int, int]:  # pragma: no cover - compiled
+    """Tighten the bound of the heap's top candidate one step: ``(i, size)`` when its ``E`` is known, ``(-1, size)`` when not.
+
+    A top bounded by the line through its window has its seafloor fitted and is sifted down with that
+    bound; one bounded by its seafloor (or by its ``E``) leaves the heap with its ``E`` computed.
     """
-    count = centre.size
-    scale = settings[5] * settings[5]
-    bound = np.zeros(count)
-    top = 0
-    for i in range(count):
-        if math.isfinite(floor[i]):
-            bound[i] = floor[i] / scale
-        if bound[i] > bound[top]:
-            top = i
-    if not bound[top] > 0.0:
-        return -1
-    work = _work(low, high)
-    if not known[top]:
-        _candidate(top, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
-    best = values[top]
-    heap = np.flatnonzero((bound > 0.0) & (bound >= best))
+    values, known, floor, key = state
+    i = heap[0]
+    if not known[i] and floor[i] == UNFITTED:
+        _fit_floor(i, data, state, settings, work)
+        _sift_down(heap, 0, size, key)
+        return -1, size
+    size -= 1
+    heap[0] = heap[size]
+    _sift_down(heap, 0, size, key)
+    if not known[i]:
+        _candidate(i, data, state, settings, table, work)
+    return i, size
+
+
+@numba.njit(cache=True, nogil=True)
+def evidence_maximum(
+    data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray
+) -> int:  # pragma: no cover - compiled
+    """The first candidate of largest ``E`` (-1 when every ``E`` is 0), fitting only what can decide it.
+
+    Every candidate's ``key`` is its tightest bound so far: its ``E`` where known, else ``C_floor /
+    sigma^2`` where its seafloor is fitted (0 where that cost is not finite), else :func:`line_bounds`'s.
+    The candidates are taken off a max-heap of their bounds (:func:`_settle_top`): one bounded by its
+    line has its seafloor fitted and goes back with that tighter bound; one bounded by its seafloor has
+    its pipe fitted and its ``E`` may raise the best found.  Once the largest bound left is below the
+    best ``E`` found, no candidate left can reach it.  Candidates whose bound equals the best are still
+    fitted, so every candidate of largest ``E`` is known and the first of them is returned.
+    """
+    values, known = state[0], state[1]
+    key = state[3]
+    heap = _heap_above(key, 0.0)
     size = heap.size
-    for start in range(size // 2 - 1, -1, -1):
-        _sift_down(heap, start, size, bound)
-    while size > 0 and bound[heap[0]] >= best:
-        i = heap[0]
-        size -= 1
-        heap[0] = heap[size]
-        _sift_down(heap, 0, size, bound)
-        if not known[i]:
-            _candidate(i, x, z, centre, sigma, low, high, floor, settings, table, values, known, work)
-        best = max(best, values[i])
+    work = _work(data[4], data[5])
+    best = 0.0
+    while size > 0 and key[heap[0]] >= best:
+        i, size = _settle_top(heap, size, data, state, settings, table, work)
+        if i >= 0:
+            best = max(best, values[i])
     if not best > 0.0:
         return -1
-    for i in range(count):
+    for i in range(known.size):
         if known[i] and values[i] == best:
             return i
     return -1
+
+
+@numba.njit(cache=True, nogil=True)
+def evidence_exceeds(
+    level: float, data: tuple, state: tuple, settings: np.ndarray, table: np.ndarray
+) -> bool:  # pragma: no cover - compiled
+    """Whether some candidate's ``E`` is above ``level``, fitting only what can decide it.
+
+    As :func:`evidence_maximum`, with the best found fixed at ``level``: candidates are taken off the heap of
+    bounds above it until one's ``E`` is above it (True) or no bound left is (False).
+    """
+    values, key = state[0], state[3]
+    heap = _heap_above(key, level)
+    size = heap.size
+    work = _work(data[4], data[5])
+    while size > 0 and key[heap[0]] > level:
+        i, size = _settle_top(heap, size, data, state, settings, table, work)
+        if i >= 0 and values[i] > level:
+            return True
+    return False
 
 
 @numba.njit(cache=True, nogil=True)
@@ -546,13 +679,24 @@ def candidate_windows(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover - compiled
     """Each candidate's window of returns ``x[low:high]`` within ``reach`` and the footprint's sigma there.
 
-    As :meth:`~trackbench_sonar.evidence.FootprintLikelihood.windows` gives them: the binary searches of
-    ``numpy.searchsorted`` and :func:`~trackbench_sonar.footprint.footprint_sigma`'s arithmetic, ``(c^2 +
-    z^2) phi / z`` over ``fwhm_per_sigma`` (``inf`` at or above the transducer, 0 for rays).
+    As :meth:`~trackbench_sonar.evidence.FootprintLikelihood.windows` gives them: the indices of
+    ``numpy.searchsorted(x, centre - reach, side="left")`` and ``numpy.searchsorted(x, centre + reach,
+    side="right")``, found by walking up ``x`` (sorted, finite) as the centres (increasing) move on, and
+    :func:`~trackbench_sonar.footprint.footprint_sigma`'s arithmetic, ``(c^2 + z^2) phi / z`` over
+    ``fwhm_per_sigma`` (``inf`` at or above the transducer, 0 for rays).
     """
-    low = np.searchsorted(x, centre - reach, side="left")
-    high = np.searchsorted(x, centre + reach, side="right")
-    sigma = np.zeros(centre.size)
+    count, size = centre.size, x.size
+    low = np.empty(count, dtype=np.int64)
+    high = np.empty(count, dtype=np.int64)
+    first = last = 0
+    for i in range(count):
+        start, end = centre[i] - reach, centre[i] + reach
+        while first < size and x[first] < start:
+            first += 1
+        while last < size and x[last] <= end:
+            last += 1
+        low[i], high[i] = first, last
+    sigma = np.zeros(count)
     if beam_width > 0.0:
         for i in range(centre.size):
             c, z = centre[i], depth[i]

@@ -101,6 +101,10 @@ class Scan(Protocol):
         """The largest value, 0 for a scan without positions."""
         ...
 
+    def exceeds(self, level: float) -> bool:
+        """Whether some value is above ``level``: ``maximum() > level``."""
+        ...
+
     def at(self, across_m: np.ndarray) -> np.ndarray:
         """``L`` at arbitrary positions: linear between grid positions, 0 outside the scan."""
         ...
@@ -148,6 +152,10 @@ class LikelihoodScan:
     def maximum(self) -> float:
         """The scan's largest value, 0 for a scan without positions."""
         return float(self.values.max(initial=0.0))
+
+    def exceeds(self, level: float) -> bool:
+        """Whether some value is above ``level``: ``maximum() > level``."""
+        return self.maximum() > level
 
     def at(self, across_m: np.ndarray) -> np.ndarray:
         """``L`` at arbitrary positions: linear between grid positions, 0 outside the scan.

@@ -129,12 +129,37 @@ class AcrossTrackRate:
         self.last_m = estimate_m
 
 
-def injection_rate(fraction: float, lost_ratio: float, scan: Scan, positions: np.ndarray) -> float:
+SETTLED = 1.0 - 1e-12
+"""Share of ``here / lost_ratio`` the scan's best may reach for :func:`injection_rate` to be 0 without it."""
+NORMAL = 1e-290
+"""Smallest ``lost_ratio * here`` (and inverse of the largest ``here / lost_ratio``) :func:`nothing_lost` decides on."""
+
+
+def nothing_lost(lost_ratio: float, here: float, scan: Scan) -> bool:
+    """Whether ``here >= lost_ratio * scan.maximum()`` rounds so, decided without the scan's best where it can be.
+
+    True when no value of the scan exceeds ``here / lost_ratio`` less a
+    relative margin of ``1e-12`` (:data:`SETTLED`), which fits only the
+    candidates that could exceed it (:meth:`~trackbench_sonar.likelihood.Scan.exceeds`).
+    With the best ``M`` at most that level, ``lost_ratio M`` rounds below
+    ``here`` (three roundings move it by a relative ``1.1e-16`` each), so
+    ``here / (lost_ratio M)`` rounds to 1 or more and :func:`injection_rate`'s
+    formula to 0.  Every product stays a normal number (:data:`NORMAL`);
+    otherwise, or when the level is exceeded, the answer is False and the
+    formula decides.
+    """
+    level = here / lost_ratio * SETTLED if lost_ratio > 0.0 else math.inf
+    return lost_ratio * here >= NORMAL and level * NORMAL < 1.0 and not scan.exceeds(level)
+
+
+def injection_rate(fraction: float, lost_ratio: float, scan: Scan, here: float) -> float:
     """The share of particles re-drawn this ping: ``J max(0, 1 - r / lost_ratio)``.
 
-    ``r`` is the scan's best value at ``positions`` (the particles where the
-    drift takes them) over its best value anywhere: near 1 while the
+    ``r`` is the scan's best value at the particles (``here``, read where
+    the drift takes them) over its best value anywhere: near 1 while the
     particles sit on the most likely pipe, near 0 when they have lost it.
+    Where ``r`` reaches ``lost_ratio`` the rate is 0, which
+    :func:`nothing_lost` finds without the scan's best.
 
     Parameters
     ----------
@@ -144,17 +169,18 @@ def injection_rate(fraction: float, lost_ratio: float, scan: Scan, positions: np
         ``r`` at and above which nothing is injected; 0 injects ``J`` always.
     scan : Scan
         This ping's scan, not empty.
-    positions : numpy.ndarray
-        The particles' positions.
+    here : float
+        The scan's best value at the particles' positions.
 
     References
     ----------
     seeds/003, section 3.4 ("generating some rate J of new random samples").
     """
+    if nothing_lost(lost_ratio, here, scan):
+        return 0.0
     threshold = lost_ratio * scan.maximum()
     if not threshold > 0.0:
         return fraction
-    here = float(scan.at(positions).max(initial=0.0))
     return fraction * max(0.0, 1.0 - here / threshold)
 
 
@@ -286,12 +312,14 @@ class SonarParticleFilter(ParticleBeliefView, ScanTracker):
         drift = self._rate.rate_m
         lost = False
         self.prior_set = None
-        if scan.is_empty:
+        # The scan at the particles first: their evidence, when positive, tells the scan is not empty.
+        here = float(scan.at(self.particle_set.states[:, 0] + drift).max(initial=0.0))
+        if not here > 0.0 and scan.is_empty:
             movement = RandomWalkInjection(self._walk_sigma, 0.0, None, drift)
             walked = movement.walk(self.particle_set.states, self._rng)
             self.particle_set = ParticleSet(walked, self.particle_set.weights)
         else:
-            rate = injection_rate(p.inject_fraction, p.lost_ratio, scan, self.particle_set.states[:, 0] + drift)
+            rate = injection_rate(p.inject_fraction, p.lost_ratio, scan, here)
             lost = p.lost_ratio > 0.0 and rate > 0.0
             ping = Condensation(
                 movement=RandomWalkInjection(self._walk_sigma, rate, extent, drift),

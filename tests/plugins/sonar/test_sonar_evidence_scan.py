@@ -1,13 +1,15 @@
 """The evidence scan computed where it is read, against the scan computed everywhere (seeds/003, eq. 1 as evidence).
 
-:class:`~trackbench_sonar.evidence.EvidenceScan` fits the seafloor of
-every candidate, bounds each candidate's evidence by that fit's cost and
-fits the pipe only where a value is read or the bound can reach the
-maximum.  Everything it reports must be what the scan of every candidate
-(:meth:`FootprintLikelihood.candidates`) gives, bit for bit: the values,
-the maximum, the peak and the values between grid positions.  The fits
-themselves (:func:`~trackbench_sonar.evidence_kernel._fused_fit`, fewer
-passes over the returns) must equal the form they replaced,
+:class:`~trackbench_sonar.evidence.EvidenceScan` bounds each candidate's
+evidence by the straight line through its window, then by its seafloor's
+fit, and fits the pipe only where a value is read or a bound can reach the
+maximum or the level asked about.  Everything it reports must be what the
+scan of every candidate (:meth:`FootprintLikelihood.candidates`) gives,
+bit for bit: the values, the maximum, the peak, whether a level is
+exceeded and the values between grid positions, in whatever order they
+are read.  The line's bound must hold wherever the seafloor is fitted.
+The fits themselves (:func:`~trackbench_sonar.evidence_kernel._fused_fit`,
+fewer passes over the returns) must equal the form they replaced,
 :func:`old_robust_fit` below (the plugin's code before, kept here as the
 reference), to the last bit.
 """
@@ -169,6 +171,14 @@ def assert_same_scan(model: FootprintLikelihood, profile, probes: np.ndarray) ->
     lazy.peak(True)
     np.testing.assert_array_equal(bits(lazy.at(probes)), bits(full.at(probes)))
     np.testing.assert_array_equal(bits(lazy.values), bits(full.values))
+    best = full.maximum()
+    for level in (0.0, best, float(np.nextafter(best, -math.inf)), 0.5 * best, 2.0 * best):
+        assert EvidenceScan(model, profile).exceeds(level) == (best > level)
+        # As the particle filter reads it: the values at its particles first, then a level, then the maximum.
+        lazy = EvidenceScan(model, profile)
+        np.testing.assert_array_equal(bits(lazy.at(probes)), bits(full.at(probes)))
+        assert lazy.exceeds(level) == (best > level)
+        assert lazy.maximum() == best and lazy.peak(True) == full.peak(True)
 
 
 def test_a_pipe_scan_is_the_full_scan_with_few_pipes_fitted(swaths):
@@ -225,3 +235,50 @@ def test_the_compiled_windows_are_the_array_form(returns, centre, depth, reach, 
     np.testing.assert_array_equal(low, np.searchsorted(x, centre - reach, side="left"))
     np.testing.assert_array_equal(high, np.searchsorted(x, centre + reach, side="right"))
     np.testing.assert_array_equal(bits(sigma), bits(footprint_sigma(centre, depths, beam_width)))
+
+
+def returns_about_a_line(
+    draw_rng: np.random.Generator, count: int, noise: float, kind: str
+) -> tuple[np.ndarray, np.ndarray]:
+    """Sorted returns over 20 m on a sloping seabed, with a pipe-sized bump or none, and noise of ``noise`` m."""
+    x = np.sort(draw_rng.uniform(-10.0, 10.0, count))
+    z = 30.0 + draw_rng.uniform(-0.3, 0.3) * x + noise * draw_rng.standard_normal(count)
+    if kind == "bump":
+        z -= 0.5 * np.clip(1.0 - (x / 0.4) ** 2, 0.0, None) ** 0.5
+    elif kind == "flat":
+        z = np.full(count, 30.0)
+    return x, z
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    st.integers(6, 120),
+    st.sampled_from([0.0, 1e-9, 1e-4, 0.02, 0.3]),
+    st.sampled_from(["line", "bump", "flat"]),
+    st.floats(0.0, 0.3),
+    st.floats(0.2, 1.5),
+    st.integers(1, 4),
+    st.floats(0.001, 0.1),
+    st.integers(0, 2**32 - 1),
+)
+def test_the_line_through_a_window_bounds_its_seafloor_s_cost(count, noise, kind, beam_width, diameter, iterations,
+                                                             sigma, seed):
+    """:func:`~trackbench_sonar.evidence_kernel.line_bounds` is at least ``C_floor / sigma^2`` wherever the seafloor is fitted.
+
+    Noise down to none (a seabed the line fits exactly, where the chain of bounds has no slack left but
+    its margin for rounding and the ridge), a pipe in the window, one return or many per window, beams
+    up to 17 deg wide (a mound as wide as the window: its column all but the constant's).
+    """
+    x, z = returns_about_a_line(np.random.default_rng(seed), count, noise, kind)
+    model = FootprintLikelihood(CrossSection(diameter, diameter), sigma, beam_width, iterations=iterations)
+    profile = resample_swath(Swath(x, z), 0.05, spike_window=0, min_beams=2)
+    if profile.is_empty:
+        return
+    low, high, sigma_f = model.windows(profile)
+    arrays_ = (profile.returns_across_m, profile.returns_depth_m, profile.across_m, sigma_f, low, high)
+    floor = evidence_kernel.seabed_costs(*arrays_, model.settings)
+    bounds = evidence_kernel.line_bounds(*arrays_[:3], low, high, model.settings)
+    fitted = np.isfinite(floor)
+    assert np.all(bounds[fitted] >= floor[fitted] / (sigma * sigma))
+    evidence = model.candidates(profile).evidence
+    assert np.all(bounds >= evidence)

@@ -15,7 +15,7 @@ from hypothesis.extra.numpy import arrays
 from trackbench_sonar import SonarDetector, SonarParticleFilter
 from trackbench_sonar.likelihood import LikelihoodScan
 from trackbench_sonar.params import ParticleFilterParams, ResamplerName
-from trackbench_sonar.particle_filter import AcrossTrackRate, ScanWeights, injection_rate, walk_sigma
+from trackbench_sonar.particle_filter import AcrossTrackRate, ScanWeights, injection_rate, nothing_lost, walk_sigma
 
 from benchmark.errors import DataError, ParameterError
 from benchmark.filters import RESAMPLERS
@@ -264,15 +264,38 @@ def test_the_injection_rate_lies_between_none_and_j(values, positions, fraction,
     scan = LikelihoodScan(np.arange(values.size, dtype=float), values)
     if scan.is_empty:
         return
-    rate = injection_rate(fraction, lost_ratio, scan, positions)
+
+    def rate_at(where: np.ndarray) -> float:
+        return injection_rate(fraction, lost_ratio, scan, float(scan.at(where).max(initial=0.0)))
+
+    rate = rate_at(positions)
     assert 0.0 <= rate <= fraction
     if lost_ratio == 0.0:
         assert rate == fraction
     best = float(scan.positions[int(np.argmax(scan.values))])
-    assert injection_rate(fraction, lost_ratio, scan, np.append(positions, best)) == (
-        fraction if lost_ratio == 0.0 else 0.0
-    )
-    assert injection_rate(fraction, lost_ratio, scan, np.array([1e6])) == fraction
+    assert rate_at(np.append(positions, best)) == (fraction if lost_ratio == 0.0 else 0.0)
+    assert rate_at(np.array([1e6])) == fraction
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    values=arrays(float, st.integers(1, 20), elements=st.floats(0.0, 1e6) | st.floats(1e-300, 1e-280)),
+    lost_ratio=st.floats(0.0, 2.0) | st.floats(1e-300, 1e-10) | st.just(math.inf),
+    shift=st.integers(-8, 8).map(lambda ulps: ulps * 2.0**-52) | st.floats(-1e-6, 1e-6),
+    fraction=st.floats(0.0, 1.0),
+)
+def test_the_rate_decided_without_the_best_is_the_formula_s(values, lost_ratio, shift, fraction):
+    """Where :func:`nothing_lost` answers without the scan's best, the rate is the formula's, to the last bit."""
+    scan = LikelihoodScan(np.arange(values.size, dtype=float), values)
+    best = scan.maximum()
+    threshold = lost_ratio * best
+    # The particles' best about the boundary ``lost_ratio * best``: a few ulps or a relative 1e-6 either side.
+    here = min(threshold * (1.0 + shift), best) if math.isfinite(threshold) else best
+    if not here > 0.0:
+        return
+    formula = fraction * max(0.0, 1.0 - here / threshold) if threshold > 0.0 else fraction
+    assert injection_rate(fraction, lost_ratio, scan, here) == formula
+    assert not nothing_lost(lost_ratio, here, scan) or formula == 0.0
 
 
 def test_step_before_reset_is_an_error(swaths):
