@@ -29,13 +29,16 @@ contains the pair of lines which has the highest score after the fusion"
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from benchmark.modalities.camera.geometry import ImageSize, Line, cable_from_borders
 from benchmark.modalities.camera.model import CableState
 from trackbench_segmentation.lines import Segments, group_collinear, pixel_line, select_long
+from trackbench_segmentation.lines import _NAMES as _FIELDS
 
 
 @dataclass(frozen=True, slots=True)
@@ -119,6 +122,8 @@ def border_pairs(
     candidates = (np.abs(angle[first] - angle[second]) <= 2.0 * rules.max_skew + 1e-9) & (
         overlap >= rules.min_overlap * np.minimum(span[first], span[second])
     )
+    candidates[candidates] = may_pass(a, b, v_low, v_high, first[candidates], second[candidates], size, rules,
+                                      expected_width)
     found: list[BorderPair] = []
     made: dict[int, Line] = {}
 
@@ -142,6 +147,75 @@ def border_pairs(
         found.append(BorderPair(i, j, borders, state, score))
     found.sort(key=lambda pair: -pair.score)
     return found
+
+
+ROUNDING_PX = 1e-6
+"""Room left for rounding by :func:`may_pass`, px (and rad for the skew): far more than the last bits it may differ in."""
+
+
+def may_pass(
+    a: np.ndarray,
+    b: np.ndarray,
+    v_low: np.ndarray,
+    v_high: np.ndarray,
+    first: np.ndarray,
+    second: np.ndarray,
+    size: ImageSize,
+    rules: PairRules,
+    expected_width: float | None,
+) -> np.ndarray:
+    """Whether each pair of lines ``u = a + b v`` may pass :func:`border_pairs`' tests of skew, width and agreement.
+
+    The cable state of every pair at once, by the steps of
+    :func:`benchmark.modalities.camera.geometry.cable_from_borders` on arrays;
+    its width and skew may differ from the one-pair computation in their
+    last bits (``numpy.hypot`` is not Python's), so a pair is passed over
+    only when it fails a test by more than :data:`ROUNDING_PX`.  The pairs
+    kept are then judged one by one exactly as before: the found pairs are
+    the same, only the pairs that cannot be found are not built.
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean, one per pair ``(first[k], second[k])``.
+    """
+    width, height = size
+    narrow = v_high - v_low < 1.0
+    top = np.where(narrow, v_low - 0.5, v_low)
+    bottom = np.where(narrow, v_low + 0.5, v_high)
+    x_centre, y_centre = (width - 1) / 2.0, (height - 1) / 2.0
+    x0, y0 = (a + b * top) - x_centre, y_centre - top
+    dx, dy = ((a + b * bottom) - x_centre) - x0, (y_centre - bottom) - y0
+    norm = np.hypot(dx, dy)
+    dx, dy = dx / norm, dy / norm
+    ux, uy, vx, vy = dx[first], dy[first], dx[second], dy[second]
+    flip = ux * vx + uy * vy < 0
+    vx, vy = np.where(flip, -vx, vx), np.where(flip, -vy, vy)
+    tx, ty = ux + vx, uy + vy
+    t_norm = np.hypot(tx, ty)
+    tx, ty = tx / t_norm, ty / t_norm
+    nx, ny = ty, -tx
+    half_angle = 0.5 * np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy)
+    crossings = []
+    normals = []
+    for k in (first, second):
+        mx, my = dy[k], -dx[k]
+        turn = mx * nx + my * ny < 0
+        mx, my = np.where(turn, -mx, mx), np.where(turn, -my, my)
+        normals.append((mx, my, mx * x0[k] + my * y0[k]))
+    (m1x, m1y, c1), (m2x, m2y, c2) = normals
+    d = (c1 + c2) / np.hypot(m1x + m2x, m1y + m2y)
+    c0x, c0y = d * nx, d * ny
+    with np.errstate(divide="ignore", invalid="ignore"):
+        crossings = [(c - (mx * c0x + my * c0y)) / (mx * nx + my * ny) for mx, my, c in normals]
+    pair_width = np.abs(crossings[1] - crossings[0])
+    passes = (half_angle <= rules.max_skew + ROUNDING_PX) & (pair_width >= rules.min_width - ROUNDING_PX) & (
+        pair_width <= rules.max_width + ROUNDING_PX
+    )
+    if expected_width is not None and expected_width > 0:
+        passes &= np.abs(pair_width - expected_width) < rules.width_tolerance * expected_width + ROUNDING_PX
+    # A pair whose numbers are not finite is left to the exact test.
+    return passes | ~np.isfinite(pair_width) | ~np.isfinite(half_angle)
 
 
 @functools.lru_cache(maxsize=64)
@@ -206,3 +280,234 @@ def fuse(
     lines = select_long(merged, min_rows=min_rows, min_gradient=min_gradient, max_rms=max_rms, max_count=max_lines)
     return border_pairs(lines, size, rules, expected_width)
 
+
+
+@numba.njit(cache=True, nogil=True)
+def _split_double(x: float) -> tuple[float, float]:
+    """Veltkamp's split of ``x`` into two halves of 26 bits."""
+    t = x * 134217729.0
+    high = t - (t - x)
+    return high, x - high
+
+
+@numba.njit(cache=True, nogil=True)
+def _exact_square(x: float) -> tuple[float, float]:
+    """``x * x`` as the sum of two doubles (Dekker)."""
+    high, low = _split_double(x)
+    p = high * high
+    q = high * low + low * high
+    z = p + q
+    return z, p - z + q + low * low
+
+
+@numba.njit(cache=True, nogil=True)
+def _normal_hypot(x: float, y: float) -> float:
+    """:func:`python_hypot` of two finite values whose larger is a normal double."""
+    largest = max(x, y)
+    _, exponent = math.frexp(largest)
+    scale = math.ldexp(1.0, -exponent)
+    total, frac1, frac2 = 1.0, 0.0, 0.0
+    for value in (x, y):
+        high, low = _exact_square(value * scale)
+        summed = total + high
+        frac2 += (total - summed) + high
+        total = summed
+        frac1 += low
+    h = math.sqrt(total - 1.0 + (frac1 + frac2))
+    high, low = _exact_square(h)
+    summed = total - high
+    frac2 += (total - summed) - high
+    total = summed
+    frac1 -= low
+    h += (total - 1.0 + (frac1 + frac2)) / (2.0 * h)
+    return h / scale
+
+
+@numba.njit(cache=True, nogil=True)
+def python_hypot(x: float, y: float) -> float:
+    """``math.hypot(x, y)`` as CPython 3.11 computes it (its ``vector_norm``), bit for bit; ``numpy.hypot`` is libm's.
+
+    The squares are summed in extended precision and the square root
+    corrected once, so the result is nearly always the correctly rounded one.
+    """
+    x, y = abs(x), abs(y)
+    largest = max(x, y)
+    if math.isinf(largest):
+        return largest
+    if math.isnan(x) or math.isnan(y):
+        return math.nan
+    if largest == 0.0:
+        return largest
+    smallest_normal = 2.2250738585072014e-308
+    if largest < smallest_normal:
+        return smallest_normal * _normal_hypot(x / smallest_normal, y / smallest_normal)
+    return _normal_hypot(x, y)
+
+
+@numba.njit(cache=True, nogil=True)
+def _pixel_line(a: float, b: float, top: float, bottom: float, width: int, height: int) -> tuple[float, float, float, float]:
+    """:func:`trackbench_segmentation.lines.pixel_line` as ``(x0, y0, dx, dy)``; ``dx = dy = nan`` when it is not a line."""
+    if bottom - top < 1.0:
+        top, bottom = top - 0.5, top + 0.5
+    x_centre, y_centre = (width - 1) / 2.0, (height - 1) / 2.0
+    x0, y0 = (a + b * top) - x_centre, y_centre - top
+    dx, dy = ((a + b * bottom) - x_centre) - x0, (y_centre - bottom) - y0
+    norm = python_hypot(dx, dy)
+    if not (math.isfinite(norm) and norm > 0 and math.isfinite(x0) and math.isfinite(y0)):
+        return x0, y0, math.nan, math.nan
+    return x0, y0, dx / norm, dy / norm
+
+
+@numba.njit(cache=True, nogil=True)
+def cable_of_borders(
+    x1: float, y1: float, ux: float, uy: float, x2: float, y2: float, vx: float, vy: float
+) -> tuple[float, float, float, float]:
+    """:func:`benchmark.modalities.camera.geometry.cable_from_borders` of two lines ``(x0, y0, dx, dy)``: ``(d, alpha, w, beta)``.
+
+    The same operations in the same order, with CPython's :func:`python_hypot`,
+    so the same state to the last bit.
+    """
+    wx, wy = vx, vy
+    if ux * wx + uy * wy < 0:
+        wx, wy = -wx, -wy
+    tx, ty = ux + wx, uy + wy
+    norm = python_hypot(tx, ty)
+    tx, ty = tx / norm, ty / norm
+    if ty < 0 or (ty == 0 and tx > 0):
+        tx, ty = -tx, -ty
+    alpha = math.atan2(-tx, ty)
+    nx, ny = ty, -tx
+    half_angle = 0.5 * math.atan2(abs(ux * wy - uy * wx), ux * wx + uy * wy)
+    m1x, m1y = uy, -ux
+    if m1x * nx + m1y * ny < 0:
+        m1x, m1y = -m1x, -m1y
+    c1 = m1x * x1 + m1y * y1
+    m2x, m2y = vy, -vx
+    if m2x * nx + m2y * ny < 0:
+        m2x, m2y = -m2x, -m2y
+    c2 = m2x * x2 + m2y * y2
+    d = (c1 + c2) / python_hypot(m1x + m2x, m1y + m2y)
+    c0x, c0y = d * nx, d * ny
+    crossing1 = (c1 - (m1x * c0x + m1y * c0y)) / (m1x * nx + m1y * ny)
+    crossing2 = (c2 - (m2x * c0x + m2y * c0y)) / (m2x * nx + m2y * ny)
+    slope1 = -(m1x * tx + m1y * ty) / (m1x * nx + m1y * ny)
+    slope2 = -(m2x * tx + m2y * ty) / (m2x * nx + m2y * ny)
+    if crossing1 <= crossing2:
+        width, converging_up = crossing2 - crossing1, slope2 - slope1 < 0
+    else:
+        width, converging_up = crossing1 - crossing2, slope1 - slope2 < 0
+    return d, alpha, width, half_angle if converging_up else -half_angle
+
+
+@numba.njit(cache=True, nogil=True)
+def _best_pair_lines(
+    fields: np.ndarray,
+    offsets: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    angle: np.ndarray,
+    width: int,
+    height: int,
+    max_skew: float,
+    min_width: float,
+    max_width: float,
+    min_overlap: float,
+    width_tolerance: float,
+    expected_width: float,
+    pairs_per_cell: int,
+) -> tuple[np.ndarray, bool]:
+    """Each cell's :func:`border_pairs` and :func:`pair_lines`, the lines of its best pairs side by side.
+
+    ``expected_width`` nan: none.  The flag is False when a line is not one
+    (:class:`benchmark.modalities.camera.geometry.Line` would refuse it), and
+    the lines are then to be paired the slow way.
+    """
+    n_lines = a.shape[0]
+    lines = np.empty((n_lines, 4))
+    for k in range(n_lines):
+        lines[k] = _pixel_line(a[k], b[k], fields[7, k], fields[8, k], width, height)
+    chosen = np.zeros(n_lines, dtype=np.bool_)
+    for cell in range(offsets.shape[0] - 1):
+        start, stop = offsets[cell], offsets[cell + 1]
+        count = stop - start
+        if count < 2:
+            continue
+        scores = np.empty(count * (count - 1) // 2)
+        firsts = np.empty(scores.shape[0], dtype=np.int64)
+        seconds = np.empty(scores.shape[0], dtype=np.int64)
+        found = 0
+        for i in range(start, stop):
+            for j in range(i + 1, stop):
+                if not abs(angle[i] - angle[j]) <= 2.0 * max_skew + 1e-9:
+                    continue
+                span_i = fields[8, i] - fields[7, i] + 1.0
+                span_j = fields[8, j] - fields[7, j] + 1.0
+                overlap = min(fields[8, i], fields[8, j]) - max(fields[7, i], fields[7, j]) + 1.0
+                if not overlap >= min_overlap * min(span_i, span_j):
+                    continue
+                if math.isnan(lines[i, 2]) or math.isnan(lines[j, 2]):
+                    return np.empty((9, 0)), False
+                _, _, w, beta = cable_of_borders(
+                    lines[i, 0], lines[i, 1], lines[i, 2], lines[i, 3], lines[j, 0], lines[j, 1], lines[j, 2], lines[j, 3]
+                )
+                if abs(beta) > max_skew or not min_width <= w <= max_width:
+                    continue
+                score = (fields[0, i] + fields[0, j]) * (1.0 - abs(beta) / max_skew if max_skew > 0 else 1.0)
+                if not math.isnan(expected_width):
+                    agreement = 1.0 - abs(w - expected_width) / (width_tolerance * expected_width)
+                    if agreement <= 0:
+                        continue
+                    score *= agreement
+                scores[found] = score
+                firsts[found] = i
+                seconds[found] = j
+                found += 1
+        ranked = np.argsort(-scores[:found], kind="mergesort")[:pairs_per_cell]
+        for k in ranked:
+            chosen[firsts[k]] = True
+            chosen[seconds[k]] = True
+    index = np.flatnonzero(chosen)
+    taken = np.empty((9, index.shape[0]))
+    for k in range(index.shape[0]):
+        taken[:, k] = fields[:, index[k]]
+    return taken, True
+
+
+def cells_pair_lines(
+    cell_lines: list[Segments], size: ImageSize, rules: PairRules, expected_width: float | None, pairs_per_cell: int
+) -> Segments:
+    """The lines of each cell's ``pairs_per_cell`` best pairs, all cells' side by side, in one compiled pass.
+
+    ``Segments.concatenate([pair_lines(lines, border_pairs(lines, size, rules,
+    expected_width)[:pairs_per_cell]) for lines in cell_lines])``, bit for
+    bit: the pairs' states by :func:`cable_of_borders`, the same tests, the
+    same stable ranking.  An expected width of 0 (whose agreement divides by
+    zero) or a degenerate line is left to that one-cell form.
+
+    References
+    ----------
+    seeds/000, section 2.3: "the most likely line pairs of each cell".
+    """
+    joined = Segments.concatenate(cell_lines)
+    if expected_width is not None and expected_width == 0:
+        return _slow_pair_lines(cell_lines, size, rules, expected_width, pairs_per_cell)
+    a, b = joined.fit()
+    offsets = np.cumsum([0] + [len(lines) for lines in cell_lines])
+    fields = np.stack([getattr(joined, name) for name in _FIELDS]) if len(joined) else np.empty((9, 0))
+    taken, ok = _best_pair_lines(
+        fields, offsets, a, b, np.arctan(b), int(size[0]), int(size[1]), float(rules.max_skew), float(rules.min_width),
+        float(rules.max_width), float(rules.min_overlap), float(rules.width_tolerance),
+        math.nan if expected_width is None else float(expected_width), int(pairs_per_cell),
+    )
+    if not ok:
+        return _slow_pair_lines(cell_lines, size, rules, expected_width, pairs_per_cell)
+    return Segments(*taken)
+
+
+def _slow_pair_lines(
+    cell_lines: list[Segments], size: ImageSize, rules: PairRules, expected_width: float | None, pairs_per_cell: int
+) -> Segments:
+    """:func:`cells_pair_lines` one cell at a time, in Python."""
+    return Segments.concatenate(
+        [pair_lines(lines, border_pairs(lines, size, rules, expected_width)[:pairs_per_cell]) for lines in cell_lines]
+    )
