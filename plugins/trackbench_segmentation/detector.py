@@ -47,7 +47,7 @@ from trackbench_segmentation.contours import follow_chains, label_changes, snap_
 from trackbench_segmentation.grey import normalised_grey
 from trackbench_segmentation.histogram import frame_gradients, gradient_level, mountain_starts
 from trackbench_segmentation.lines import Segments, group_collinear, select_long
-from trackbench_segmentation.pairing import BorderPair, PairRules, border_pairs, cells_pair_lines, fuse, pair_lines
+from trackbench_segmentation.pairing import BorderPair, PairRules, border_pairs, cells_pair_lines, fuse_pairs, pair_lines
 from trackbench_segmentation.params import SegmentationParams
 from trackbench_segmentation.passes import CellTable, cell_table, pyramid_lines
 from trackbench_segmentation.scaling import frame_params
@@ -297,11 +297,11 @@ def detect_pairs(image: np.ndarray, params: SegmentationParams, prediction: Pred
     min_gradient = level_gradient(level, p)
     table = pyramid_table((width, height), p.pyramid_levels)
     mask, alpha = (None, 0.0) if prediction is None else (prediction.roi, prediction.alpha)
-    long_lines = pyramid_lines(grey, modulus, gradient_rows, table, p, mask, alpha, min_gradient)
+    long_lines, offsets = pyramid_lines(grey, modulus, gradient_rows, table, p, mask, alpha, min_gradient)
     expected = None if prediction is None else prediction.width
-    found = cells_pair_lines(long_lines, (width, height), pair_rules(p), expected, p.pairs_per_cell)
-    return fuse(
-        [found],
+    found = cells_pair_lines(long_lines, offsets, (width, height), pair_rules(p), expected, p.pairs_per_cell)
+    return fuse_pairs(
+        found,
         (width, height),
         pair_rules(p),
         strip_px=p.strip_px,

@@ -128,41 +128,62 @@ def gradient_level(modulus: np.ndarray) -> float:
     return float(ranked_bins(counts, (0.5,))[0]) * LEVEL_STEP
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _sobel_square(grey: np.ndarray, up: int, r: int, down: int, left: int, c: int, right: int) -> np.int32:
+    """``Gx^2 + Gy^2`` of OpenCV's 3 x 3 Sobel responses at ``(r, c)``, the neighbours' rows and columns given."""
+    gx = (np.int32(grey[up, right]) + 2 * np.int32(grey[r, right]) + np.int32(grey[down, right])) - (
+        np.int32(grey[up, left]) + 2 * np.int32(grey[r, left]) + np.int32(grey[down, left])
+    )
+    gy = (np.int32(grey[down, left]) + 2 * np.int32(grey[down, c]) + np.int32(grey[down, right])) - (
+        np.int32(grey[up, left]) + 2 * np.int32(grey[up, c]) + np.int32(grey[up, right])
+    )
+    return np.int32(gx * gx + gy * gy)
+
+
 @numba.njit(cache=True, nogil=True)
-def _gradients(grey: np.ndarray, bin_width: float, n_bins: int) -> tuple[np.ndarray, np.ndarray, float]:
+def _gradients(
+    grey: np.ndarray, bin_width: float, n_bins: int, exact_inverse: bool
+) -> tuple[np.ndarray, np.ndarray, float]:
     """:func:`gradient_modulus`, :func:`gradient_bins` and :func:`gradient_level` of ``grey`` in one pass.
 
     The Sobel responses are the integers OpenCV's 3 x 3 kernels give with the
     borders replicated; their squares' sum is exact in ``float32`` and its
     square root is rounded once, so every modulus is :func:`gradient_modulus`'s
     bit for bit.  The rows divide in ``float32`` as numpy divides a
-    ``float32`` array by a Python float, and the level counts ``floor(4 m)``,
-    the bin OpenCV's histogram of :data:`LEVEL_STEP` puts ``m`` in.
+    ``float32`` array by a Python float (by a power of two, multiplying by its
+    inverse is the same division), and the level counts ``floor(4 m)``, the
+    bin OpenCV's histogram of :data:`LEVEL_STEP` puts ``m`` in.
     """
     height, width = grey.shape
     modulus = np.empty((height, width), dtype=np.float32)
     rows = np.empty((height, width), dtype=np.int64)
     divisor = np.float32(bin_width)
+    inverse = np.float32(1.0) / divisor
     top_row = np.float32(n_bins - 1)
     # The largest modulus is sqrt(2 * 1020^2) / 4 < 361 grey levels per px.
-    counts = np.zeros(4 * 361 + 2, dtype=np.int64)
     quarter = np.float32(0.25)
+    squares = np.empty(width, dtype=np.int32)
+    # Four histograms, filled in turn, so that neighbouring pixels of one bin do not wait on each other.
+    counts = np.zeros((4, 4 * 361 + 2), dtype=np.int64)
     for r in range(height):
-        above = max(r - 1, 0)
-        below = min(r + 1, height - 1)
+        up, down = max(r - 1, 0), min(r + 1, height - 1)
+        for c in range(1, width - 1):
+            squares[c] = _sobel_square(grey, up, r, down, c - 1, c, c + 1)
+        squares[0] = _sobel_square(grey, up, r, down, 0, 0, min(1, width - 1))
+        squares[width - 1] = _sobel_square(grey, up, r, down, max(width - 2, 0), width - 1, width - 1)
+        line = modulus[r]
         for c in range(width):
-            left = max(c - 1, 0)
-            right = min(c + 1, width - 1)
-            gx = (np.int64(grey[above, right]) + 2 * np.int64(grey[r, right]) + np.int64(grey[below, right])) - (
-                np.int64(grey[above, left]) + 2 * np.int64(grey[r, left]) + np.int64(grey[below, left])
-            )
-            gy = (np.int64(grey[below, left]) + 2 * np.int64(grey[below, c]) + np.int64(grey[below, right])) - (
-                np.int64(grey[above, left]) + 2 * np.int64(grey[above, c]) + np.int64(grey[above, right])
-            )
-            value = np.sqrt(np.float32(gx * gx + gy * gy)) * quarter
-            modulus[r, c] = value
-            rows[r, c] = np.int64(min(value / divisor, top_row))
-            counts[np.int64(value * np.float32(4.0))] += 1
+            line[c] = np.sqrt(np.float32(squares[c])) * quarter
+        row_of = rows[r]
+        if exact_inverse:
+            for c in range(width):
+                row_of[c] = np.int64(min(line[c] * inverse, top_row))
+        else:
+            for c in range(width):
+                row_of[c] = np.int64(min(line[c] / divisor, top_row))
+        for c in range(width):
+            counts[c & 3, np.int64(line[c] * np.float32(4.0))] += 1
+    counts = counts.sum(axis=0)
     rank = 0.5 * (height * width - 1)
     below_median = 0
     level = 0
@@ -197,7 +218,8 @@ def frame_gradients(grey: np.ndarray, bin_width: float, n_bins: int) -> tuple[np
     """
     if bin_width <= 0 or n_bins < 1:
         raise ValueError(f"need a positive bin width and at least one bin, got {bin_width} and {n_bins}")
-    return _gradients(np.ascontiguousarray(grey, dtype=np.uint8), float(bin_width), int(n_bins))
+    grey = np.ascontiguousarray(grey, dtype=np.uint8)
+    return _gradients(grey, float(bin_width), int(n_bins), _is_power_of_two(bin_width))
 
 
 def joint_histogram(grey: np.ndarray, modulus: np.ndarray, bin_width: float, n_bins: int) -> np.ndarray:

@@ -39,6 +39,7 @@ from benchmark.modalities.camera.geometry import ImageSize, Line, cable_from_bor
 from benchmark.modalities.camera.model import CableState
 from trackbench_segmentation.lines import Segments, group_collinear, pixel_line, select_long
 from trackbench_segmentation.lines import _NAMES as _FIELDS
+from trackbench_segmentation.passes import group_and_select
 
 
 @dataclass(frozen=True, slots=True)
@@ -400,6 +401,71 @@ def cable_of_borders(
 
 
 @numba.njit(cache=True, nogil=True)
+def _line_table(a: np.ndarray, b: np.ndarray, fields: np.ndarray, width: int, height: int) -> np.ndarray:
+    """Every segment's :func:`_pixel_line`, ``(n, 4)``."""
+    lines = np.empty((a.shape[0], 4))
+    for k in range(a.shape[0]):
+        lines[k] = _pixel_line(a[k], b[k], fields[7, k], fields[8, k], width, height)
+    return lines
+
+
+@numba.njit(cache=True, nogil=True)
+def _ranked_pairs(
+    fields: np.ndarray,
+    start: int,
+    stop: int,
+    lines: np.ndarray,
+    angle: np.ndarray,
+    max_skew: float,
+    min_width: float,
+    max_width: float,
+    min_overlap: float,
+    width_tolerance: float,
+    expected_width: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
+    """:func:`border_pairs` of the segments ``start:stop``: their indices and scores, best first.
+
+    ``expected_width`` nan: none.  The flag is False when a line of a
+    candidate pair is not one (:class:`benchmark.modalities.camera.geometry.Line`
+    would refuse it): the pairs are then to be found the slow way.
+    """
+    count = stop - start
+    capacity = max(count * (count - 1) // 2, 0)
+    scores = np.empty(capacity)
+    firsts = np.empty(capacity, dtype=np.int64)
+    seconds = np.empty(capacity, dtype=np.int64)
+    found = 0
+    for i in range(start, stop):
+        for j in range(i + 1, stop):
+            if not abs(angle[i] - angle[j]) <= 2.0 * max_skew + 1e-9:
+                continue
+            span_i = fields[8, i] - fields[7, i] + 1.0
+            span_j = fields[8, j] - fields[7, j] + 1.0
+            overlap = min(fields[8, i], fields[8, j]) - max(fields[7, i], fields[7, j]) + 1.0
+            if not overlap >= min_overlap * min(span_i, span_j):
+                continue
+            if math.isnan(lines[i, 2]) or math.isnan(lines[j, 2]):
+                return firsts[:0], seconds[:0], scores[:0], False
+            _, _, w, beta = cable_of_borders(
+                lines[i, 0], lines[i, 1], lines[i, 2], lines[i, 3], lines[j, 0], lines[j, 1], lines[j, 2], lines[j, 3]
+            )
+            if abs(beta) > max_skew or not min_width <= w <= max_width:
+                continue
+            score = (fields[0, i] + fields[0, j]) * (1.0 - abs(beta) / max_skew if max_skew > 0 else 1.0)
+            if not math.isnan(expected_width):
+                agreement = 1.0 - abs(w - expected_width) / (width_tolerance * expected_width)
+                if agreement <= 0:
+                    continue
+                score *= agreement
+            scores[found] = score
+            firsts[found] = i
+            seconds[found] = j
+            found += 1
+    ranked = np.argsort(-scores[:found], kind="mergesort")
+    return firsts[ranked], seconds[ranked], scores[ranked], True
+
+
+@numba.njit(cache=True, nogil=True)
 def _best_pair_lines(
     fields: np.ndarray,
     offsets: np.ndarray,
@@ -416,54 +482,18 @@ def _best_pair_lines(
     expected_width: float,
     pairs_per_cell: int,
 ) -> tuple[np.ndarray, bool]:
-    """Each cell's :func:`border_pairs` and :func:`pair_lines`, the lines of its best pairs side by side.
-
-    ``expected_width`` nan: none.  The flag is False when a line is not one
-    (:class:`benchmark.modalities.camera.geometry.Line` would refuse it), and
-    the lines are then to be paired the slow way.
-    """
-    n_lines = a.shape[0]
-    lines = np.empty((n_lines, 4))
-    for k in range(n_lines):
-        lines[k] = _pixel_line(a[k], b[k], fields[7, k], fields[8, k], width, height)
-    chosen = np.zeros(n_lines, dtype=np.bool_)
+    """Each cell's :func:`border_pairs` and :func:`pair_lines`, the lines of its best pairs side by side (flag: see
+    :func:`_ranked_pairs`)."""
+    lines = _line_table(a, b, fields, width, height)
+    chosen = np.zeros(a.shape[0], dtype=np.bool_)
     for cell in range(offsets.shape[0] - 1):
-        start, stop = offsets[cell], offsets[cell + 1]
-        count = stop - start
-        if count < 2:
-            continue
-        scores = np.empty(count * (count - 1) // 2)
-        firsts = np.empty(scores.shape[0], dtype=np.int64)
-        seconds = np.empty(scores.shape[0], dtype=np.int64)
-        found = 0
-        for i in range(start, stop):
-            for j in range(i + 1, stop):
-                if not abs(angle[i] - angle[j]) <= 2.0 * max_skew + 1e-9:
-                    continue
-                span_i = fields[8, i] - fields[7, i] + 1.0
-                span_j = fields[8, j] - fields[7, j] + 1.0
-                overlap = min(fields[8, i], fields[8, j]) - max(fields[7, i], fields[7, j]) + 1.0
-                if not overlap >= min_overlap * min(span_i, span_j):
-                    continue
-                if math.isnan(lines[i, 2]) or math.isnan(lines[j, 2]):
-                    return np.empty((9, 0)), False
-                _, _, w, beta = cable_of_borders(
-                    lines[i, 0], lines[i, 1], lines[i, 2], lines[i, 3], lines[j, 0], lines[j, 1], lines[j, 2], lines[j, 3]
-                )
-                if abs(beta) > max_skew or not min_width <= w <= max_width:
-                    continue
-                score = (fields[0, i] + fields[0, j]) * (1.0 - abs(beta) / max_skew if max_skew > 0 else 1.0)
-                if not math.isnan(expected_width):
-                    agreement = 1.0 - abs(w - expected_width) / (width_tolerance * expected_width)
-                    if agreement <= 0:
-                        continue
-                    score *= agreement
-                scores[found] = score
-                firsts[found] = i
-                seconds[found] = j
-                found += 1
-        ranked = np.argsort(-scores[:found], kind="mergesort")[:pairs_per_cell]
-        for k in ranked:
+        firsts, seconds, _, ok = _ranked_pairs(
+            fields, offsets[cell], offsets[cell + 1], lines, angle, max_skew, min_width, max_width, min_overlap,
+            width_tolerance, expected_width,
+        )
+        if not ok:
+            return np.empty((9, 0)), False
+        for k in range(min(pairs_per_cell, firsts.shape[0])):
             chosen[firsts[k]] = True
             chosen[seconds[k]] = True
     index = np.flatnonzero(chosen)
@@ -473,35 +503,142 @@ def _best_pair_lines(
     return taken, True
 
 
+@numba.njit(cache=True, nogil=True)
+def _fused_pairs(
+    fields: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    angle: np.ndarray,
+    width: int,
+    height: int,
+    max_skew: float,
+    min_width: float,
+    max_width: float,
+    min_overlap: float,
+    width_tolerance: float,
+    expected_width: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
+    """:func:`_ranked_pairs` of all the segments."""
+    lines = _line_table(a, b, fields, width, height)
+    return _ranked_pairs(
+        fields, 0, a.shape[0], lines, angle, max_skew, min_width, max_width, min_overlap, width_tolerance,
+        expected_width,
+    )
+
+
+def fuse_pairs(
+    cell_lines: Segments,
+    size: ImageSize,
+    rules: PairRules,
+    *,
+    strip_px: float,
+    max_angle: float,
+    min_rows: float,
+    min_gradient: float,
+    max_rms: float,
+    max_lines: int,
+    expected_width: float | None = None,
+) -> list[BorderPair]:
+    """:func:`fuse` of the cells' pair lines, side by side in one :class:`Segments`, in compiled passes, bit for bit.
+
+    The grouping and filtering of :func:`fuse` by
+    :func:`trackbench_segmentation.passes.group_and_select`, the pairs'
+    tests, scores and ranking by :func:`_ranked_pairs`; only the pairs found
+    are built as :class:`BorderPair`, with the lines and states of
+    :func:`border_pairs`.  An expected width of 0 or a degenerate line is
+    left to :func:`fuse`.
+
+    References
+    ----------
+    seeds/000, section 2.3: the fusion of the cells' most likely pairs.
+    """
+    if expected_width is not None and expected_width == 0:
+        return fuse([cell_lines], size, rules, strip_px=strip_px, max_angle=max_angle, min_rows=min_rows,
+                    min_gradient=min_gradient, max_rms=max_rms, max_lines=max_lines, expected_width=expected_width)
+    fields = group_and_select(_fields(cell_lines), -math.inf, float(strip_px), float(max_angle), float(min_rows),
+                              float(min_gradient), float(max_rms), int(max_lines))
+    lines = Segments(*fields)
+    a, b = lines.fit()
+    firsts, seconds, scores, ok = _fused_pairs(
+        fields, a, b, np.arctan(b), int(size[0]), int(size[1]), *_rule_values(rules, expected_width)
+    )
+    if not ok:
+        return border_pairs(lines, size, rules, expected_width)
+    made: dict[int, Line] = {}
+
+    def line(k: int) -> Line:
+        if k not in made:
+            made[k] = pixel_line(a[k], b[k], lines.v_low[k], lines.v_high[k], size)
+        return made[k]
+
+    # border_pairs' score is a numpy float once the width's agreement, from the state's numpy width, multiplies it.
+    as_score = float if expected_width is None else np.float64
+    found = []
+    for i, j, score in zip(firsts.tolist(), seconds.tolist(), scores.tolist()):
+        borders = (line(i), line(j))
+        found.append(BorderPair(i, j, borders, cable_from_borders(*borders), as_score(score)))
+    return found
+
+
+def _fields(segments: Segments) -> np.ndarray:
+    """The segments as a ``(9, n)`` array, their fields in order."""
+    return np.stack([getattr(segments, name) for name in _FIELDS]) if len(segments) else np.empty((9, 0))
+
+
+def _rule_values(rules: PairRules, expected_width: float | None) -> tuple[float, ...]:
+    """The pairing limits and the expected width (nan: none) as the compiled passes take them."""
+    return (
+        float(rules.max_skew), float(rules.min_width), float(rules.max_width), float(rules.min_overlap),
+        float(rules.width_tolerance), math.nan if expected_width is None else float(expected_width),
+    )
+
+
 def cells_pair_lines(
-    cell_lines: list[Segments], size: ImageSize, rules: PairRules, expected_width: float | None, pairs_per_cell: int
+    lines: np.ndarray,
+    offsets: np.ndarray,
+    size: ImageSize,
+    rules: PairRules,
+    expected_width: float | None,
+    pairs_per_cell: int,
 ) -> Segments:
     """The lines of each cell's ``pairs_per_cell`` best pairs, all cells' side by side, in one compiled pass.
 
-    ``Segments.concatenate([pair_lines(lines, border_pairs(lines, size, rules,
-    expected_width)[:pairs_per_cell]) for lines in cell_lines])``, bit for
-    bit: the pairs' states by :func:`cable_of_borders`, the same tests, the
-    same stable ranking.  An expected width of 0 (whose agreement divides by
-    zero) or a degenerate line is left to that one-cell form.
+    Parameters
+    ----------
+    lines, offsets : numpy.ndarray
+        The cells' long lines side by side, ``(9, n)`` in the order of the
+        fields of :class:`~trackbench_segmentation.lines.Segments`, cell ``k``'s
+        at ``offsets[k] : offsets[k + 1]``
+        (:func:`trackbench_segmentation.passes.pyramid_lines`).
+    size, rules, expected_width
+        As :func:`border_pairs`.
+    pairs_per_cell : int
+        The best pairs of each cell whose lines are kept.
+
+    Returns
+    -------
+    Segments
+        ``Segments.concatenate([pair_lines(cell, border_pairs(cell, size, rules,
+        expected_width)[:pairs_per_cell]) for cell in cells])``, bit for bit:
+        the pairs' states by :func:`cable_of_borders`, the same tests, the
+        same stable ranking.  An expected width of 0 (whose agreement divides
+        by zero) or a degenerate line is left to that one-cell form.
 
     References
     ----------
     seeds/000, section 2.3: "the most likely line pairs of each cell".
     """
-    joined = Segments.concatenate(cell_lines)
-    if expected_width is not None and expected_width == 0:
-        return _slow_pair_lines(cell_lines, size, rules, expected_width, pairs_per_cell)
-    a, b = joined.fit()
-    offsets = np.cumsum([0] + [len(lines) for lines in cell_lines])
-    fields = np.stack([getattr(joined, name) for name in _FIELDS]) if len(joined) else np.empty((9, 0))
-    taken, ok = _best_pair_lines(
-        fields, offsets, a, b, np.arctan(b), int(size[0]), int(size[1]), float(rules.max_skew), float(rules.min_width),
-        float(rules.max_width), float(rules.min_overlap), float(rules.width_tolerance),
-        math.nan if expected_width is None else float(expected_width), int(pairs_per_cell),
-    )
-    if not ok:
-        return _slow_pair_lines(cell_lines, size, rules, expected_width, pairs_per_cell)
-    return Segments(*taken)
+    joined = Segments(*lines)
+    if expected_width is None or expected_width != 0:
+        a, b = joined.fit()
+        taken, ok = _best_pair_lines(
+            lines, offsets, a, b, np.arctan(b), int(size[0]), int(size[1]), *_rule_values(rules, expected_width),
+            int(pairs_per_cell),
+        )
+        if ok:
+            return Segments(*taken)
+    cells = [joined.take(np.arange(offsets[k], offsets[k + 1])) for k in range(len(offsets) - 1)]
+    return _slow_pair_lines(cells, size, rules, expected_width, pairs_per_cell)
 
 
 def _slow_pair_lines(

@@ -40,7 +40,7 @@ import numpy as np
 
 from trackbench_segmentation.contours import _follow, _snap, _split, label_changes
 from trackbench_segmentation.histogram import GREY_LEVELS, _is_power_of_two, _smoothing_kernel, _valleys, mountain_starts
-from trackbench_segmentation.lines import Segments, _group, _is_long, _join
+from trackbench_segmentation.lines import Segments, _fit, _is_long, _join
 from trackbench_segmentation.params import SegmentationParams
 
 EMPTY, READY, GIVEN = 0, 1, 2
@@ -254,6 +254,72 @@ def _segments_of(
 
 
 @numba.njit(cache=True, nogil=True)
+def group_free(
+    n: np.ndarray,
+    sv: np.ndarray,
+    su: np.ndarray,
+    svv: np.ndarray,
+    suv: np.ndarray,
+    suu: np.ndarray,
+    v_low: np.ndarray,
+    v_high: np.ndarray,
+    order: np.ndarray,
+    strip: float,
+    max_angle: float,
+) -> np.ndarray:
+    """``lines._group``'s labels, each group's rounds visiting only the segments no group took before it.
+
+    The free segments are kept in index order and the taken ones dropped
+    after each group, so a round meets the free segments in the order
+    ``lines._group`` meets them and tests them alike: the same groups, their
+    sums grown in the same order.
+    """
+    count = n.shape[0]
+    a = np.empty(count)
+    b = np.empty(count)
+    for k in range(count):
+        a[k], b[k] = _fit(n[k], sv[k], su[k], svv[k], suv[k])
+    angle = np.arctan(b)
+    labels = np.full(count, -1, dtype=np.int64)
+    free = np.arange(count)
+    n_free = count
+    groups = 0
+    for seed in order:
+        if labels[seed] >= 0:
+            continue
+        labels[seed] = groups
+        g0, g1, g2, g3, g4 = n[seed], sv[seed], su[seed], svv[seed], suv[seed]
+        joined = True
+        while joined:
+            joined = False
+            ga, gb = _fit(g0, g1, g2, g3, g4)
+            scale = np.sqrt(1.0 + gb * gb)
+            group_angle = np.arctan(gb)
+            for f in range(n_free):
+                j = free[f]
+                if labels[j] >= 0 or abs(angle[j] - group_angle) > max_angle:
+                    continue
+                top = abs(a[j] + b[j] * v_low[j] - ga - gb * v_low[j]) / scale
+                bottom = abs(a[j] + b[j] * v_high[j] - ga - gb * v_high[j]) / scale
+                if top <= strip and bottom <= strip:
+                    labels[j] = groups
+                    g0 += n[j]
+                    g1 += sv[j]
+                    g2 += su[j]
+                    g3 += svv[j]
+                    g4 += suv[j]
+                    joined = True
+        kept = 0
+        for f in range(n_free):
+            if labels[free[f]] < 0:
+                free[kept] = free[f]
+                kept += 1
+        n_free = kept
+        groups += 1
+    return labels
+
+
+@numba.njit(cache=True, nogil=True)
 def _take(fields: np.ndarray, index: np.ndarray) -> np.ndarray:
     """The segments at ``index`` of a ``(9, n)`` array of segments."""
     taken = np.empty((9, index.shape[0]))
@@ -263,7 +329,7 @@ def _take(fields: np.ndarray, index: np.ndarray) -> np.ndarray:
 
 
 @numba.njit(cache=True, nogil=True)
-def _group_and_select(
+def group_and_select(
     s: np.ndarray,
     min_segment_rows: float,
     strip: float,
@@ -283,7 +349,7 @@ def _group_and_select(
     if s.shape[1] == 0:
         return s
     order = np.argsort(-s[0], kind="mergesort")
-    labels = _group(s[0], s[1], s[2], s[3], s[4], s[5], s[7], s[8], order, strip, max_angle)
+    labels = group_free(s[0], s[1], s[2], s[3], s[4], s[5], s[7], s[8], order, strip, max_angle)
     joined = _join(labels, labels.max() + 1, s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8])
     grouped = np.empty((9, joined[0].shape[0]))
     for k in range(9):
@@ -346,7 +412,7 @@ def _cell_lines(
             else:
                 columns = _snap(chain_rows, chain_cols, cell_modulus, snap_px)
             segments = _segments_of(chain_rows, columns, pieces, cell_modulus, top, left)
-            lines = _group_and_select(
+            lines = group_and_select(
                 segments, min_segment_rows, strip, max_angle, min_rows[k], min_gradient, max_rms, max_count
             )
         found.append(lines)
@@ -383,8 +449,8 @@ def pyramid_lines(
     mask: np.ndarray | None,
     alpha: float,
     min_gradient: float,
-) -> list[Segments]:
-    """The long lines of every cell, before pairing: :func:`trackbench_segmentation.detector.cell_lines`'s, bit for bit.
+) -> tuple[np.ndarray, np.ndarray]:
+    """The long lines of every cell, before pairing: :func:`trackbench_segmentation.detector.cell_long_lines`', bit for bit.
 
     Parameters
     ----------
@@ -404,8 +470,12 @@ def pyramid_lines(
 
     Returns
     -------
-    list of Segments
-        Per cell, its long lines (``select_long``), most pixels first.
+    lines : numpy.ndarray
+        ``(9, n)``: the fields of :class:`~trackbench_segmentation.lines.Segments`
+        in order, the long lines of each cell (``select_long``, most pixels
+        first), cell after cell.
+    offsets : numpy.ndarray
+        Cell ``k``'s lines are ``lines[:, offsets[k] : offsets[k + 1]]``.
 
     References
     ----------
@@ -444,7 +514,7 @@ def pyramid_lines(
         float(p.strip_px), math.radians(p.group_angle_deg), _long_rows(p.long_share, bounds), float(min_gradient),
         float(p.max_rms_px), p.max_lines,
     )
-    return [Segments(*lines[:, offsets[k] : offsets[k + 1]]) for k in range(len(bounds))]
+    return lines, offsets
 
 
 def _long_rows(long_share: float, bounds: np.ndarray) -> np.ndarray:
