@@ -312,3 +312,18 @@ def detect_pairs(image: np.ndarray, params: SegmentationParams, prediction: Pred
         max_lines=p.max_lines,
         expected_width=None if prediction is None else prediction.width,
     )
+
+
+def compile_kernels() -> None:
+    """Compile (or load from numba's cache) the compiled passes of :func:`detect_pairs` now, on a tiny image.
+
+    Searched whole and in a region of interest, with and without a power of
+    two for the gradient bins, so that every pass a frame may take is ready.
+    """
+    image = np.zeros((24, 32), np.uint8)
+    image[:, 12:18] = 200
+    mask = np.zeros(image.shape, np.bool_)
+    mask[:, 4:28] = True
+    for params in (SegmentationParams(), SegmentationParams(gradient_bin=1.5)):
+        for prediction in (None, Prediction(mask, 0.0, 6.0)):
+            detect_pairs(image, params, prediction)

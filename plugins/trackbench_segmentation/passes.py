@@ -362,6 +362,38 @@ def group_and_select(
 
 
 @numba.njit(cache=True, nogil=True)
+def _long_pieces(
+    rows: np.ndarray, cols: np.ndarray, pieces: np.ndarray, min_rows: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The points of the pieces spanning at least ``min_rows`` rows, side by side, and those pieces' ranges into them.
+
+    A piece climbs one row at a time from its first point, so its span is the
+    rows between its first and last point; the pieces keep their order.
+    """
+    keep = np.empty(pieces.shape[0], dtype=np.bool_)
+    total = 0
+    for k in range(pieces.shape[0]):
+        keep[k] = rows[pieces[k, 0]] - rows[pieces[k, 1] - 1] + 1 >= min_rows
+        if keep[k]:
+            total += pieces[k, 1] - pieces[k, 0]
+    kept_rows = np.empty(total, dtype=np.int64)
+    kept_cols = np.empty(total, dtype=np.int64)
+    kept = np.empty((keep.sum(), 2), dtype=np.int64)
+    count = 0
+    n_kept = 0
+    for k in range(pieces.shape[0]):
+        if keep[k]:
+            kept[n_kept, 0] = count
+            for i in range(pieces[k, 0], pieces[k, 1]):
+                kept_rows[count] = rows[i]
+                kept_cols[count] = cols[i]
+                count += 1
+            kept[n_kept, 1] = count
+            n_kept += 1
+    return kept_rows, kept_cols, kept
+
+
+@numba.njit(cache=True, nogil=True)
 def _cell_lines(
     grey: np.ndarray,
     modulus: np.ndarray,
@@ -406,12 +438,15 @@ def _cell_lines(
             cell_modulus = modulus[top:bottom, left:right]
             contours = label_changes(cell_grey, levels, mask[top:bottom, left:right])
             chain_rows, chain_cols, starts = _follow(contours, slope, reach, max_gap, min_segment_rows)
-            pieces = _split(chain_rows, chain_cols, starts, split_px)
-            if snap_px <= 0 or chain_cols.shape[0] == 0:
-                columns = chain_cols.astype(np.float64) + 0.5
+            # Short pieces are discarded before the grouping: their points are neither snapped nor summed.
+            point_rows, point_cols, pieces = _long_pieces(
+                chain_rows, chain_cols, _split(chain_rows, chain_cols, starts, split_px), min_segment_rows
+            )
+            if snap_px <= 0 or point_cols.shape[0] == 0:
+                columns = point_cols.astype(np.float64) + 0.5
             else:
-                columns = _snap(chain_rows, chain_cols, cell_modulus, snap_px)
-            segments = _segments_of(chain_rows, columns, pieces, cell_modulus, top, left)
+                columns = _snap(point_rows, point_cols, cell_modulus, snap_px)
+            segments = _segments_of(point_rows, columns, pieces, cell_modulus, top, left)
             lines = group_and_select(
                 segments, min_segment_rows, strip, max_angle, min_rows[k], min_gradient, max_rms, max_count
             )

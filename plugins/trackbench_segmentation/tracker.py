@@ -56,6 +56,7 @@ if TYPE_CHECKING:
     from trackbench_segmentation.pairing import BorderPair
 
 # The detector and its numba kernels load on the first frame, so that listing the trackers does not import numba.
+band = lazy_module("trackbench_segmentation.band")
 contours = lazy_module("trackbench_segmentation.contours")
 detector = lazy_module("trackbench_segmentation.detector")
 histogram = lazy_module("trackbench_segmentation.histogram")
@@ -126,7 +127,9 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
             starts the filter.
         """
         compile_filter_kernels()
+        band.compile_kernels()
         contours.compile_kernels()
+        detector.compile_kernels()
         histogram.compile_kernels()
         lines.compile_kernels()
         self.filter.forget()
