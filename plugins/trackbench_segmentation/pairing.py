@@ -359,14 +359,15 @@ def _pixel_line(a: float, b: float, top: float, bottom: float, width: int, heigh
     return x0, y0, dx / norm, dy / norm
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def cable_of_borders(
     x1: float, y1: float, ux: float, uy: float, x2: float, y2: float, vx: float, vy: float
 ) -> tuple[float, float, float, float]:
     """:func:`benchmark.modalities.camera.geometry.cable_from_borders` of two lines ``(x0, y0, dx, dy)``: ``(d, alpha, w, beta)``.
 
     The same operations in the same order, with CPython's :func:`python_hypot`,
-    so the same state to the last bit.
+    so the same state to the last bit; a division by zero gives an infinity
+    or nan, as it does on the numpy floats the detector's lines are made of.
     """
     wx, wy = vx, vy
     if ux * wx + uy * wy < 0:
@@ -552,7 +553,7 @@ def fuse_pairs(
     ----------
     seeds/000, section 2.3: the fusion of the cells' most likely pairs.
     """
-    if expected_width is not None and expected_width == 0:
+    if _divides_by_zero(rules, expected_width):
         return fuse([cell_lines], size, rules, strip_px=strip_px, max_angle=max_angle, min_rows=min_rows,
                     min_gradient=min_gradient, max_rms=max_rms, max_lines=max_lines, expected_width=expected_width)
     fields = group_and_select(_fields(cell_lines), -math.inf, float(strip_px), float(max_angle), float(min_rows),
@@ -578,6 +579,11 @@ def fuse_pairs(
         borders = (line(i), line(j))
         found.append(BorderPair(i, j, borders, cable_from_borders(*borders), as_score(score)))
     return found
+
+
+def _divides_by_zero(rules: PairRules, expected_width: float | None) -> bool:
+    """Whether the widths' agreement divides by zero (an expected width of 0): left to :func:`border_pairs`."""
+    return expected_width is not None and rules.width_tolerance * expected_width == 0
 
 
 def _fields(segments: Segments) -> np.ndarray:
@@ -629,7 +635,7 @@ def cells_pair_lines(
     seeds/000, section 2.3: "the most likely line pairs of each cell".
     """
     joined = Segments(*lines)
-    if expected_width is None or expected_width != 0:
+    if not _divides_by_zero(rules, expected_width):
         a, b = joined.fit()
         taken, ok = _best_pair_lines(
             lines, offsets, a, b, np.arctan(b), int(size[0]), int(size[1]), *_rule_values(rules, expected_width),
