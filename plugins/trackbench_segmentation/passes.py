@@ -191,17 +191,21 @@ def _pairwise_sum(values: np.ndarray, first: int, count: int) -> float:
             total += values[first + i]
         return total
     if count <= 128:
-        partial = np.empty(8)
-        for j in range(8):
-            partial[j] = values[first + j]
+        r0, r1, r2, r3 = values[first], values[first + 1], values[first + 2], values[first + 3]
+        r4, r5, r6, r7 = values[first + 4], values[first + 5], values[first + 6], values[first + 7]
         i = 8
         while i < count - count % 8:
-            for j in range(8):
-                partial[j] += values[first + i + j]
+            at = first + i
+            r0 += values[at]
+            r1 += values[at + 1]
+            r2 += values[at + 2]
+            r3 += values[at + 3]
+            r4 += values[at + 4]
+            r5 += values[at + 5]
+            r6 += values[at + 6]
+            r7 += values[at + 7]
             i += 8
-        total = ((partial[0] + partial[1]) + (partial[2] + partial[3])) + (
-            (partial[4] + partial[5]) + (partial[6] + partial[7])
-        )
+        total = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
         while i < count:
             total += values[first + i]
             i += 1
