@@ -32,7 +32,8 @@ from trackbench_segmentation.histogram import gradient_bins, gradient_modulus
 from trackbench_segmentation.lines import _NAMES, Segments, _group
 from trackbench_segmentation.pairing import fuse
 from trackbench_segmentation.params import PAPER, SegmentationParams
-from trackbench_segmentation.passes import cell_table, group_free, piece_sums, pyramid_lines, row_extents
+from trackbench_segmentation.contours import _snap
+from trackbench_segmentation.passes import cell_table, group_free, piece_sums, pyramid_lines, row_extents, snap_rows
 from trackbench_segmentation.scaling import frame_params
 
 from benchmark.modalities.camera.model import CableState
@@ -194,3 +195,22 @@ def test_a_walk_that_cannot_climb_is_refused(scene):
     with pytest.raises(ValueError, match="alpha"):
         pyramid_lines(grey, modulus, modulus.astype(np.int64), pyramid_table((8, 8), 1),
                       dataclasses.replace(PARAMS["default"], reference_width_px=None), None, math.pi / 2, 4.0)
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    shape=st.tuples(st.integers(1, 12), st.integers(1, 30)),
+    seed=st.integers(0, 2**16),
+    radius=st.integers(1, 6),
+    levels=st.sampled_from([2, 5, 1000]),
+    view=st.booleans(),
+)
+def test_snapping_without_clamps_inside_the_row_moves_the_points_alike(shape, seed, radius, levels, view):
+    # Few levels make flat windows and ties; a strided view of a wider array is read as itself.
+    rng = np.random.default_rng(seed)
+    wide = (rng.integers(0, levels, (shape[0], 2 * shape[1])) / 4).astype(np.float32)
+    modulus = wide[:, ::2] if view else np.ascontiguousarray(wide[:, : shape[1]])
+    count = int(rng.integers(0, 40))
+    rows = rng.integers(0, shape[0], count).astype(np.int64)
+    cols = rng.integers(0, shape[1], count).astype(np.int64)
+    assert np.array_equal(snap_rows(rows, cols, modulus, radius), _snap(rows, cols, modulus, radius))
