@@ -12,6 +12,13 @@ The detection process of seeds/000, section 2.3 and Fig. 2.5, in order:
    nearly parallel lines (:mod:`trackbench_segmentation.pairing`);
 3. fuse the best pairs of all cells and report the best pair.
 
+:func:`detect_pairs` runs these steps in compiled passes over all cells at
+once (:func:`trackbench_segmentation.passes.pyramid_lines`,
+:func:`trackbench_segmentation.pairing.cells_pair_lines`,
+:func:`trackbench_segmentation.pairing.fuse_pairs`); :func:`cell_lines` states
+them one cell and one step at a time, and the passes give its lines and
+pairs bit for bit.
+
 While tracking, only the region of interest the Kalman filter predicts is
 searched: its pixels alone are counted in the cells' histograms and give
 contour pixels, chains follow the predicted orientation, and pairs are

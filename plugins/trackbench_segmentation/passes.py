@@ -1,24 +1,28 @@
-"""One frame's cells in two compiled passes: the same segmentation, contours and lines as :func:`~trackbench_segmentation.detector.cell_lines`.
+"""One frame's cells in two compiled passes: the lines of :func:`~trackbench_segmentation.detector.cell_long_lines`, bit for bit.
 
-:func:`trackbench_segmentation.detector.cell_lines` states the method of
-Ortiz et al. (seeds/000, section 2.3, Fig. 2.4-2.5) one cell and one step at
-a time; run so, a frame spends most of its time between the steps, in
+:func:`trackbench_segmentation.detector.cell_long_lines` states the method
+of Ortiz et al. (seeds/000, section 2.3, Fig. 2.4-2.5) one cell and one step
+at a time; run so, a frame spends most of its time between the steps, in
 Python.  :func:`pyramid_lines` does the same arithmetic on all the cells of
 a frame in two compiled passes:
 
 1. :func:`_projections` counts the joint histograms of the finest cells only
    (a coarser cell is the union of finer ones, so its histogram is their
-   sum), finds each cell's contour cut from its rows' totals and projects
-   the smooth rows on the grey axis, each projection padded for the
-   smoothing;
+   sum; :func:`cell_table`), and only within each row's extent of the
+   region of interest (:func:`row_extents`), finds each cell's contour cut
+   from its rows' totals and projects the smooth rows on the grey axis,
+   each projection padded for the smoothing;
 2. the projections are smoothed by one ``numpy.convolve`` over all of them
    side by side: each smoothed value is the same dot product of the same
-   numbers as a cell's own ``numpy.convolve`` takes (:func:`trackbench_segmentation.histogram.mountains`);
-3. :func:`_cell_lines` finds the valleys, the label changes, the chains,
-   their straight pieces, the snapped columns, the segments' sums, and
-   groups and filters the segments, cell after cell, with the kernels of
-   :mod:`trackbench_segmentation.histogram`, :mod:`trackbench_segmentation.contours`
-   and :mod:`trackbench_segmentation.lines`.
+   numbers as a cell's own ``numpy.convolve`` takes
+   (:func:`trackbench_segmentation.histogram.mountains`);
+3. :func:`_cell_lines` finds, cell after cell, the valleys, the label
+   changes and the chains with the kernels of
+   :mod:`trackbench_segmentation.histogram` and
+   :mod:`trackbench_segmentation.contours`, cuts the chains into straight
+   pieces, drops the short pieces before their points are snapped
+   (:func:`snap_rows`) and summed (:func:`piece_sums`), and groups
+   (:func:`group_free`) and filters the segments (:func:`group_and_select`).
 
 Every number is computed with the same operations in the same order as the
 one-cell form, so the lines are the same to the last bit: the segments'
@@ -27,7 +31,8 @@ sums (``numpy.add.reduceat``) by numpy's pairwise summation
 cut the rows' totals do not settle (:func:`trackbench_segmentation.histogram.counted_cut`
 needs the moduli themselves) has its mountains found by
 :func:`trackbench_segmentation.histogram.mountain_starts`, and the second
-pass takes them as they are.
+pass takes them as they are.  Each compiled step has a property test of
+equality with its first form (tests/plugins/segmentation/test_segmentation_passes.py).
 """
 
 from __future__ import annotations
@@ -128,8 +133,8 @@ def _projections(
     smooth_share: float,
     exact_rows: bool,
     radius: int,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Each cell's state (:data:`EMPTY`, :data:`READY`, :data:`GIVEN`), its rows' totals and padded projection.
+) -> tuple[np.ndarray, np.ndarray]:
+    """Each cell's state (:data:`EMPTY`, :data:`READY`, :data:`GIVEN`) and padded projection.
 
     The projection of cell ``k`` is ``padded[k*(256 + 2 radius) : (k+1)*(256 + 2 radius)]``: its first and last
     value repeated ``radius`` times on either side, as :func:`trackbench_segmentation.histogram.mountains` pads.
@@ -179,7 +184,7 @@ def _projections(
             padded[start + radius + GREY_LEVELS + i] = projection[GREY_LEVELS - 1]
         for i in range(GREY_LEVELS):
             padded[start + radius + i] = projection[i]
-    return state, totals, padded
+    return state, padded
 
 
 @numba.njit(cache=True, nogil=True)
@@ -229,7 +234,7 @@ def piece_sums(values: np.ndarray, pieces: np.ndarray) -> np.ndarray:
 def _segments_of(
     rows: np.ndarray, columns: np.ndarray, pieces: np.ndarray, gradient: np.ndarray, top: int, left: int
 ) -> np.ndarray:
-    """:meth:`trackbench_segmentation.lines.Segments.from_pieces` as a ``(9, n)`` array in the order of the fields of :class:`~trackbench_segmentation.lines.Segments`."""
+    """:meth:`trackbench_segmentation.lines.Segments.from_pieces` as a ``(9, n)`` array, the fields in order."""
     n_pieces = pieces.shape[0]
     fields = np.empty((9, n_pieces))
     if n_pieces == 0:
@@ -472,7 +477,8 @@ def _cell_lines(
 ) -> tuple[np.ndarray, np.ndarray]:
     """The second pass: each cell's long lines (:func:`trackbench_segmentation.detector.cell_lines` before pairing).
 
-    Returns the lines of all cells side by side as a ``(9, n)`` array in the order of the fields of :class:`~trackbench_segmentation.lines.Segments`, and the offsets
+    Returns the lines of all cells side by side as a ``(9, n)`` array, the fields of
+    :class:`~trackbench_segmentation.lines.Segments` in order, and the offsets
     of each cell's lines into it, the total appended.
     """
     n_cells = bounds.shape[0]
@@ -578,7 +584,7 @@ def pyramid_lines(
     counted = _everywhere((height, width)) if mask is None else np.ascontiguousarray(mask, dtype=np.bool_)
     radius = len(_smoothing_kernel(p.projection_sigma)) // 2 if p.projection_sigma > 0 else 0
     first, stop = _full_rows((height, width)) if mask is None else row_extents(counted)
-    state, _, padded = _projections(
+    state, padded = _projections(
         grey, gradient_rows, counted, first, stop, bounds, parts, p.gradient_bins, p.smooth_share,
         _is_power_of_two(p.gradient_bin), radius,
     )

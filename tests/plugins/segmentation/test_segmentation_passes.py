@@ -113,7 +113,8 @@ def test_the_frame_s_pairs_are_those_of_the_one_cell_form(scene, d, alpha_deg, w
     modulus = gradient_modulus(grey)
     rows = gradient_bins(modulus, p.gradient_bin, p.gradient_bins)
     min_gradient = edge_gradient(modulus, p)
-    found = [cell_lines(grey, modulus, rows, cell, p, prediction, min_gradient) for cell in cell_pyramid(SIZE, p.pyramid_levels)]
+    cells = cell_pyramid(SIZE, p.pyramid_levels)
+    found = [cell_lines(grey, modulus, rows, cell, p, prediction, min_gradient) for cell in cells]
     expected = fuse(
         found, SIZE, pair_rules(p), strip_px=p.strip_px, max_angle=math.radians(p.group_angle_deg),
         min_rows=p.long_share * SIZE[1], min_gradient=min_gradient, max_rms=p.max_rms_px, max_lines=p.max_lines,
