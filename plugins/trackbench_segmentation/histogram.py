@@ -183,12 +183,11 @@ def _gradients(
                 row_of[c] = np.int64(min(line[c] / divisor, top_row))
         for c in range(width):
             counts[c & 3, np.int64(line[c] * np.float32(4.0))] += 1
-    counts = counts.sum(axis=0)
     rank = 0.5 * (height * width - 1)
     below_median = 0
     level = 0
-    while below_median + counts[level] <= rank:
-        below_median += counts[level]
+    while below_median + counts[0, level] + counts[1, level] + counts[2, level] + counts[3, level] <= rank:
+        below_median += counts[0, level] + counts[1, level] + counts[2, level] + counts[3, level]
         level += 1
     return modulus, rows, level * LEVEL_STEP
 
@@ -336,8 +335,39 @@ def _order_statistics(
             if mask[r, c] and first <= rows[r, c] <= last:
                 members[count] = modulus[r, c]
                 count += 1
-    members = np.partition(members, np.array([low_rank - below, high_rank - below]))
-    return members[low_rank - below], members[high_rank - below]
+    # numpy.partition's two order statistics: the values are the same whichever way they are selected.
+    n = members.shape[0]
+    low = _select(members, np.int64(0), n, low_rank - below)
+    return low, _select(members, low_rank - below, n, high_rank - below)
+
+
+@numba.njit(cache=True, nogil=True)
+def _select(values: np.ndarray, lo: int, hi: int, k: int) -> float:
+    """The ``k``-th smallest of ``values[lo:hi]`` (Hoare's selection), moved to ``values[k]``.
+
+    The values before ``k`` in ``lo:hi`` are left no larger and those after
+    it no smaller, so a larger rank is then sought in ``k:hi``.
+    """
+    hi -= 1
+    while lo < hi:
+        pivot = values[(lo + hi) // 2]
+        i, j = lo, hi
+        while i <= j:
+            while values[i] < pivot:
+                i += 1
+            while values[j] > pivot:
+                j -= 1
+            if i <= j:
+                values[i], values[j] = values[j], values[i]
+                i += 1
+                j -= 1
+        if k <= j:
+            hi = j
+        elif k >= i:
+            lo = i
+        else:
+            break
+    return values[k]
 
 
 def counted_cut(
@@ -475,7 +505,11 @@ def _valleys(values: np.ndarray, valley_ratio: float) -> np.ndarray:
         start = 0
         for k in range(count + 1):
             stop = cuts[k] if k < count else len(values)
-            peaks[k] = values[start:stop].max()
+            # numpy's max of a non-empty slice of finite values, without its nan checks.
+            peak = values[start]
+            for i in range(start + 1, stop):
+                peak = max(peak, values[i])
+            peaks[k] = peak
             start = stop
         worst, worst_ratio = -1, valley_ratio
         for k in range(count):
@@ -485,7 +519,8 @@ def _valleys(values: np.ndarray, valley_ratio: float) -> np.ndarray:
                 worst, worst_ratio = k, ratio
         if worst < 0:
             break
-        cuts[worst : count - 1] = cuts[worst + 1 : count].copy()
+        for k in range(worst, count - 1):
+            cuts[k] = cuts[k + 1]
         count -= 1
     return cuts[:count].copy()
 
@@ -610,7 +645,9 @@ def mountain_starts(
     ----------
     seeds/000, section 2.3 and Fig. 2.4.
     """
-    counted = np.ones(grey.shape, dtype=np.bool_) if mask is None else np.ascontiguousarray(mask, dtype=np.bool_)
+    # Contiguous arrays and a fresh mask whatever the cell: one compiled form of the counting and the order statistics.
+    grey, modulus, rows = np.ascontiguousarray(grey), np.ascontiguousarray(modulus), np.ascontiguousarray(rows)
+    counted = np.ones(grey.shape, dtype=np.bool_) if mask is None else np.array(mask, dtype=np.bool_, order="C")
     histogram, totals = _count(grey, rows, counted, n_bins)
     if not totals.any():
         return None

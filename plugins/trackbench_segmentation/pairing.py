@@ -406,7 +406,7 @@ def _line_table(a: np.ndarray, b: np.ndarray, fields: np.ndarray, width: int, he
     """Every segment's :func:`_pixel_line`, ``(n, 4)``."""
     lines = np.empty((a.shape[0], 4))
     for k in range(a.shape[0]):
-        lines[k] = _pixel_line(a[k], b[k], fields[7, k], fields[8, k], width, height)
+        lines[k, 0], lines[k, 1], lines[k, 2], lines[k, 3] = _pixel_line(a[k], b[k], fields[7, k], fields[8, k], width, height)
     return lines
 
 
@@ -500,7 +500,8 @@ def _best_pair_lines(
     index = np.flatnonzero(chosen)
     taken = np.empty((9, index.shape[0]))
     for k in range(index.shape[0]):
-        taken[:, k] = fields[:, index[k]]
+        for f in range(9):
+            taken[f, k] = fields[f, index[k]]
     return taken, True
 
 
@@ -521,8 +522,9 @@ def _fused_pairs(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
     """:func:`_ranked_pairs` of all the segments."""
     lines = _line_table(a, b, fields, width, height)
+    # A typed zero: a literal would compile a second form of the ranking.
     return _ranked_pairs(
-        fields, 0, a.shape[0], lines, angle, max_skew, min_width, max_width, min_overlap, width_tolerance,
+        fields, np.int64(0), a.shape[0], lines, angle, max_skew, min_width, max_width, min_overlap, width_tolerance,
         expected_width,
     )
 

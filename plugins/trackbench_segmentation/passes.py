@@ -156,18 +156,19 @@ def _projections(
     stride = GREY_LEVELS + 2 * radius
     padded = np.zeros(n_cells * stride)
     for k in range(n_cells):
-        for j in range(n_parts):
-            if parts[k, j]:
-                totals[k] += part_totals[j]
-        last = totals[k].sum() - 1
+        last = -1
+        for b in range(n_bins):
+            for j in range(n_parts):
+                if parts[k, j]:
+                    totals[k, b] += part_totals[j, b]
+            last += totals[k, b]
         if last < 0:
             continue
         # histogram.counted_cut: the rows of two order statistics about the quantile, from the rows' totals.
         middle = int(smooth_share * last)
         low_rank, high_rank = max(middle - 1, 0), min(middle + 2, last)
-        cumulative = np.cumsum(totals[k])
-        low_row = np.searchsorted(cumulative, low_rank, side="right")
-        high_row = np.searchsorted(cumulative, high_rank, side="right")
+        low_row = _row_of_rank(totals[k], low_rank)
+        high_row = _row_of_rank(totals[k], high_rank)
         if low_row != high_row or not exact_rows:
             state[k] = GIVEN
             continue
@@ -177,7 +178,8 @@ def _projections(
         for j in range(n_parts):
             if parts[k, j]:
                 for b in range(min(cut, n_bins)):
-                    projection += histograms[j, b]
+                    for i in range(GREY_LEVELS):
+                        projection[i] += histograms[j, b, i]
         start = k * stride
         for i in range(radius):
             padded[start + i] = projection[0]
@@ -185,6 +187,17 @@ def _projections(
         for i in range(GREY_LEVELS):
             padded[start + radius + i] = projection[i]
     return state, padded
+
+
+@numba.njit(cache=True, nogil=True)
+def _row_of_rank(totals: np.ndarray, rank: int) -> int:
+    """``numpy.searchsorted(numpy.cumsum(totals), rank, side="right")``: the row holding the ``rank``-th smallest."""
+    row = 0
+    below = 0
+    while row < totals.shape[0] and below + totals[row] <= rank:
+        below += totals[row]
+        row += 1
+    return row
 
 
 @numba.njit(cache=True, nogil=True)
@@ -249,14 +262,13 @@ def _segments_of(
         g[i] = np.float64(gradient[rows[i], nearest])
         v[i] = np.float64(rows[i]) + top
         u[i] = columns[i] + np.float64(left)
-    fields[0] = (pieces[:, 1] - pieces[:, 0]).astype(np.float64)
-    fields[1] = piece_sums(v, pieces)
-    fields[2] = piece_sums(u, pieces)
-    fields[3] = piece_sums(v * v, pieces)
-    fields[4] = piece_sums(u * v, pieces)
-    fields[5] = piece_sums(u * u, pieces)
-    fields[6] = piece_sums(g, pieces)
+    # Row by row, element by element: an array assigned to a row would compile numpy's shape checks.
+    sums = (piece_sums(v, pieces), piece_sums(u, pieces), piece_sums(v * v, pieces), piece_sums(u * v, pieces),
+            piece_sums(u * u, pieces), piece_sums(g, pieces))
     for k in range(n_pieces):
+        fields[0, k] = np.float64(pieces[k, 1] - pieces[k, 0])
+        for f in range(6):
+            fields[f + 1, k] = sums[f][k]
         fields[7, k] = v[pieces[k, 1] - 1]
         fields[8, k] = v[pieces[k, 0]]
     return fields
@@ -333,7 +345,8 @@ def _take(fields: np.ndarray, index: np.ndarray) -> np.ndarray:
     """The segments at ``index`` of a ``(9, n)`` array of segments."""
     taken = np.empty((9, index.shape[0]))
     for k in range(index.shape[0]):
-        taken[:, k] = fields[:, index[k]]
+        for f in range(9):
+            taken[f, k] = fields[f, index[k]]
     return taken
 
 
@@ -359,10 +372,14 @@ def group_and_select(
         return s
     order = np.argsort(-s[0], kind="mergesort")
     labels = group_free(s[0], s[1], s[2], s[3], s[4], s[5], s[7], s[8], order, strip, max_angle)
-    joined = _join(labels, labels.max() + 1, s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8])
+    n_groups = np.int64(0)
+    for label in labels:
+        n_groups = max(n_groups, label + 1)
+    joined = _join(labels, n_groups, s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8])
     grouped = np.empty((9, joined[0].shape[0]))
-    for k in range(9):
-        grouped[k] = joined[k]
+    for f in range(9):
+        for k in range(grouped.shape[1]):
+            grouped[f, k] = joined[f][k]
     grouped = _take(grouped, np.argsort(-grouped[0], kind="mergesort"))
     g = grouped
     keep = np.flatnonzero(_is_long(g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7], g[8], min_rows, min_gradient, max_rms))
@@ -435,7 +452,10 @@ def _long_pieces(
             total += pieces[k, 1] - pieces[k, 0]
     kept_rows = np.empty(total, dtype=np.int64)
     kept_cols = np.empty(total, dtype=np.int64)
-    kept = np.empty((keep.sum(), 2), dtype=np.int64)
+    n_long = 0
+    for k in range(pieces.shape[0]):
+        n_long += keep[k]
+    kept = np.empty((n_long, 2), dtype=np.int64)
     count = 0
     n_kept = 0
     for k in range(pieces.shape[0]):
@@ -506,13 +526,15 @@ def _cell_lines(
                 columns = snap_rows(point_rows, point_cols, cell_modulus, snap_px)
             segments = _segments_of(point_rows, columns, pieces, cell_modulus, top, left)
             lines = group_and_select(
-                segments, min_segment_rows, strip, max_angle, min_rows[k], min_gradient, max_rms, max_count
+                segments, np.float64(min_segment_rows), strip, max_angle, min_rows[k], min_gradient, max_rms, max_count
             )
         found.append(lines)
         offsets[k + 1] = offsets[k] + lines.shape[1]
     joined = np.empty((9, offsets[n_cells]))
     for k in range(n_cells):
-        joined[:, offsets[k] : offsets[k + 1]] = found[k]
+        for f in range(9):
+            for i in range(found[k].shape[1]):
+                joined[f, offsets[k] + i] = found[k][f, i]
     return joined, offsets
 
 
@@ -522,6 +544,13 @@ def _everywhere(shape: tuple[int, int]) -> np.ndarray:
     mask = np.ones(shape, dtype=np.bool_)
     mask.flags.writeable = False
     return mask
+
+
+def _read_only(array: np.ndarray) -> np.ndarray:
+    """A read-only view of ``array``."""
+    view = array.view()
+    view.flags.writeable = False
+    return view
 
 
 @functools.lru_cache(maxsize=8)
@@ -581,9 +610,10 @@ def pyramid_lines(
         raise ValueError(f"the split tolerance must be positive, got {p.split_px}")
     height, width = grey.shape
     bounds, parts = table
-    counted = _everywhere((height, width)) if mask is None else np.ascontiguousarray(mask, dtype=np.bool_)
+    # The mask and its rows' extents are read-only whether searched whole or not: one compiled form of each pass.
+    counted = _everywhere((height, width)) if mask is None else _read_only(np.ascontiguousarray(mask, dtype=np.bool_))
     radius = len(_smoothing_kernel(p.projection_sigma)) // 2 if p.projection_sigma > 0 else 0
-    first, stop = _full_rows((height, width)) if mask is None else row_extents(counted)
+    first, stop = _full_rows((height, width)) if mask is None else map(_read_only, row_extents(counted))
     state, padded = _projections(
         grey, gradient_rows, counted, first, stop, bounds, parts, p.gradient_bins, p.smooth_share,
         _is_power_of_two(p.gradient_bin), radius,

@@ -22,6 +22,7 @@ from trackbench_segmentation.histogram import (
     ranked_bins,
     segment_cell,
 )
+from trackbench_segmentation.histogram import _select as select_order_statistic
 
 cells = arrays(np.uint8, st.tuples(st.integers(3, 24), st.integers(3, 24)))
 
@@ -171,6 +172,22 @@ def _reference_mountains(projection: np.ndarray, sigma: float, valley_ratio: flo
 )
 def test_mountains_equal_the_valley_by_valley_reading(projection, sigma, ratio):
     assert np.array_equal(mountains(projection, sigma, ratio), _reference_mountains(projection, sigma, ratio))
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    values=arrays(np.float32, st.integers(1, 60), elements=st.floats(0, 8, width=32)),
+    data=st.data(),
+)
+def test_two_selected_order_statistics_are_numpys_partition(values, data):
+    low = data.draw(st.integers(0, len(values) - 1))
+    high = data.draw(st.integers(low, len(values) - 1))
+    expected = np.partition(values, [low, high])
+    work = values.copy()
+    assert select_order_statistic(work, 0, len(work), low) == expected[low]
+    assert select_order_statistic(work, low, len(work), high) == expected[high]
+    # The values are only moved.
+    assert np.array_equal(np.sort(work), np.sort(values))
 
 
 @settings(max_examples=300, deadline=None)
