@@ -12,6 +12,13 @@ The detection process of seeds/000, section 2.3 and Fig. 2.5, in order:
    nearly parallel lines (:mod:`trackbench_segmentation.pairing`);
 3. fuse the best pairs of all cells and report the best pair.
 
+:func:`detect_pairs` runs these steps in compiled passes over all cells at
+once (:func:`trackbench_segmentation.passes.pyramid_lines`,
+:func:`trackbench_segmentation.pairing.cells_pair_lines`,
+:func:`trackbench_segmentation.pairing.fuse_pairs`); :func:`cell_lines` states
+them one cell and one step at a time, and the passes give its lines and
+pairs bit for bit.
+
 While tracking, only the region of interest the Kalman filter predicts is
 searched: its pixels alone are counted in the cells' histograms and give
 contour pixels, chains follow the predicted orientation, and pairs are
@@ -45,10 +52,11 @@ import numpy as np
 
 from trackbench_segmentation.contours import follow_chains, label_changes, snap_to_edges, split_chains
 from trackbench_segmentation.grey import normalised_grey
-from trackbench_segmentation.histogram import gradient_bins, gradient_level, gradient_modulus, mountain_starts
+from trackbench_segmentation.histogram import frame_gradients, gradient_level, mountain_starts
 from trackbench_segmentation.lines import Segments, group_collinear, select_long
-from trackbench_segmentation.pairing import BorderPair, PairRules, border_pairs, fuse, pair_lines
+from trackbench_segmentation.pairing import BorderPair, PairRules, border_pairs, cells_pair_lines, fuse_pairs, pair_lines
 from trackbench_segmentation.params import SegmentationParams
+from trackbench_segmentation.passes import CellTable, cell_table, pyramid_lines
 from trackbench_segmentation.scaling import frame_params
 
 Cell = tuple[slice, slice]
@@ -87,6 +95,12 @@ def cell_pyramid(size: tuple[int, int], levels: int) -> tuple[Cell, ...]:
             for c in range(parts):
                 cells.append((slice(row_edges[r], row_edges[r + 1]), slice(col_edges[c], col_edges[c + 1])))
     return tuple(cells)
+
+
+@functools.lru_cache(maxsize=16)
+def pyramid_table(size: tuple[int, int], levels: int) -> CellTable:
+    """The cells of :func:`cell_pyramid` as the compiled passes take them (:func:`trackbench_segmentation.passes.cell_table`)."""
+    return cell_table(cell_pyramid(size, levels), 4 ** (levels - 1), size)
 
 
 @dataclass(frozen=True, slots=True)
@@ -134,9 +148,14 @@ def edge_gradient(modulus: np.ndarray, params: SegmentationParams) -> float:
     gradient modulus of the contour pixels", rejecting "lines that do not
     lie on or near an edge".
     """
+    return level_gradient(gradient_level(modulus), params)
+
+
+def level_gradient(level: float, params: SegmentationParams) -> float:
+    """:func:`edge_gradient` of a frame whose gradient level is ``level``."""
     if params.min_gradient_ratio == 0:
         return params.min_gradient
-    return max(params.min_gradient, params.min_gradient_ratio * gradient_level(modulus))
+    return max(params.min_gradient, params.min_gradient_ratio * level)
 
 
 def cell_lines(
@@ -148,7 +167,35 @@ def cell_lines(
     prediction: Prediction | None,
     min_gradient: float,
 ) -> Segments:
-    """The lines of the most likely border pairs of one cell.
+    """The lines of the most likely border pairs of one cell: :func:`cell_long_lines`, paired.
+
+    Parameters and result as :func:`cell_long_lines`, whose lines are
+    paired (:func:`best_pair_lines`).  :func:`detect_pairs` finds the long
+    lines of all cells at once (:func:`trackbench_segmentation.passes.pyramid_lines`).
+    """
+    height, width = grey.shape
+    lines = cell_long_lines(grey, modulus, gradient_rows, cell, params, prediction, min_gradient)
+    return best_pair_lines(lines, (width, height), params, prediction)
+
+
+def best_pair_lines(lines: Segments, size: tuple[int, int], params: SegmentationParams,
+                    prediction: Prediction | None) -> Segments:
+    """The lines that take part in a cell's ``pairs_per_cell`` best pairs (seeds/000, section 2.3)."""
+    expected = None if prediction is None else prediction.width
+    pairs = border_pairs(lines, size, pair_rules(params), expected)[: params.pairs_per_cell]
+    return pair_lines(lines, pairs)
+
+
+def cell_long_lines(
+    grey: np.ndarray,
+    modulus: np.ndarray,
+    gradient_rows: np.ndarray,
+    cell: Cell,
+    params: SegmentationParams,
+    prediction: Prediction | None,
+    min_gradient: float,
+) -> Segments:
+    """The long lines of one cell, the candidates of its border pairs.
 
     Parameters
     ----------
@@ -171,8 +218,8 @@ def cell_lines(
     Returns
     -------
     Segments
-        The long lines that take part in the cell's ``pairs_per_cell`` best
-        pairs, in image coordinates.
+        The cell's long lines (:func:`trackbench_segmentation.lines.select_long`),
+        most pixels first, in image coordinates.
 
     References
     ----------
@@ -213,16 +260,13 @@ def cell_lines(
     segments = segments.longer_than(p.min_segment_rows)
     grouped = group_collinear(segments, p.strip_px, math.radians(p.group_angle_deg))
     cell_height = (rows.stop if rows.stop is not None else height) - offset[0]
-    lines = select_long(
+    return select_long(
         grouped,
         min_rows=p.long_share * cell_height,
         min_gradient=min_gradient,
         max_rms=p.max_rms_px,
         max_count=p.max_lines,
     )
-    expected = None if prediction is None else prediction.width
-    pairs = border_pairs(lines, (width, height), pair_rules(p), expected)[: p.pairs_per_cell]
-    return pair_lines(lines, pairs)
 
 
 def detect(image: np.ndarray, params: SegmentationParams, prediction: Prediction | None = None) -> BorderPair | None:
@@ -256,14 +300,14 @@ def detect_pairs(image: np.ndarray, params: SegmentationParams, prediction: Pred
     height, width = image.shape
     p = frame_params(params, (width, height))
     grey = normalised_grey(image, p.smoothing_sigma, p.grey_quantiles)
-    modulus = gradient_modulus(grey)
-    gradient_rows = gradient_bins(modulus, p.gradient_bin, p.gradient_bins)
-    min_gradient = edge_gradient(modulus, p)
-    found = [
-        cell_lines(grey, modulus, gradient_rows, cell, p, prediction, min_gradient)
-        for cell in cell_pyramid((width, height), p.pyramid_levels)
-    ]
-    return fuse(
+    modulus, gradient_rows, level = frame_gradients(grey, p.gradient_bin, p.gradient_bins)
+    min_gradient = level_gradient(level, p)
+    table = pyramid_table((width, height), p.pyramid_levels)
+    mask, alpha = (None, 0.0) if prediction is None else (prediction.roi, prediction.alpha)
+    long_lines, offsets = pyramid_lines(grey, modulus, gradient_rows, table, p, mask, alpha, min_gradient)
+    expected = None if prediction is None else prediction.width
+    found = cells_pair_lines(long_lines, offsets, (width, height), pair_rules(p), expected, p.pairs_per_cell)
+    return fuse_pairs(
         found,
         (width, height),
         pair_rules(p),
@@ -275,3 +319,18 @@ def detect_pairs(image: np.ndarray, params: SegmentationParams, prediction: Pred
         max_lines=p.max_lines,
         expected_width=None if prediction is None else prediction.width,
     )
+
+
+def compile_kernels() -> None:
+    """Compile (or load from numba's cache) the compiled passes of :func:`detect_pairs` now, on a tiny image.
+
+    Searched whole and in a region of interest, with and without a power of
+    two for the gradient bins, so that every pass a frame may take is ready.
+    """
+    image = np.zeros((24, 32), np.uint8)
+    image[:, 12:18] = 200
+    mask = np.zeros(image.shape, np.bool_)
+    mask[:, 4:28] = True
+    for params in (SegmentationParams(), SegmentationParams(gradient_bin=1.5)):
+        for prediction in (None, Prediction(mask, 0.0, 6.0)):
+            detect_pairs(image, params, prediction)

@@ -128,6 +128,99 @@ def gradient_level(modulus: np.ndarray) -> float:
     return float(ranked_bins(counts, (0.5,))[0]) * LEVEL_STEP
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _sobel_square(grey: np.ndarray, up: int, r: int, down: int, left: int, c: int, right: int) -> np.int32:
+    """``Gx^2 + Gy^2`` of OpenCV's 3 x 3 Sobel responses at ``(r, c)``, the neighbours' rows and columns given."""
+    gx = (np.int32(grey[up, right]) + 2 * np.int32(grey[r, right]) + np.int32(grey[down, right])) - (
+        np.int32(grey[up, left]) + 2 * np.int32(grey[r, left]) + np.int32(grey[down, left])
+    )
+    gy = (np.int32(grey[down, left]) + 2 * np.int32(grey[down, c]) + np.int32(grey[down, right])) - (
+        np.int32(grey[up, left]) + 2 * np.int32(grey[up, c]) + np.int32(grey[up, right])
+    )
+    return np.int32(gx * gx + gy * gy)
+
+
+@numba.njit(cache=True, nogil=True)
+def _gradients(
+    grey: np.ndarray, bin_width: float, n_bins: int, exact_inverse: bool
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """:func:`gradient_modulus`, :func:`gradient_bins` and :func:`gradient_level` of ``grey`` in one pass.
+
+    The Sobel responses are the integers OpenCV's 3 x 3 kernels give with the
+    borders replicated; their squares' sum is exact in ``float32`` and its
+    square root is rounded once, so every modulus is :func:`gradient_modulus`'s
+    bit for bit.  The rows divide in ``float32`` as numpy divides a
+    ``float32`` array by a Python float (by a power of two, multiplying by its
+    inverse is the same division), and the level counts ``floor(4 m)``, the
+    bin OpenCV's histogram of :data:`LEVEL_STEP` puts ``m`` in.
+    """
+    height, width = grey.shape
+    modulus = np.empty((height, width), dtype=np.float32)
+    rows = np.empty((height, width), dtype=np.int64)
+    divisor = np.float32(bin_width)
+    inverse = np.float32(1.0) / divisor
+    top_row = np.float32(n_bins - 1)
+    # The largest modulus is sqrt(2 * 1020^2) / 4 < 361 grey levels per px.
+    quarter = np.float32(0.25)
+    squares = np.empty(width, dtype=np.int32)
+    # Four histograms, filled in turn, so that neighbouring pixels of one bin do not wait on each other.
+    counts = np.zeros((4, 4 * 361 + 2), dtype=np.int64)
+    for r in range(height):
+        up, down = max(r - 1, 0), min(r + 1, height - 1)
+        for c in range(1, width - 1):
+            squares[c] = _sobel_square(grey, up, r, down, c - 1, c, c + 1)
+        squares[0] = _sobel_square(grey, up, r, down, 0, 0, min(1, width - 1))
+        squares[width - 1] = _sobel_square(grey, up, r, down, max(width - 2, 0), width - 1, width - 1)
+        line = modulus[r]
+        for c in range(width):
+            line[c] = np.sqrt(np.float32(squares[c])) * quarter
+        row_of = rows[r]
+        if exact_inverse:
+            for c in range(width):
+                row_of[c] = np.int64(min(line[c] * inverse, top_row))
+        else:
+            for c in range(width):
+                row_of[c] = np.int64(min(line[c] / divisor, top_row))
+        for c in range(width):
+            counts[c & 3, np.int64(line[c] * np.float32(4.0))] += 1
+    rank = 0.5 * (height * width - 1)
+    below_median = 0
+    level = 0
+    while below_median + counts[0, level] + counts[1, level] + counts[2, level] + counts[3, level] <= rank:
+        below_median += counts[0, level] + counts[1, level] + counts[2, level] + counts[3, level]
+        level += 1
+    return modulus, rows, level * LEVEL_STEP
+
+
+def frame_gradients(grey: np.ndarray, bin_width: float, n_bins: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """A frame's gradient moduli, their rows of the joint histogram and its gradient level, in one compiled pass.
+
+    Parameters
+    ----------
+    grey : numpy.ndarray
+        ``uint8`` grey image of shape ``(H, W)``, at least 1 x 1.
+    bin_width, n_bins : float, int
+        The joint histogram's gradient bins (:func:`gradient_bins`).
+
+    Returns
+    -------
+    modulus : numpy.ndarray
+        ``gradient_modulus(grey)``.
+    rows : numpy.ndarray
+        ``gradient_bins(modulus, bin_width, n_bins)``.
+    level : float
+        ``gradient_level(modulus)``.
+
+    References
+    ----------
+    seeds/000, section 2.3 (the Sobel gradient modulus of the histogram's second axis).
+    """
+    if bin_width <= 0 or n_bins < 1:
+        raise ValueError(f"need a positive bin width and at least one bin, got {bin_width} and {n_bins}")
+    grey = np.ascontiguousarray(grey, dtype=np.uint8)
+    return _gradients(grey, float(bin_width), int(n_bins), _is_power_of_two(bin_width))
+
+
 def joint_histogram(grey: np.ndarray, modulus: np.ndarray, bin_width: float, n_bins: int) -> np.ndarray:
     """The bidimensional histogram of grey level x gradient modulus of Fig. 2.4.
 
@@ -242,8 +335,39 @@ def _order_statistics(
             if mask[r, c] and first <= rows[r, c] <= last:
                 members[count] = modulus[r, c]
                 count += 1
-    members = np.partition(members, np.array([low_rank - below, high_rank - below]))
-    return members[low_rank - below], members[high_rank - below]
+    # numpy.partition's two order statistics: the values are the same whichever way they are selected.
+    n = members.shape[0]
+    low = _select(members, np.int64(0), n, low_rank - below)
+    return low, _select(members, low_rank - below, n, high_rank - below)
+
+
+@numba.njit(cache=True, nogil=True)
+def _select(values: np.ndarray, lo: int, hi: int, k: int) -> float:
+    """The ``k``-th smallest of ``values[lo:hi]`` (Hoare's selection), moved to ``values[k]``.
+
+    The values before ``k`` in ``lo:hi`` are left no larger and those after
+    it no smaller, so a larger rank is then sought in ``k:hi``.
+    """
+    hi -= 1
+    while lo < hi:
+        pivot = values[(lo + hi) // 2]
+        i, j = lo, hi
+        while i <= j:
+            while values[i] < pivot:
+                i += 1
+            while values[j] > pivot:
+                j -= 1
+            if i <= j:
+                values[i], values[j] = values[j], values[i]
+                i += 1
+                j -= 1
+        if k <= j:
+            hi = j
+        elif k >= i:
+            lo = i
+        else:
+            break
+    return values[k]
 
 
 def counted_cut(
@@ -381,7 +505,11 @@ def _valleys(values: np.ndarray, valley_ratio: float) -> np.ndarray:
         start = 0
         for k in range(count + 1):
             stop = cuts[k] if k < count else len(values)
-            peaks[k] = values[start:stop].max()
+            # numpy's max of a non-empty slice of finite values, without its nan checks.
+            peak = values[start]
+            for i in range(start + 1, stop):
+                peak = max(peak, values[i])
+            peaks[k] = peak
             start = stop
         worst, worst_ratio = -1, valley_ratio
         for k in range(count):
@@ -391,7 +519,8 @@ def _valleys(values: np.ndarray, valley_ratio: float) -> np.ndarray:
                 worst, worst_ratio = k, ratio
         if worst < 0:
             break
-        cuts[worst : count - 1] = cuts[worst + 1 : count].copy()
+        for k in range(worst, count - 1):
+            cuts[k] = cuts[k + 1]
         count -= 1
     return cuts[:count].copy()
 
@@ -516,7 +645,9 @@ def mountain_starts(
     ----------
     seeds/000, section 2.3 and Fig. 2.4.
     """
-    counted = np.ones(grey.shape, dtype=np.bool_) if mask is None else np.ascontiguousarray(mask, dtype=np.bool_)
+    # Contiguous arrays and a fresh mask whatever the cell: one compiled form of the counting and the order statistics.
+    grey, modulus, rows = np.ascontiguousarray(grey), np.ascontiguousarray(modulus), np.ascontiguousarray(rows)
+    counted = np.ones(grey.shape, dtype=np.bool_) if mask is None else np.array(mask, dtype=np.bool_, order="C")
     histogram, totals = _count(grey, rows, counted, n_bins)
     if not totals.any():
         return None

@@ -29,13 +29,17 @@ contains the pair of lines which has the highest score after the fusion"
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from benchmark.modalities.camera.geometry import ImageSize, Line, cable_from_borders
 from benchmark.modalities.camera.model import CableState
 from trackbench_segmentation.lines import Segments, group_collinear, pixel_line, select_long
+from trackbench_segmentation.lines import _NAMES as _FIELDS
+from trackbench_segmentation.passes import group_and_select
 
 
 @dataclass(frozen=True, slots=True)
@@ -119,6 +123,8 @@ def border_pairs(
     candidates = (np.abs(angle[first] - angle[second]) <= 2.0 * rules.max_skew + 1e-9) & (
         overlap >= rules.min_overlap * np.minimum(span[first], span[second])
     )
+    candidates[candidates] = may_pass(a, b, v_low, v_high, first[candidates], second[candidates], size, rules,
+                                      expected_width)
     found: list[BorderPair] = []
     made: dict[int, Line] = {}
 
@@ -142,6 +148,75 @@ def border_pairs(
         found.append(BorderPair(i, j, borders, state, score))
     found.sort(key=lambda pair: -pair.score)
     return found
+
+
+ROUNDING_PX = 1e-6
+"""Room left for rounding by :func:`may_pass`, px (and rad for the skew): far more than the last bits it may differ in."""
+
+
+def may_pass(
+    a: np.ndarray,
+    b: np.ndarray,
+    v_low: np.ndarray,
+    v_high: np.ndarray,
+    first: np.ndarray,
+    second: np.ndarray,
+    size: ImageSize,
+    rules: PairRules,
+    expected_width: float | None,
+) -> np.ndarray:
+    """Whether each pair of lines ``u = a + b v`` may pass :func:`border_pairs`' tests of skew, width and agreement.
+
+    The cable state of every pair at once, by the steps of
+    :func:`benchmark.modalities.camera.geometry.cable_from_borders` on arrays;
+    its width and skew may differ from the one-pair computation in their
+    last bits (``numpy.hypot`` is not Python's), so a pair is passed over
+    only when it fails a test by more than :data:`ROUNDING_PX`.  The pairs
+    kept are then judged one by one exactly as before: the found pairs are
+    the same, only the pairs that cannot be found are not built.
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean, one per pair ``(first[k], second[k])``.
+    """
+    width, height = size
+    narrow = v_high - v_low < 1.0
+    top = np.where(narrow, v_low - 0.5, v_low)
+    bottom = np.where(narrow, v_low + 0.5, v_high)
+    x_centre, y_centre = (width - 1) / 2.0, (height - 1) / 2.0
+    x0, y0 = (a + b * top) - x_centre, y_centre - top
+    dx, dy = ((a + b * bottom) - x_centre) - x0, (y_centre - bottom) - y0
+    norm = np.hypot(dx, dy)
+    dx, dy = dx / norm, dy / norm
+    ux, uy, vx, vy = dx[first], dy[first], dx[second], dy[second]
+    flip = ux * vx + uy * vy < 0
+    vx, vy = np.where(flip, -vx, vx), np.where(flip, -vy, vy)
+    tx, ty = ux + vx, uy + vy
+    t_norm = np.hypot(tx, ty)
+    tx, ty = tx / t_norm, ty / t_norm
+    nx, ny = ty, -tx
+    half_angle = 0.5 * np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy)
+    crossings = []
+    normals = []
+    for k in (first, second):
+        mx, my = dy[k], -dx[k]
+        turn = mx * nx + my * ny < 0
+        mx, my = np.where(turn, -mx, mx), np.where(turn, -my, my)
+        normals.append((mx, my, mx * x0[k] + my * y0[k]))
+    (m1x, m1y, c1), (m2x, m2y, c2) = normals
+    d = (c1 + c2) / np.hypot(m1x + m2x, m1y + m2y)
+    c0x, c0y = d * nx, d * ny
+    with np.errstate(divide="ignore", invalid="ignore"):
+        crossings = [(c - (mx * c0x + my * c0y)) / (mx * nx + my * ny) for mx, my, c in normals]
+    pair_width = np.abs(crossings[1] - crossings[0])
+    passes = (half_angle <= rules.max_skew + ROUNDING_PX) & (pair_width >= rules.min_width - ROUNDING_PX) & (
+        pair_width <= rules.max_width + ROUNDING_PX
+    )
+    if expected_width is not None and expected_width > 0:
+        passes &= np.abs(pair_width - expected_width) < rules.width_tolerance * expected_width + ROUNDING_PX
+    # A pair whose numbers are not finite is left to the exact test.
+    return passes | ~np.isfinite(pair_width) | ~np.isfinite(half_angle)
 
 
 @functools.lru_cache(maxsize=64)
@@ -206,3 +281,378 @@ def fuse(
     lines = select_long(merged, min_rows=min_rows, min_gradient=min_gradient, max_rms=max_rms, max_count=max_lines)
     return border_pairs(lines, size, rules, expected_width)
 
+
+
+@numba.njit(cache=True, nogil=True)
+def _split_double(x: float) -> tuple[float, float]:
+    """Veltkamp's split of ``x`` into two halves of 26 bits."""
+    t = x * 134217729.0
+    high = t - (t - x)
+    return high, x - high
+
+
+@numba.njit(cache=True, nogil=True)
+def _exact_square(x: float) -> tuple[float, float]:
+    """``x * x`` as the sum of two doubles (Dekker)."""
+    high, low = _split_double(x)
+    p = high * high
+    q = high * low + low * high
+    z = p + q
+    return z, p - z + q + low * low
+
+
+@numba.njit(cache=True, nogil=True)
+def _normal_hypot(x: float, y: float) -> float:
+    """:func:`python_hypot` of two finite values whose larger is a normal double."""
+    largest = max(x, y)
+    _, exponent = math.frexp(largest)
+    scale = math.ldexp(1.0, -exponent)
+    total, frac1, frac2 = 1.0, 0.0, 0.0
+    for value in (x, y):
+        high, low = _exact_square(value * scale)
+        summed = total + high
+        frac2 += (total - summed) + high
+        total = summed
+        frac1 += low
+    h = math.sqrt(total - 1.0 + (frac1 + frac2))
+    high, low = _exact_square(h)
+    summed = total - high
+    frac2 += (total - summed) - high
+    total = summed
+    frac1 -= low
+    h += (total - 1.0 + (frac1 + frac2)) / (2.0 * h)
+    return h / scale
+
+
+@numba.njit(cache=True, nogil=True)
+def python_hypot(x: float, y: float) -> float:
+    """``math.hypot(x, y)`` as CPython 3.11 computes it (its ``vector_norm``), bit for bit; ``numpy.hypot`` is libm's.
+
+    The squares are summed in extended precision and the square root
+    corrected once, so the result is nearly always the correctly rounded one.
+    """
+    x, y = abs(x), abs(y)
+    largest = max(x, y)
+    if math.isinf(largest):
+        return largest
+    if math.isnan(x) or math.isnan(y):
+        return math.nan
+    if largest == 0.0:
+        return largest
+    smallest_normal = 2.2250738585072014e-308
+    if largest < smallest_normal:
+        return smallest_normal * _normal_hypot(x / smallest_normal, y / smallest_normal)
+    return _normal_hypot(x, y)
+
+
+@numba.njit(cache=True, nogil=True)
+def _pixel_line(a: float, b: float, top: float, bottom: float, width: int, height: int) -> tuple[float, float, float, float]:
+    """:func:`trackbench_segmentation.lines.pixel_line` as ``(x0, y0, dx, dy)``; ``dx = dy = nan`` when it is not a line."""
+    if bottom - top < 1.0:
+        top, bottom = top - 0.5, top + 0.5
+    x_centre, y_centre = (width - 1) / 2.0, (height - 1) / 2.0
+    x0, y0 = (a + b * top) - x_centre, y_centre - top
+    dx, dy = ((a + b * bottom) - x_centre) - x0, (y_centre - bottom) - y0
+    norm = python_hypot(dx, dy)
+    if not (math.isfinite(norm) and norm > 0 and math.isfinite(x0) and math.isfinite(y0)):
+        return x0, y0, math.nan, math.nan
+    return x0, y0, dx / norm, dy / norm
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def cable_of_borders(
+    x1: float, y1: float, ux: float, uy: float, x2: float, y2: float, vx: float, vy: float
+) -> tuple[float, float, float, float]:
+    """:func:`benchmark.modalities.camera.geometry.cable_from_borders` of two lines ``(x0, y0, dx, dy)``: ``(d, alpha, w, beta)``.
+
+    The same operations in the same order, with CPython's :func:`python_hypot`,
+    so the same state to the last bit; a division by zero gives an infinity
+    or nan, as it does on the numpy floats the detector's lines are made of.
+    """
+    wx, wy = vx, vy
+    if ux * wx + uy * wy < 0:
+        wx, wy = -wx, -wy
+    tx, ty = ux + wx, uy + wy
+    norm = python_hypot(tx, ty)
+    tx, ty = tx / norm, ty / norm
+    if ty < 0 or (ty == 0 and tx > 0):
+        tx, ty = -tx, -ty
+    alpha = math.atan2(-tx, ty)
+    nx, ny = ty, -tx
+    half_angle = 0.5 * math.atan2(abs(ux * wy - uy * wx), ux * wx + uy * wy)
+    m1x, m1y = uy, -ux
+    if m1x * nx + m1y * ny < 0:
+        m1x, m1y = -m1x, -m1y
+    c1 = m1x * x1 + m1y * y1
+    m2x, m2y = vy, -vx
+    if m2x * nx + m2y * ny < 0:
+        m2x, m2y = -m2x, -m2y
+    c2 = m2x * x2 + m2y * y2
+    d = (c1 + c2) / python_hypot(m1x + m2x, m1y + m2y)
+    c0x, c0y = d * nx, d * ny
+    crossing1 = (c1 - (m1x * c0x + m1y * c0y)) / (m1x * nx + m1y * ny)
+    crossing2 = (c2 - (m2x * c0x + m2y * c0y)) / (m2x * nx + m2y * ny)
+    slope1 = -(m1x * tx + m1y * ty) / (m1x * nx + m1y * ny)
+    slope2 = -(m2x * tx + m2y * ty) / (m2x * nx + m2y * ny)
+    if crossing1 <= crossing2:
+        width, converging_up = crossing2 - crossing1, slope2 - slope1 < 0
+    else:
+        width, converging_up = crossing1 - crossing2, slope1 - slope2 < 0
+    return d, alpha, width, half_angle if converging_up else -half_angle
+
+
+@numba.njit(cache=True, nogil=True)
+def _line_table(a: np.ndarray, b: np.ndarray, fields: np.ndarray, width: int, height: int) -> np.ndarray:
+    """Every segment's :func:`_pixel_line`, ``(n, 4)``."""
+    lines = np.empty((a.shape[0], 4))
+    for k in range(a.shape[0]):
+        lines[k, 0], lines[k, 1], lines[k, 2], lines[k, 3] = _pixel_line(a[k], b[k], fields[7, k], fields[8, k], width, height)
+    return lines
+
+
+@numba.njit(cache=True, nogil=True)
+def _ranked_pairs(
+    fields: np.ndarray,
+    start: int,
+    stop: int,
+    lines: np.ndarray,
+    angle: np.ndarray,
+    max_skew: float,
+    min_width: float,
+    max_width: float,
+    min_overlap: float,
+    width_tolerance: float,
+    expected_width: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
+    """:func:`border_pairs` of the segments ``start:stop``: their indices and scores, best first.
+
+    ``expected_width`` nan: none.  The flag is False when a line of a
+    candidate pair is not one (:class:`benchmark.modalities.camera.geometry.Line`
+    would refuse it): the pairs are then to be found the slow way.
+    """
+    count = stop - start
+    capacity = max(count * (count - 1) // 2, 0)
+    scores = np.empty(capacity)
+    firsts = np.empty(capacity, dtype=np.int64)
+    seconds = np.empty(capacity, dtype=np.int64)
+    found = 0
+    for i in range(start, stop):
+        for j in range(i + 1, stop):
+            if not abs(angle[i] - angle[j]) <= 2.0 * max_skew + 1e-9:
+                continue
+            span_i = fields[8, i] - fields[7, i] + 1.0
+            span_j = fields[8, j] - fields[7, j] + 1.0
+            overlap = min(fields[8, i], fields[8, j]) - max(fields[7, i], fields[7, j]) + 1.0
+            if not overlap >= min_overlap * min(span_i, span_j):
+                continue
+            if math.isnan(lines[i, 2]) or math.isnan(lines[j, 2]):
+                return firsts[:0], seconds[:0], scores[:0], False
+            _, _, w, beta = cable_of_borders(
+                lines[i, 0], lines[i, 1], lines[i, 2], lines[i, 3], lines[j, 0], lines[j, 1], lines[j, 2], lines[j, 3]
+            )
+            if abs(beta) > max_skew or not min_width <= w <= max_width:
+                continue
+            score = (fields[0, i] + fields[0, j]) * (1.0 - abs(beta) / max_skew if max_skew > 0 else 1.0)
+            if not math.isnan(expected_width):
+                agreement = 1.0 - abs(w - expected_width) / (width_tolerance * expected_width)
+                if agreement <= 0:
+                    continue
+                score *= agreement
+            scores[found] = score
+            firsts[found] = i
+            seconds[found] = j
+            found += 1
+    ranked = np.argsort(-scores[:found], kind="mergesort")
+    return firsts[ranked], seconds[ranked], scores[ranked], True
+
+
+@numba.njit(cache=True, nogil=True)
+def _best_pair_lines(
+    fields: np.ndarray,
+    offsets: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    angle: np.ndarray,
+    width: int,
+    height: int,
+    max_skew: float,
+    min_width: float,
+    max_width: float,
+    min_overlap: float,
+    width_tolerance: float,
+    expected_width: float,
+    pairs_per_cell: int,
+) -> tuple[np.ndarray, bool]:
+    """Each cell's :func:`border_pairs` and :func:`pair_lines`, the lines of its best pairs side by side (flag: see
+    :func:`_ranked_pairs`)."""
+    lines = _line_table(a, b, fields, width, height)
+    chosen = np.zeros(a.shape[0], dtype=np.bool_)
+    for cell in range(offsets.shape[0] - 1):
+        firsts, seconds, _, ok = _ranked_pairs(
+            fields, offsets[cell], offsets[cell + 1], lines, angle, max_skew, min_width, max_width, min_overlap,
+            width_tolerance, expected_width,
+        )
+        if not ok:
+            return np.empty((9, 0)), False
+        for k in range(min(pairs_per_cell, firsts.shape[0])):
+            chosen[firsts[k]] = True
+            chosen[seconds[k]] = True
+    index = np.flatnonzero(chosen)
+    taken = np.empty((9, index.shape[0]))
+    for k in range(index.shape[0]):
+        for f in range(9):
+            taken[f, k] = fields[f, index[k]]
+    return taken, True
+
+
+@numba.njit(cache=True, nogil=True)
+def _fused_pairs(
+    fields: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    angle: np.ndarray,
+    width: int,
+    height: int,
+    max_skew: float,
+    min_width: float,
+    max_width: float,
+    min_overlap: float,
+    width_tolerance: float,
+    expected_width: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
+    """:func:`_ranked_pairs` of all the segments."""
+    lines = _line_table(a, b, fields, width, height)
+    # A typed zero: a literal would compile a second form of the ranking.
+    return _ranked_pairs(
+        fields, np.int64(0), a.shape[0], lines, angle, max_skew, min_width, max_width, min_overlap, width_tolerance,
+        expected_width,
+    )
+
+
+def fuse_pairs(
+    cell_lines: Segments,
+    size: ImageSize,
+    rules: PairRules,
+    *,
+    strip_px: float,
+    max_angle: float,
+    min_rows: float,
+    min_gradient: float,
+    max_rms: float,
+    max_lines: int,
+    expected_width: float | None = None,
+) -> list[BorderPair]:
+    """:func:`fuse` of the cells' pair lines, side by side in one :class:`Segments`, in compiled passes, bit for bit.
+
+    The grouping and filtering of :func:`fuse` by
+    :func:`trackbench_segmentation.passes.group_and_select`, the pairs'
+    tests, scores and ranking by :func:`_ranked_pairs`; only the pairs found
+    are built as :class:`BorderPair`, with the lines and states of
+    :func:`border_pairs`.  An expected width of 0 or a degenerate line is
+    left to :func:`fuse`.
+
+    References
+    ----------
+    seeds/000, section 2.3: the fusion of the cells' most likely pairs.
+    """
+    if _divides_by_zero(rules, expected_width):
+        return fuse([cell_lines], size, rules, strip_px=strip_px, max_angle=max_angle, min_rows=min_rows,
+                    min_gradient=min_gradient, max_rms=max_rms, max_lines=max_lines, expected_width=expected_width)
+    fields = group_and_select(_fields(cell_lines), -math.inf, float(strip_px), float(max_angle), float(min_rows),
+                              float(min_gradient), float(max_rms), int(max_lines))
+    lines = Segments(*fields)
+    a, b = lines.fit()
+    firsts, seconds, scores, ok = _fused_pairs(
+        fields, a, b, np.arctan(b), int(size[0]), int(size[1]), *_rule_values(rules, expected_width)
+    )
+    if not ok:
+        return border_pairs(lines, size, rules, expected_width)
+    made: dict[int, Line] = {}
+
+    def line(k: int) -> Line:
+        if k not in made:
+            made[k] = pixel_line(a[k], b[k], lines.v_low[k], lines.v_high[k], size)
+        return made[k]
+
+    # border_pairs' score is a numpy float once the width's agreement, from the state's numpy width, multiplies it.
+    as_score = float if expected_width is None else np.float64
+    found = []
+    for i, j, score in zip(firsts.tolist(), seconds.tolist(), scores.tolist()):
+        borders = (line(i), line(j))
+        found.append(BorderPair(i, j, borders, cable_from_borders(*borders), as_score(score)))
+    return found
+
+
+def _divides_by_zero(rules: PairRules, expected_width: float | None) -> bool:
+    """Whether the widths' agreement divides by zero (an expected width of 0): left to :func:`border_pairs`."""
+    return expected_width is not None and rules.width_tolerance * expected_width == 0
+
+
+def _fields(segments: Segments) -> np.ndarray:
+    """The segments as a ``(9, n)`` array, their fields in order."""
+    return np.stack([getattr(segments, name) for name in _FIELDS]) if len(segments) else np.empty((9, 0))
+
+
+def _rule_values(rules: PairRules, expected_width: float | None) -> tuple[float, ...]:
+    """The pairing limits and the expected width (nan: none) as the compiled passes take them."""
+    return (
+        float(rules.max_skew), float(rules.min_width), float(rules.max_width), float(rules.min_overlap),
+        float(rules.width_tolerance), math.nan if expected_width is None else float(expected_width),
+    )
+
+
+def cells_pair_lines(
+    lines: np.ndarray,
+    offsets: np.ndarray,
+    size: ImageSize,
+    rules: PairRules,
+    expected_width: float | None,
+    pairs_per_cell: int,
+) -> Segments:
+    """The lines of each cell's ``pairs_per_cell`` best pairs, all cells' side by side, in one compiled pass.
+
+    Parameters
+    ----------
+    lines, offsets : numpy.ndarray
+        The cells' long lines side by side, ``(9, n)`` in the order of the
+        fields of :class:`~trackbench_segmentation.lines.Segments`, cell ``k``'s
+        at ``offsets[k] : offsets[k + 1]``
+        (:func:`trackbench_segmentation.passes.pyramid_lines`).
+    size, rules, expected_width
+        As :func:`border_pairs`.
+    pairs_per_cell : int
+        The best pairs of each cell whose lines are kept.
+
+    Returns
+    -------
+    Segments
+        ``Segments.concatenate([pair_lines(cell, border_pairs(cell, size, rules,
+        expected_width)[:pairs_per_cell]) for cell in cells])``, bit for bit:
+        the pairs' states by :func:`cable_of_borders`, the same tests, the
+        same stable ranking.  An expected width of 0 (whose agreement divides
+        by zero) or a degenerate line is left to that one-cell form.
+
+    References
+    ----------
+    seeds/000, section 2.3: "the most likely line pairs of each cell".
+    """
+    joined = Segments(*lines)
+    if not _divides_by_zero(rules, expected_width):
+        a, b = joined.fit()
+        taken, ok = _best_pair_lines(
+            lines, offsets, a, b, np.arctan(b), int(size[0]), int(size[1]), *_rule_values(rules, expected_width),
+            int(pairs_per_cell),
+        )
+        if ok:
+            return Segments(*taken)
+    cells = [joined.take(np.arange(offsets[k], offsets[k + 1])) for k in range(len(offsets) - 1)]
+    return _slow_pair_lines(cells, size, rules, expected_width, pairs_per_cell)
+
+
+def _slow_pair_lines(
+    cell_lines: list[Segments], size: ImageSize, rules: PairRules, expected_width: float | None, pairs_per_cell: int
+) -> Segments:
+    """:func:`cells_pair_lines` one cell at a time, in Python."""
+    return Segments.concatenate(
+        [pair_lines(lines, border_pairs(lines, size, rules, expected_width)[:pairs_per_cell]) for lines in cell_lines]
+    )

@@ -56,9 +56,8 @@ if TYPE_CHECKING:
     from trackbench_segmentation.pairing import BorderPair
 
 # The detector and its numba kernels load on the first frame, so that listing the trackers does not import numba.
-contours = lazy_module("trackbench_segmentation.contours")
+band = lazy_module("trackbench_segmentation.band")
 detector = lazy_module("trackbench_segmentation.detector")
-histogram = lazy_module("trackbench_segmentation.histogram")
 lines = lazy_module("trackbench_segmentation.lines")
 
 
@@ -125,9 +124,11 @@ class SegmentationTracker(GaussianBeliefView, Tracker[CameraTruth, CableState]):
             The first frame's truth; with ``use_init`` its cable, when known,
             starts the filter.
         """
+        # What frames run: the filter, the region of interest, the detector's passes (with the histogram kernels a
+        # cell may need), and the grouping of the pairs' slow form; the contours' one-cell forms are not run.
         compile_filter_kernels()
-        contours.compile_kernels()
-        histogram.compile_kernels()
+        band.compile_kernels()
+        detector.compile_kernels()
         lines.compile_kernels()
         self.filter.forget()
         self.prediction = None

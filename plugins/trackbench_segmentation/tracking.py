@@ -27,9 +27,13 @@ import math
 import numpy as np
 
 from benchmark.filters.kalman import Gaussian, predict, update
+from benchmark.lazy import lazy_module
 from benchmark.modalities.camera.model import CableState
 
 _IDENTITY = np.eye(3)
+
+# The compiled mask loads with the first region of interest, so that listing the trackers does not import numba.
+band = lazy_module("trackbench_segmentation.band")
 
 
 class CableKalman:
@@ -175,7 +179,4 @@ def region_of_interest(
     width, height = size
     d, alpha, w = (float(value) for value in belief.mean)
     half_width = 0.5 * abs(w) + margin_px + n_sigma * lateral_std(belief.covariance, 0.5 * height)
-    x = np.arange(width, dtype=np.float32) - np.float32((width - 1) / 2.0)
-    y = np.float32((height - 1) / 2.0) - np.arange(height, dtype=np.float32)
-    distance = np.abs(x[None, :] * np.float32(math.cos(alpha)) + y[:, None] * np.float32(math.sin(alpha)) - d)
-    return distance <= half_width, half_width
+    return band.band_mask(d, math.cos(alpha), math.sin(alpha), half_width, width, height), half_width

@@ -12,7 +12,9 @@ from trackbench_segmentation.histogram import (
     back_project,
     contour_cut,
     counted_cut,
+    frame_gradients,
     gradient_bins,
+    gradient_level,
     gradient_modulus,
     grey_projection,
     joint_histogram,
@@ -20,6 +22,7 @@ from trackbench_segmentation.histogram import (
     ranked_bins,
     segment_cell,
 )
+from trackbench_segmentation.histogram import _select as select_order_statistic
 
 cells = arrays(np.uint8, st.tuples(st.integers(3, 24), st.integers(3, 24)))
 
@@ -171,6 +174,22 @@ def test_mountains_equal_the_valley_by_valley_reading(projection, sigma, ratio):
     assert np.array_equal(mountains(projection, sigma, ratio), _reference_mountains(projection, sigma, ratio))
 
 
+@settings(max_examples=200, deadline=None)
+@given(
+    values=arrays(np.float32, st.integers(1, 60), elements=st.floats(0, 8, width=32)),
+    data=st.data(),
+)
+def test_two_selected_order_statistics_are_numpys_partition(values, data):
+    low = data.draw(st.integers(0, len(values) - 1))
+    high = data.draw(st.integers(low, len(values) - 1))
+    expected = np.partition(values, [low, high])
+    work = values.copy()
+    assert select_order_statistic(work, 0, len(work), low) == expected[low]
+    assert select_order_statistic(work, low, len(work), high) == expected[high]
+    # The values are only moved.
+    assert np.array_equal(np.sort(work), np.sort(values))
+
+
 @settings(max_examples=300, deadline=None)
 @given(
     grey=arrays(np.uint8, st.tuples(st.integers(3, 40), st.integers(3, 40)), elements=st.integers(0, 40)),
@@ -218,3 +237,28 @@ def test_ranked_bins_finds_the_bin_of_each_share_s_order_statistic(values: np.nd
     counts = np.bincount(values, minlength=256)
     expected = [np.sort(values)[int(np.floor(share * (values.size - 1)))] for share in shares]
     assert ranked_bins(counts, shares).tolist() == expected
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    grey=arrays(np.uint8, st.tuples(st.integers(1, 40), st.integers(1, 40))),
+    bin_width=st.sampled_from([0.25, 0.5, 1.0, 1.5, 2.0, 3.7, 0.3]),
+    n_bins=st.integers(1, 80),
+)
+def test_the_frame_s_gradients_in_one_pass_are_the_modulus_rows_and_level(grey, bin_width, n_bins):
+    modulus, rows, level = frame_gradients(grey, bin_width, n_bins)
+    expected = gradient_modulus(grey)
+    assert np.array_equal(modulus, expected)
+    assert np.array_equal(rows, gradient_bins(expected, bin_width, n_bins))
+    assert level == gradient_level(expected)
+
+
+def test_the_frame_s_gradients_of_the_steepest_steps_and_in_a_strided_view():
+    # Black and white checks reach the largest modulus; a view of every other column is read as itself.
+    grey = (np.indices((30, 40)).sum(axis=0) % 2 * 255).astype(np.uint8)
+    for image in (grey, grey[:, ::2], np.ascontiguousarray(grey.T)):
+        modulus, rows, level = frame_gradients(image, 1.0, 64)
+        assert np.array_equal(modulus, gradient_modulus(np.ascontiguousarray(image)))
+        assert level == gradient_level(modulus)
+    with pytest.raises(ValueError, match="bin width"):
+        frame_gradients(grey, 0.0, 64)
