@@ -87,8 +87,8 @@ def assert_rows_as_expected(cells: pd.DataFrame, trackers: list[str]) -> None:
 
 
 @pytest.mark.parametrize(
-    "executor", [["--jobs", "0"], ["--jobs", "2"], ["--executor", "dask", "--jobs", "1"]], ids=["1", "2", "dask"]
-)  # one Dask worker: a second would cost a process start with every import and test nothing more
+    "executor", [["--jobs", "0"], ["--jobs", "2"], ["--executor", "dask", "--jobs", "2"]], ids=["1", "2", "dask"]
+)
 def test_every_fault_becomes_its_cell_s_row_and_the_run_exits_1(
     faults_installed: None, site: Path, tmp_path: Path, executor: list[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
