@@ -112,6 +112,21 @@ class Spins(Faulty):
             pass
 
 
+class Hangs(Faulty):
+    """Never returns from its step, without using the processor: a wait on something that never comes.
+
+    To a run it is what :class:`Spins` is, a step that never ends, stopped by the run's wall-time limit; it
+    leaves the processor to the run's other cells.  ``Spins`` is kept for what only a busy loop reaches,
+    the conformance kit's CPU-time limit and a killed run's workers.
+    """
+
+    name = "hangs"
+
+    def fault(self, frame: CameraFrame) -> Any:
+        while True:
+            time.sleep(1.0)
+
+
 class ExitsHard(Faulty):
     name = "exits-hard"
 
@@ -268,7 +283,7 @@ class GlobalRandom(Faulty):
 
 SAFE = (Honest, Exits, Interrupts, RaisesOddly, ReturnsNan, ReturnsAbsurd)
 """Trackers whose faults a run in the test process survives even without worker processes."""
-PROCESS_KILLERS = (Spins, ExitsHard, Segfaults)
+PROCESS_KILLERS = (Spins, Hangs, ExitsHard, Segfaults)
 """Trackers that only a worker process can contain."""
 
 

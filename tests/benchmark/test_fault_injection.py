@@ -40,7 +40,7 @@ EXPECTED = {
     "raises-oddly": ("error", "Unprintable: <Unprintable that cannot be shown> (frame 2)", 2),
     "returns-nan": ("error", "EstimateError: tracker 'returns-nan' returned an invalid estimate", 2),
     "returns-absurd": ("ok", "", 6),
-    "spins": ("timeout", f"no result within the {TIMEOUT_S:g} s limit", 0),
+    "hangs": ("timeout", f"no result within the {TIMEOUT_S:g} s limit", 0),
     "exits-hard": ("error", "the worker process ended (exit status 7)", 0),
     "segfaults": ("error", "the worker process ended (killed by SIGSEGV)", 0),
     "leaves-session": ("ok", "", 6),

@@ -46,9 +46,9 @@ def selection(tmp_path_factory: pytest.TempPathFactory) -> list[str]:
 
 @pytest.fixture(scope="module")
 def cluster() -> Iterator[distributed.LocalCluster]:
-    """A scheduler and two single-threaded worker processes on localhost."""
+    """A scheduler and a single-threaded worker process on localhost (a second would cost its start, prove no more)."""
     with distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, silence_logs=logging.ERROR
+        n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None, silence_logs=logging.ERROR
     ) as running:
         yield running
 

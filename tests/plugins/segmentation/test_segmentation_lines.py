@@ -80,7 +80,7 @@ def test_empty_segments_pass_through():
 
 
 def _random_segments(seed: int, count: int) -> Segments:
-    """``count`` segments of random pixels, each fitted from its own sums."""
+    """``count`` segments of random pixels, each fitted from its own sums; the pixel count a float, as the tracker's."""
     rng = np.random.default_rng(seed)
     parts = []
     for _ in range(count):
@@ -89,7 +89,7 @@ def _random_segments(seed: int, count: int) -> Segments:
         u = rng.uniform(0, 320) + rng.uniform(-0.3, 0.3) * v + rng.normal(0, rng.uniform(0, 2), len(v))
         g = rng.uniform(0, 30, len(v))
         parts.append(Segments(*(np.array([x]) for x in (
-            len(v), v.sum(), u.sum(), (v * v).sum(), (u * v).sum(), (u * u).sum(), g.sum(), v[0], v[-1]))))
+            float(len(v)), v.sum(), u.sum(), (v * v).sum(), (u * v).sum(), (u * u).sum(), g.sum(), v[0], v[-1]))))
     return Segments.concatenate(parts)
 
 
