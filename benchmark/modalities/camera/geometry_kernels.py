@@ -18,17 +18,11 @@ import numba
 
 
 @numba.njit(cache=True, nogil=True)
-def _split_double(x: float) -> tuple[float, float]:
-    """Veltkamp's split of ``x`` into two halves of 26 bits."""
+def _exact_square(x: float) -> tuple[float, float]:
+    """``x * x`` as the sum of two doubles (Dekker), after Veltkamp's split of ``x`` into two halves of 26 bits."""
     t = x * 134217729.0
     high = t - (t - x)
-    return high, x - high
-
-
-@numba.njit(cache=True, nogil=True)
-def _exact_square(x: float) -> tuple[float, float]:
-    """``x * x`` as the sum of two doubles (Dekker)."""
-    high, low = _split_double(x)
+    low = x - high
     p = high * high
     q = high * low + low * high
     z = p + q
@@ -36,9 +30,26 @@ def _exact_square(x: float) -> tuple[float, float]:
 
 
 @numba.njit(cache=True, nogil=True)
-def _normal_hypot(x: float, y: float) -> float:
-    """:func:`python_hypot` of two finite values whose larger is a normal double."""
+def python_hypot(x: float, y: float) -> float:
+    """``math.hypot(x, y)`` as CPython 3.11 computes it (its ``vector_norm``), bit for bit; ``numpy.hypot`` is libm's.
+
+    The squares are summed in extended precision and the square root
+    corrected once, so the result is nearly always the correctly rounded one.
+    Subnormal inputs are first scaled up by the smallest normal double.
+    """
+    x, y = abs(x), abs(y)
     largest = max(x, y)
+    if math.isinf(largest):
+        return largest
+    if math.isnan(x) or math.isnan(y):
+        return math.nan
+    if largest == 0.0:
+        return largest
+    smallest_normal = 2.2250738585072014e-308
+    factor = 1.0
+    if largest < smallest_normal:
+        x, y, factor = x / smallest_normal, y / smallest_normal, smallest_normal
+        largest = max(x, y)
     _, exponent = math.frexp(largest)
     scale = math.ldexp(1.0, -exponent)
     total, frac1, frac2 = 1.0, 0.0, 0.0
@@ -55,28 +66,7 @@ def _normal_hypot(x: float, y: float) -> float:
     total = summed
     frac1 -= low
     h += (total - 1.0 + (frac1 + frac2)) / (2.0 * h)
-    return h / scale
-
-
-@numba.njit(cache=True, nogil=True)
-def python_hypot(x: float, y: float) -> float:
-    """``math.hypot(x, y)`` as CPython 3.11 computes it (its ``vector_norm``), bit for bit; ``numpy.hypot`` is libm's.
-
-    The squares are summed in extended precision and the square root
-    corrected once, so the result is nearly always the correctly rounded one.
-    """
-    x, y = abs(x), abs(y)
-    largest = max(x, y)
-    if math.isinf(largest):
-        return largest
-    if math.isnan(x) or math.isnan(y):
-        return math.nan
-    if largest == 0.0:
-        return largest
-    smallest_normal = 2.2250738585072014e-308
-    if largest < smallest_normal:
-        return smallest_normal * _normal_hypot(x / smallest_normal, y / smallest_normal)
-    return _normal_hypot(x, y)
+    return factor * (h / scale)
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
