@@ -15,6 +15,8 @@ import math
 import numba
 import numpy as np
 
+from benchmark.modalities.camera.geometry_kernels import cable_of_borders, python_hypot
+
 HALF_TURN = math.pi
 QUARTER_TURN = math.pi / 2
 
@@ -128,16 +130,61 @@ def distinct_lines(
     return kept[:count]
 
 
-@numba.njit(cache=True, nogil=True)
-def near_parallel_pairs(lines: np.ndarray, anchor_votes: float, angle_limit: float) -> np.ndarray:
-    """Index pairs ``(i, j)``, ``i < j`` in order, of rows of ``lines`` that pass the first two tests of a border pair.
+@numba.njit(cache=True, nogil=True, inline="always")
+def model_line(rho: float, theta: float, cu: float, cv: float) -> tuple[float, float, float, float]:
+    """:meth:`trackbench_hough.lines.HoughLine.line` of OpenCV's ``(rho, theta)`` as ``(x0, y0, dx, dy)``.
 
-    The stronger of the two has at least ``anchor_votes`` votes, and their
-    normals differ by at most ``angle_limit``
-    (:func:`trackbench_hough.pairing.compatible_pairs`).
+    The steps of :meth:`benchmark.modalities.camera.geometry.Line.from_pixels`
+    from the foot of the normal and the point one pixel along the line, with
+    CPython's ``hypot`` (:func:`benchmark.modalities.camera.geometry_kernels.python_hypot`).
+    """
+    c, s = math.cos(theta), math.sin(theta)
+    foot_u, foot_v = rho * c, rho * s
+    x0, y0 = foot_u - cu, cv - foot_v
+    dx, dy = ((foot_u - s) - cu) - x0, (cv - (foot_v + c)) - y0
+    norm = python_hypot(dx, dy)
+    return x0, y0, dx / norm, dy / norm
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def crossing_inside(a: np.ndarray, b: np.ndarray, cu: float, cv: float) -> bool:
+    """Whether lines ``a`` and ``b`` ``(x0, y0, dx, dy)`` cross inside the image of half sizes ``(cu, cv)``."""
+    det = a[2] * b[3] - a[3] * b[2]
+    if abs(det) < 1e-12:
+        return False
+    s = ((b[0] - a[0]) * b[3] - (b[1] - a[1]) * b[2]) / det
+    x, y = a[0] + s * a[2], a[1] + s * a[3]
+    return abs(x) <= cu and abs(y) <= cv
+
+
+@numba.njit(cache=True, nogil=True)
+def border_pairs(
+    lines: np.ndarray,
+    cu: float,
+    cv: float,
+    anchor_votes: float,
+    angle_limit: float,
+    max_skew: float,
+    max_divergence: float,
+    min_width: float,
+    max_width: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Index pairs ``(i, j)``, ``i < j`` in order, of rows of ``lines`` that may be two cable borders, and their states.
+
+    The tests of :func:`trackbench_hough.pairing.compatible_pairs`: the
+    stronger line has at least ``anchor_votes`` votes, the normals differ by
+    at most ``angle_limit``, the lines do not cross inside the image (centre
+    ``(cu, cv)``), and the state ``(d, alpha, w, beta)`` they define
+    (:func:`benchmark.modalities.camera.geometry_kernels.cable_of_borders`)
+    has ``-max_divergence <= beta <= max_skew`` and ``min_width <= w <= max_width``.
     """
     count = lines.shape[0]
-    pairs = np.empty((count * (count - 1) // 2 if count > 1 else 0, 2), np.int64)
+    models = np.empty((count, 4))
+    for k in range(count):
+        models[k, 0], models[k, 1], models[k, 2], models[k, 3] = model_line(lines[k, RHO], lines[k, THETA], cu, cv)
+    most = count * (count - 1) // 2 if count > 1 else 0
+    pairs = np.empty((most, 2), np.int64)
+    states = np.empty((most, 4))
     found = 0
     for i in range(count):
         for j in range(i + 1, count):
@@ -145,9 +192,57 @@ def near_parallel_pairs(lines: np.ndarray, anchor_votes: float, angle_limit: flo
                 continue
             if distance(lines[i, R], lines[i, PHI], lines[j, R], lines[j, PHI])[1] > angle_limit:
                 continue
+            a, b = models[i], models[j]
+            if crossing_inside(a, b, cu, cv):
+                continue
+            d, alpha, w, beta = cable_of_borders(a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3])
+            if not (-max_divergence <= beta <= max_skew and min_width <= w <= max_width):
+                continue
             pairs[found, 0], pairs[found, 1] = i, j
+            states[found, 0], states[found, 1], states[found, 2], states[found, 3] = d, alpha, w, beta
             found += 1
-    return pairs[:found]
+    return pairs[:found], states[:found]
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def window_fit(line: np.ndarray, border: np.ndarray, r_half: float, phi_half: float) -> tuple[bool, float, float]:
+    """:meth:`trackbench_hough.window.SearchWindow.fits` of one line row to one border ``(r, phi)``: inside, and the offsets."""
+    dr, dphi = distance(line[R], line[PHI], border[0], border[1])
+    if dr <= r_half and dphi <= phi_half:
+        return True, dr / r_half, dphi / phi_half
+    return False, 0.0, 0.0
+
+
+@numba.njit(cache=True, nogil=True)
+def best_pair(
+    lines: np.ndarray, pairs: np.ndarray, borders: np.ndarray, r_half: float, phi_half: float, closeness_weight: float
+) -> int:
+    """Index of the row of ``pairs`` that :func:`trackbench_hough.pairing.choose_pair` chooses, -1 for none.
+
+    A pair scores its two lines' votes; with window ``borders`` (two rows
+    ``(r, phi)``; none: no window) it must have one line in the window of
+    each border, and its score is scaled by ``1 - closeness_weight * deviation``
+    (:meth:`trackbench_hough.window.SearchWindow.deviation_of_fits`).  Ties go
+    to the first pair.
+    """
+    best, best_score = -1, -math.inf
+    for k in range(pairs.shape[0]):
+        i, j = pairs[k, 0], pairs[k, 1]
+        score = lines[i, VOTES] + lines[j, VOTES]
+        if borders.shape[0] > 0:
+            deviation = -1.0
+            for first, second in ((i, j), (j, i)):
+                inside_a, r_a, phi_a = window_fit(lines[first], borders[0], r_half, phi_half)
+                inside_b, r_b, phi_b = window_fit(lines[second], borders[1], r_half, phi_half)
+                if inside_a and inside_b:
+                    worst = max(max(r_a, phi_a), max(r_b, phi_b))
+                    deviation = worst if deviation < 0.0 else min(deviation, worst)
+            if deviation < 0.0:
+                continue
+            score *= 1.0 - closeness_weight * deviation
+        if score > best_score:
+            best, best_score = k, score
+    return best
 
 
 @numba.njit(cache=True, nogil=True)
@@ -196,5 +291,6 @@ def compile_kernels() -> None:
     """Compile (or load from numba's cache) the loops now, on a tiny input."""
     raw = np.array([[10.0, 0.1, 5.0], [12.0, 0.2, 6.0]], np.float32)
     lines = distinct_lines(raw, 1.0, 1.0, np.zeros((0, 2)), 1.0, 1.0, 1.0, 1.0, 2)
-    near_parallel_pairs(lines, 0.0, 1.0)
+    pairs, _ = border_pairs(lines, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 0.0, 100.0)
+    best_pair(lines, pairs, np.zeros((2, 2)), 1.0, 1.0, 0.5)
     voting_strips(np.zeros((2, 2)), 1.0, 4, 4, 2)

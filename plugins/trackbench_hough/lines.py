@@ -260,8 +260,24 @@ def distinct_lines(
     ----------
     seeds/000, section 2.1 (the limited parameter space of Balasuriya et al.).
     """
+    rows = distinct_line_rows(raw, size, r_tolerance, phi_tolerance, limit, borders, r_half, phi_half)
+    return [HoughLine(*row) for row in rows.tolist()]
+
+
+def distinct_line_rows(
+    raw: np.ndarray,
+    size: ImageSize,
+    r_tolerance: float,
+    phi_tolerance: float,
+    limit: int,
+    borders: Sequence[tuple[float, float]] = (),
+    r_half: float = math.inf,
+    phi_half: float = math.inf,
+) -> np.ndarray:
+    """:func:`distinct_lines` as rows ``(rho, theta, votes, r, phi)``, ``float64``, for the compiled pairing
+    (:func:`trackbench_hough.pairing.best_pair`); parameters as :func:`distinct_lines`."""
     cu, cv = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
-    rows = line_loops.distinct_lines(
+    return line_loops.distinct_lines(
         np.ascontiguousarray(raw),
         cu,
         cv,
@@ -272,7 +288,6 @@ def distinct_lines(
         float(phi_tolerance),
         int(limit),
     )
-    return [HoughLine(*row) for row in rows.tolist()]
 
 
 def compile_kernels() -> None:

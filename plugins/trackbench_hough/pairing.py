@@ -26,7 +26,7 @@ Here a pair is compatible (:func:`compatible_pairs`) when
   vote threshold for both (``anchor_votes`` no higher than the transform's
   own) is the paper's detector.
 
-Its score (:func:`choose_pair`) is the sum of the two lines' votes; while
+Its score (:func:`choose_pair`; :func:`best_pair` does both steps on line rows) is the sum of the two lines' votes; while
 tracking, only pairs inside the search window count and the score shrinks
 with the distance from the previous pair.
 """
@@ -34,12 +34,13 @@ with the distance from the previous pair.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from benchmark.lazy import lazy_module
-from benchmark.modalities.camera.geometry import ImageSize, Line, cable_from_borders
+from benchmark.modalities.camera.geometry import ImageSize, Line
 from benchmark.modalities.camera.model import CableState
 from trackbench_hough.lines import HoughLine
 from trackbench_hough.window import SearchWindow
@@ -71,13 +72,43 @@ class BorderPair:
     votes: float
 
 
-def _crossing_inside(a: Line, b: Line, size: ImageSize) -> bool:
-    det = a.dx * b.dy - a.dy * b.dx
-    if abs(det) < 1e-12:
-        return False
-    s = ((b.x0 - a.x0) * b.dy - (b.y0 - a.y0) * b.dx) / det
-    x, y = a.x0 + s * a.dx, a.y0 + s * a.dy
-    return abs(x) <= (size[0] - 1) / 2.0 and abs(y) <= (size[1] - 1) / 2.0
+def _line_rows(lines: Sequence[HoughLine]) -> np.ndarray:
+    """The rows ``(rho, theta, votes, r, phi)`` of the compiled loops (:mod:`trackbench_hough.line_loops`)."""
+    return np.array([(line.rho, line.theta, line.votes, line.r, line.phi) for line in lines], np.float64).reshape(-1, 5)
+
+
+def _window_rows(window: SearchWindow | None) -> tuple[np.ndarray, float, float]:
+    """The window's border rows ``(r, phi)`` and half-widths for :func:`trackbench_hough.line_loops.best_pair`."""
+    if window is None:
+        return np.zeros((0, 2)), math.inf, math.inf
+    return np.array(window.borders, np.float64), float(window.r_half), float(window.phi_half)
+
+
+def _compatible_rows(
+    rows: np.ndarray,
+    size: ImageSize,
+    max_skew: float,
+    max_divergence: float,
+    min_width: float,
+    max_width: float,
+    anchor_votes: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`trackbench_hough.line_loops.border_pairs` of line rows: the pairs' indices and states."""
+    return line_loops.border_pairs(
+        rows,
+        (size[0] - 1) / 2.0,
+        (size[1] - 1) / 2.0,
+        float(anchor_votes),
+        2.0 * max(max_skew, max_divergence),
+        float(max_skew),
+        float(max_divergence),
+        float(min_width),
+        float(max_width),
+    )
+
+
+def _border_pair(first: HoughLine, second: HoughLine, state: list[float], size: ImageSize) -> BorderPair:
+    return BorderPair(first, second, (first.line(size), second.line(size)), CableState(*state), first.votes + second.votes)
 
 
 def compatible_pairs(
@@ -91,6 +122,11 @@ def compatible_pairs(
     anchor_votes: float = 0.0,
 ) -> list[BorderPair]:
     """All pairs of lines that could be the two borders of one cable.
+
+    One compiled loop (:func:`trackbench_hough.line_loops.border_pairs`)
+    tests the pairs, with the steps of
+    :func:`benchmark.modalities.camera.geometry.cable_from_borders` and
+    CPython's ``hypot``, so the same states to the last bit.
 
     Parameters
     ----------
@@ -117,23 +153,12 @@ def compatible_pairs(
     seeds/004, section IV (grouping: no crossing, no divergence);
     seeds/000, section 2.1 and Table 5.2 (width and skew ranges).
     """
-    rows = np.array([(line.rho, line.theta, line.votes, line.r, line.phi) for line in lines], np.float64)
-    candidates = line_loops.near_parallel_pairs(
-        rows.reshape(-1, 5), float(anchor_votes), 2.0 * max(max_skew, max_divergence)
+    pairs, states = _compatible_rows(
+        _line_rows(lines), size, max_skew, max_divergence, min_width, max_width, anchor_votes
     )
-    models: dict[int, Line] = {}
-    pairs: list[BorderPair] = []
-    for i, j in candidates.tolist():
-        first, second = lines[i], lines[j]
-        a = models[i] if i in models else models.setdefault(i, first.line(size))
-        b = models[j] if j in models else models.setdefault(j, second.line(size))
-        if _crossing_inside(a, b, size):
-            continue
-        state = cable_from_borders(a, b)
-        if not (-max_divergence <= state.beta <= max_skew and min_width <= state.w <= max_width):
-            continue
-        pairs.append(BorderPair(first, second, (a, b), state, first.votes + second.votes))
-    return pairs
+    return [
+        _border_pair(lines[i], lines[j], state, size) for (i, j), state in zip(pairs.tolist(), states.tolist())
+    ]
 
 
 def choose_pair(
@@ -164,19 +189,46 @@ def choose_pair(
     seeds/004, section IV: the prediction chooses among compatible pairs;
     without one, the most reliable compatible pair is selected.
     """
-    best: BorderPair | None = None
-    best_score = -math.inf
-    fits: dict[int, tuple[tuple[float, float] | None, tuple[float, float] | None]] = {}
-    for pair in pairs:
-        score = pair.votes
-        if window is not None:
-            # A line is in many pairs: its fits to the window are computed once.
-            first = fits.get(id(pair.first)) or fits.setdefault(id(pair.first), window.fits(pair.first))
-            second = fits.get(id(pair.second)) or fits.setdefault(id(pair.second), window.fits(pair.second))
-            deviation = window.deviation_of_fits(first, second)
-            if deviation is None:
-                continue
-            score *= 1.0 - closeness_weight * deviation
-        if score > best_score:
-            best, best_score = pair, score
-    return best
+    rows = _line_rows([line for pair in pairs for line in (pair.first, pair.second)])
+    indices = np.arange(2 * len(pairs), dtype=np.int64).reshape(-1, 2)
+    best = line_loops.best_pair(rows, indices, *_window_rows(window), float(closeness_weight))
+    return None if best < 0 else pairs[best]
+
+
+def best_pair(
+    rows: np.ndarray,
+    size: ImageSize,
+    window: SearchWindow | None,
+    closeness_weight: float,
+    *,
+    max_skew: float,
+    max_divergence: float,
+    min_width: float,
+    max_width: float,
+    anchor_votes: float = 0.0,
+) -> BorderPair | None:
+    """``choose_pair(compatible_pairs(lines, ...), window, closeness_weight)`` of line rows, making only the chosen pair.
+
+    Parameters
+    ----------
+    rows : numpy.ndarray
+        ``(rho, theta, votes, r, phi)`` rows of the candidate lines
+        (:func:`trackbench_hough.lines.distinct_line_rows`).
+    size, window, closeness_weight, max_skew, max_divergence, min_width, max_width, anchor_votes
+        As :func:`compatible_pairs` and :func:`choose_pair`.
+
+    Returns
+    -------
+    BorderPair or None
+        The pair :func:`choose_pair` chooses among :func:`compatible_pairs`.
+
+    References
+    ----------
+    seeds/004, section IV.
+    """
+    pairs, states = _compatible_rows(rows, size, max_skew, max_divergence, min_width, max_width, anchor_votes)
+    best = line_loops.best_pair(rows, pairs, *_window_rows(window), float(closeness_weight))
+    if best < 0:
+        return None
+    i, j = pairs[best].tolist()
+    return _border_pair(HoughLine(*rows[i].tolist()), HoughLine(*rows[j].tolist()), states[best].tolist(), size)

@@ -42,9 +42,9 @@ from benchmark.modalities.camera.model import CableState, CameraFrame, CameraTru
 from benchmark.model import SequenceInfo
 from benchmark.tracker import Tracker
 from trackbench_hough.edges import compile_kernels, log_response, zero_crossings, zero_crossings_in
-from trackbench_hough.lines import accumulator_maxima, distinct_lines
+from trackbench_hough.lines import accumulator_maxima, distinct_line_rows
 from trackbench_hough.lines import compile_kernels as compile_line_kernels
-from trackbench_hough.pairing import choose_pair, compatible_pairs
+from trackbench_hough.pairing import best_pair
 from trackbench_hough.params import HoughParams
 from trackbench_hough.sizes import FrameSizes
 from trackbench_hough.thresholds import EDGE_THRESHOLDS
@@ -177,7 +177,7 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
             sizes.min_votes,
             window.theta_intervals() if window is not None else None,
         )
-        lines = distinct_lines(
+        lines = distinct_line_rows(
             raw,
             sizes.size,
             sizes.duplicate_rho,
@@ -185,16 +185,17 @@ class HoughTracker(Tracker[CameraTruth, CableState]):
             p.max_lines,
             *((window.borders, window.r_half, window.phi_half) if window is not None else ()),
         )
-        pairs = compatible_pairs(
+        pair = best_pair(
             lines,
             sizes.size,
+            window,
+            p.closeness_weight,
             max_skew=math.radians(p.max_skew_deg),
             max_divergence=math.radians(p.max_divergence_deg),
             min_width=sizes.min_width,
             max_width=sizes.max_width,
             anchor_votes=sizes.anchor_votes,
         )
-        pair = choose_pair(pairs, window, p.closeness_weight)
         if pair is None:
             self._misses += 1
             if self._misses >= p.max_misses:

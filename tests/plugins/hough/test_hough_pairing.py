@@ -3,14 +3,17 @@
 from __future__ import annotations
 
 import math
+import struct
+from dataclasses import astuple
 
+import numpy as np
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from trackbench_hough.lines import HoughLine, normal_form
-from trackbench_hough.pairing import choose_pair, compatible_pairs
+from trackbench_hough.pairing import BorderPair, best_pair, choose_pair, compatible_pairs
 from trackbench_hough.window import SearchWindow
 
-from benchmark.modalities.camera.geometry import Line, cable_borders
+from benchmark.modalities.camera.geometry import Line, cable_borders, cable_from_borders
 from benchmark.modalities.camera.model import CableState
 
 SIZE = (320, 240)
@@ -105,12 +108,18 @@ def test_the_stronger_border_must_reach_the_anchor_votes():
     assert compatible_pairs(cable_lines(cable, (99.0, 99.0)), SIZE, **LIMITS) != []
 
 
+def crossing_inside_by_objects(a: Line, b: Line, size) -> bool:
+    """Whether two lines cross inside the image, as trackbench_hough.pairing first tested it."""
+    det = a.dx * b.dy - a.dy * b.dx
+    if abs(det) < 1e-12:
+        return False
+    s = ((b.x0 - a.x0) * b.dy - (b.y0 - a.y0) * b.dx) / det
+    x, y = a.x0 + s * a.dx, a.y0 + s * a.dy
+    return abs(x) <= (size[0] - 1) / 2.0 and abs(y) <= (size[1] - 1) / 2.0
+
+
 def compatible_pairs_by_objects(lines: list[HoughLine], size, *, max_skew, max_divergence, min_width, max_width, anchor_votes=0.0):
-    """trackbench_hough.pairing.compatible_pairs as it was before its first two tests were compiled."""
-    from trackbench_hough.pairing import BorderPair, _crossing_inside
-
-    from benchmark.modalities.camera.geometry import cable_from_borders
-
+    """trackbench_hough.pairing.compatible_pairs as first written: line objects, Python geometry."""
     models = [line.line(size) for line in lines]
     pairs = []
     angle_limit = 2.0 * max(max_skew, max_divergence)
@@ -122,7 +131,7 @@ def compatible_pairs_by_objects(lines: list[HoughLine], size, *, max_skew, max_d
             if first.distance_to(second.r, second.phi)[1] > angle_limit:
                 continue
             a, b = models[i], models[j]
-            if _crossing_inside(a, b, size):
+            if crossing_inside_by_objects(a, b, size):
                 continue
             state = cable_from_borders(a, b)
             if not (-max_divergence <= state.beta <= max_skew and min_width <= state.w <= max_width):
@@ -131,28 +140,78 @@ def compatible_pairs_by_objects(lines: list[HoughLine], size, *, max_skew, max_d
     return pairs
 
 
-@settings(max_examples=100, deadline=None)
-@given(
-    raw=st.lists(
-        st.tuples(
-            st.floats(-400.0, 400.0),
-            st.floats(0.0, math.pi - 0.05),
-            st.integers(1, 200),
-            st.floats(-120.0, 120.0),
-            st.floats(-0.04, 0.04),
-            st.integers(1, 200),
-        ),
-        max_size=6,
+def choose_pair_by_objects(pairs: list[BorderPair], window: SearchWindow | None = None, closeness_weight: float = 0.5):
+    """trackbench_hough.pairing.choose_pair as first written, with the window's Python fits."""
+    best, best_score = None, -math.inf
+    for pair in pairs:
+        score = pair.votes
+        if window is not None:
+            deviation = window.deviation_of_fits(window.fits(pair.first), window.fits(pair.second))
+            if deviation is None:
+                continue
+            score *= 1.0 - closeness_weight * deviation
+        if score > best_score:
+            best, best_score = pair, score
+    return best
+
+
+nearly_parallel_lines = st.lists(
+    st.tuples(
+        st.floats(-400.0, 400.0),
+        st.floats(0.0, math.pi - 0.05),
+        st.integers(1, 200),
+        st.floats(-120.0, 120.0),
+        st.floats(-0.04, 0.04),
+        st.integers(1, 200),
     ),
-    anchor_votes=st.sampled_from([0.0, 60.0, 150.0]),
-    max_skew_deg=st.sampled_from([1.0, 10.0]),
+    max_size=6,
 )
-def test_compatible_pairs_are_those_the_line_objects_gave(raw, anchor_votes, max_skew_deg):
-    # Lines in nearly parallel couples, so that some pairs pass the first tests and reach the geometry.
-    lines = [
+
+
+def couples(raw) -> list[HoughLine]:
+    """Lines in nearly parallel couples, so that some pairs pass the first tests and reach the geometry."""
+    return [
         HoughLine.from_opencv(rho + shift * side, (theta + turn * side) % math.pi, votes, SIZE)
         for rho, theta, votes, shift, turn, other_votes in raw
         for side, votes in ((0, votes), (1, other_votes))
     ]
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    raw=nearly_parallel_lines,
+    anchor_votes=st.sampled_from([0.0, 60.0, 150.0]),
+    max_skew_deg=st.sampled_from([1.0, 10.0]),
+)
+def test_compatible_pairs_are_those_the_line_objects_gave(raw, anchor_votes, max_skew_deg):
+    lines = couples(raw)
     limits = dict(LIMITS, max_skew=math.radians(max_skew_deg), anchor_votes=anchor_votes)
-    assert compatible_pairs(lines, SIZE, **limits) == compatible_pairs_by_objects(lines, SIZE, **limits)
+    got = compatible_pairs(lines, SIZE, **limits)
+    expected = compatible_pairs_by_objects(lines, SIZE, **limits)
+    assert got == expected
+    # Equal floats could still differ in sign of zero; the states must be the same bits.
+    assert [struct.pack("4d", *astuple(pair.state)) for pair in got] == [
+        struct.pack("4d", *astuple(pair.state)) for pair in expected
+    ]
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    raw=nearly_parallel_lines,
+    previous=st.tuples(st.floats(-150.0, 150.0), st.floats(-0.3, 0.3), st.floats(5.0, 60.0)),
+    r_half=st.floats(2.0, 60.0),
+    phi_half_deg=st.floats(0.5, 10.0),
+    closeness_weight=st.sampled_from([0.0, 0.5, 1.0]),
+    tracking=st.booleans(),
+)
+def test_the_compiled_choice_is_the_one_the_line_objects_gave(raw, previous, r_half, phi_half_deg, closeness_weight, tracking):
+    lines = couples(raw)
+    r, phi, w = previous
+    window = SearchWindow(((r, phi), (r + w, phi)), r_half, math.radians(phi_half_deg)) if tracking else None
+    expected = choose_pair_by_objects(compatible_pairs_by_objects(lines, SIZE, **LIMITS), window, closeness_weight)
+    assert choose_pair(compatible_pairs(lines, SIZE, **LIMITS), window, closeness_weight) == expected
+    rows = np.array([astuple(line) for line in lines], np.float64).reshape(-1, 5)
+    fused = best_pair(rows, SIZE, window, closeness_weight, **LIMITS)
+    assert fused == expected
+    if expected is not None:
+        assert struct.pack("4d", *astuple(fused.state)) == struct.pack("4d", *astuple(expected.state))
