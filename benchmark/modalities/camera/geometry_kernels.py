@@ -35,7 +35,7 @@ def python_hypot(x: float, y: float) -> float:
 
     The squares are summed in extended precision and the square root
     corrected once, so the result is nearly always the correctly rounded one.
-    Subnormal inputs are first scaled up by the smallest normal double.
+    Below ``2**-1024`` the values are divided by the largest instead of scaled, as CPython does.
     """
     x, y = abs(x), abs(y)
     largest = max(x, y)
@@ -45,12 +45,16 @@ def python_hypot(x: float, y: float) -> float:
         return math.nan
     if largest == 0.0:
         return largest
-    smallest_normal = 2.2250738585072014e-308
-    factor = 1.0
-    if largest < smallest_normal:
-        x, y, factor = x / smallest_normal, y / smallest_normal, smallest_normal
-        largest = max(x, y)
     _, exponent = math.frexp(largest)
+    if exponent < -1023:
+        # Where the scale 2**-exponent would overflow, CPython divides by the largest instead.
+        total, frac = 1.0, 0.0
+        for value in (x, y):
+            square = (value / largest) ** 2
+            summed = total + square
+            frac += (total - summed) + square
+            total = summed
+        return largest * math.sqrt(total - 1.0 + frac)
     scale = math.ldexp(1.0, -exponent)
     total, frac1, frac2 = 1.0, 0.0, 0.0
     for value in (x, y):
@@ -66,7 +70,7 @@ def python_hypot(x: float, y: float) -> float:
     total = summed
     frac1 -= low
     h += (total - 1.0 + (frac1 + frac2)) / (2.0 * h)
-    return factor * (h / scale)
+    return h / scale
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")

@@ -21,6 +21,12 @@ def test_python_hypot_is_math_hypot(x, y):
     assert python_hypot(x, y) == expected or (math.isnan(expected) and math.isnan(python_hypot(x, y)))
 
 
+@settings(max_examples=1000, deadline=None)
+@given(x=st.floats(-(2.0**-1024), 2.0**-1024), y=st.floats(-(2.0**-1024), 2.0**-1024))
+def test_python_hypot_is_math_hypot_below_the_scaled_range(x, y):
+    assert python_hypot(x, y) == math.hypot(x, y)
+
+
 def test_python_hypot_of_subnormals_and_its_extremes():
     for x, y in [(5e-324, 5e-324), (1e-310, 3e-310), (0.0, -0.0), (1e308, 1e308), (math.inf, math.nan), (3.0, 4.0)]:
         assert python_hypot(x, y) == math.hypot(x, y) or math.isnan(math.hypot(x, y))
