@@ -251,23 +251,41 @@ def snap_to_edges(rows: np.ndarray, cols: np.ndarray, modulus: np.ndarray, radiu
 
 @numba.njit(cache=True, nogil=True)
 def _snap(rows: np.ndarray, cols: np.ndarray, modulus: np.ndarray, radius: int) -> np.ndarray:
+    """:func:`snap_to_edges` for ``radius > 0``; a point whose window and neighbours lie inside its row reads no clamped column."""
     width = modulus.shape[1]
     snapped = np.empty(cols.shape[0], dtype=np.float64)
     for k in range(cols.shape[0]):
         row, col = rows[k], cols[k]
-        peak = min(max(col - radius + 1, 0), width - 1)
-        largest = smallest = modulus[row, peak]
-        for u in range(col - radius + 2, col + radius + 1):
-            value = modulus[row, min(max(u, 0), width - 1)]
-            if value > largest:
-                peak, largest = min(max(u, 0), width - 1), value
-            smallest = min(smallest, value)
-        if largest == smallest:
-            snapped[k] = col + 0.5
-            continue
-        left = np.float64(modulus[row, max(peak - 1, 0)])
-        centre = np.float64(modulus[row, peak])
-        right = np.float64(modulus[row, min(peak + 1, width - 1)])
+        line = modulus[row]
+        if col - radius >= 0 and col + radius + 1 < width:
+            # The window and the parabola's neighbours lie inside the row: no column is clamped.
+            peak = col - radius + 1
+            largest = smallest = line[peak]
+            for u in range(col - radius + 2, col + radius + 1):
+                value = line[u]
+                if value > largest:
+                    peak, largest = u, value
+                smallest = min(smallest, value)
+            if largest == smallest:
+                snapped[k] = col + 0.5
+                continue
+            left = np.float64(line[peak - 1])
+            centre = np.float64(line[peak])
+            right = np.float64(line[peak + 1])
+        else:
+            peak = min(max(col - radius + 1, 0), width - 1)
+            largest = smallest = line[peak]
+            for u in range(col - radius + 2, col + radius + 1):
+                value = line[min(max(u, 0), width - 1)]
+                if value > largest:
+                    peak, largest = min(max(u, 0), width - 1), value
+                smallest = min(smallest, value)
+            if largest == smallest:
+                snapped[k] = col + 0.5
+                continue
+            left = np.float64(line[max(peak - 1, 0)])
+            centre = np.float64(line[peak])
+            right = np.float64(line[min(peak + 1, width - 1)])
         curvature = left - 2.0 * centre + right
         shift = 0.5 * (left - right) / curvature if curvature < 0 else 0.0
         snapped[k] = peak + min(max(shift, -0.5), 0.5)

@@ -21,7 +21,7 @@ a frame in two compiled passes:
    :mod:`trackbench_segmentation.histogram` and
    :mod:`trackbench_segmentation.contours`, cuts the chains into straight
    pieces, drops the short pieces before their points are snapped
-   (:func:`snap_rows`) and summed (:func:`piece_sums`), and groups
+   (:func:`trackbench_segmentation.contours.snap_to_edges`) and summed (:func:`piece_sums`), and groups
    (:func:`group_free`) and filters the segments (:func:`group_and_select`).
 
 Every number is computed with the same operations in the same order as the
@@ -43,7 +43,7 @@ import math
 import numba
 import numpy as np
 
-from trackbench_segmentation.contours import _follow, _split, label_changes
+from trackbench_segmentation.contours import _follow, _snap, _split, label_changes
 from trackbench_segmentation.histogram import GREY_LEVELS, _is_power_of_two, _smoothing_kernel, _valleys, mountain_starts
 from trackbench_segmentation.lines import Segments, _fit, _is_long, _join
 from trackbench_segmentation.params import SegmentationParams
@@ -388,54 +388,6 @@ def group_and_select(
 
 
 @numba.njit(cache=True, nogil=True)
-def snap_rows(rows: np.ndarray, cols: np.ndarray, modulus: np.ndarray, radius: int) -> np.ndarray:
-    """``contours._snap``: the contour points moved to the strongest gradient nearby, as it moves them.
-
-    A point whose window and the parabola's neighbours lie inside its row is
-    read without clamping a column; the others as ``contours._snap`` reads
-    them.  The same comparisons in the same order, so the same columns.
-    """
-    width = modulus.shape[1]
-    snapped = np.empty(cols.shape[0], dtype=np.float64)
-    for k in range(cols.shape[0]):
-        row, col = rows[k], cols[k]
-        line = modulus[row]
-        if col - radius >= 0 and col + radius + 1 < width:
-            # The window and the parabola's neighbours lie inside the row: no column is clamped.
-            peak = col - radius + 1
-            largest = smallest = line[peak]
-            for u in range(col - radius + 2, col + radius + 1):
-                value = line[u]
-                if value > largest:
-                    peak, largest = u, value
-                smallest = min(smallest, value)
-            if largest == smallest:
-                snapped[k] = col + 0.5
-                continue
-            left = np.float64(line[peak - 1])
-            centre = np.float64(line[peak])
-            right = np.float64(line[peak + 1])
-        else:
-            peak = min(max(col - radius + 1, 0), width - 1)
-            largest = smallest = line[peak]
-            for u in range(col - radius + 2, col + radius + 1):
-                value = line[min(max(u, 0), width - 1)]
-                if value > largest:
-                    peak, largest = min(max(u, 0), width - 1), value
-                smallest = min(smallest, value)
-            if largest == smallest:
-                snapped[k] = col + 0.5
-                continue
-            left = np.float64(line[max(peak - 1, 0)])
-            centre = np.float64(line[peak])
-            right = np.float64(line[min(peak + 1, width - 1)])
-        curvature = left - 2.0 * centre + right
-        shift = 0.5 * (left - right) / curvature if curvature < 0 else 0.0
-        snapped[k] = peak + min(max(shift, -0.5), 0.5)
-    return snapped
-
-
-@numba.njit(cache=True, nogil=True)
 def _long_pieces(
     rows: np.ndarray, cols: np.ndarray, pieces: np.ndarray, min_rows: int
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -523,7 +475,7 @@ def _cell_lines(
             if snap_px <= 0 or point_cols.shape[0] == 0:
                 columns = point_cols.astype(np.float64) + 0.5
             else:
-                columns = snap_rows(point_rows, point_cols, cell_modulus, snap_px)
+                columns = _snap(point_rows, point_cols, cell_modulus, snap_px)
             segments = _segments_of(point_rows, columns, pieces, cell_modulus, top, left)
             lines = group_and_select(
                 segments, np.float64(min_segment_rows), strip, max_angle, min_rows[k], min_gradient, max_rms, max_count
