@@ -30,7 +30,9 @@ check the tracker lists in ``expected_failed_checks`` with its reason, and
 which failed; and ``xpassed``, for one so listed that passed, which counts
 as a failure so that the list stays true.  A failure that follows from an
 earlier one (a tracker that raises fails ``runs`` and most of the rest)
-says so and is listed after it (:func:`with_root_causes`).
+says so and is listed after it (:func:`with_root_causes`); a check that
+comes after one that ran out of time is not run, and fails saying so,
+since it would wait out the limit again (:func:`run_in_order`).
 :mod:`benchmark.testing.strategies` has the modalities' hypothesis
 strategies for a tracker's own property-based tests, and
 :mod:`benchmark.testing.beliefs` the belief protocols a filter may expose.
@@ -42,7 +44,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from typing import Literal
 
@@ -76,6 +78,7 @@ __all__ = [
     "expected",
     "prepare",
     "run_check",
+    "run_in_order",
     "with_root_causes",
 ]
 
@@ -106,6 +109,8 @@ class CheckResult:
         Time the check took, in s.
     follows : str
         The earlier check whose failure this one's follows from; empty for a root cause.
+    hung : bool
+        Whether it ran out of time (or its worker had to be stopped).
     """
 
     tracker: str
@@ -115,6 +120,7 @@ class CheckResult:
     detail: str = ""
     elapsed_s: float = 0.0
     follows: str = ""
+    hung: bool = False
 
     @property
     def ok(self) -> bool:
@@ -203,7 +209,28 @@ def check_tracker(
         registry = load_registry()
     entry = entry_of(entry_or_class)
     subject = prepare_within(entry, registry, modality_data, n_frames, time_limit_s, random_frames)
-    return with_root_causes(run_check(check, subject, time_limit_s) for check in checks(entry))
+    return with_root_causes(run_in_order(entry, lambda check: run_check(check, subject, time_limit_s)))
+
+
+def run_in_order(entry: TrackerEntry, run: Callable[[Check], CheckResult]) -> list[CheckResult]:
+    """The results of every check of tracker ``entry`` in order, each from ``run``, but those after a hang.
+
+    A check that comes after one that ran out of time (:attr:`CheckResult.hung`)
+    would step the tracker over the same frames and wait out its limit
+    again, up to :data:`~benchmark.testing.time_limit.WAIT_FACTOR` times
+    the limit each for a tracker that sleeps; it is not run, and fails
+    saying so (an expected failure if the tracker lists it).
+    """
+    results: dict[str, CheckResult] = {}
+    expected_failures = getattr(entry.tracker_class, "expected_failed_checks", {})
+    for check in checks(entry):
+        hung = [name for name in prerequisites(check.name) if name in results and results[name].hung]
+        if hung:
+            unrun = CheckResult(entry.name, check.name, "failed", f"not run: {hung[0]!r} ran out of time")
+            results[check.name] = expected(unrun, expected_failures)
+        else:
+            results[check.name] = run(check)
+    return list(results.values())
 
 
 def prepare_within(
@@ -244,7 +271,8 @@ def run_check(check: Check, subject: Subject, time_limit_s: float | None = DEFAU
     ended = Call.of(checked, check.name, timeouts=(CheckTimeout,))
     outcome, message = verdict(ended, name)
     detail = ended.result if ended.ok else ""
-    result = CheckResult(name, check.name, outcome, message, detail, time.perf_counter() - started)
+    elapsed = time.perf_counter() - started
+    result = CheckResult(name, check.name, outcome, message, detail, elapsed, hung=ended.ending == "timeout")
     return expected(result, getattr(subject.entry.tracker_class, "expected_failed_checks", {}))
 
 

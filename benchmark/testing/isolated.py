@@ -28,12 +28,14 @@ from benchmark.testing import (
     DEFAULT_FRAMES,
     DEFAULT_TIME_LIMIT_S,
     RANDOM_FRAMES,
+    Check,
     CheckResult,
     Subject,
     checks,
     expected,
     prepare_within,
     run_check,
+    run_in_order,
     with_root_causes,
 )
 from benchmark.testing.time_limit import WAIT_FACTOR
@@ -80,13 +82,15 @@ def check_in_workers(
     pool = worker_pool(1)
     try:
         for name in names:
-            expected_failures = getattr(registry.trackers[name].tracker_class, "expected_failed_checks", {})
-            results = []
-            for check in checks():
+            entry = registry.trackers[name]
+            expected_failures = getattr(entry.tracker_class, "expected_failed_checks", {})
+
+            def in_a_worker(check: Check) -> CheckResult:
                 arguments = (name, check.name, n_frames, time_limit_s, random_frames)
                 future = pool.schedule(_check_here, args=arguments, timeout=limit)
-                results.append(expected(_result(name, check.name, future, limit), expected_failures))
-            yield from with_root_causes(results)
+                return expected(_result(name, check.name, future, limit), expected_failures)
+
+            yield from with_root_causes(run_in_order(entry, in_a_worker))
     finally:
         pool.stop()
         pool.join()
@@ -108,7 +112,7 @@ def _result(name: str, check: str, future: Any, limit: float) -> CheckResult:
     if ended.ok:
         return ended.value()
     reason = WHY_THE_CHECK_FAILED[ended.ending].format(limit=limit, summary=ended.summary)
-    return CheckResult(name, check, "failed", f"tracker {name!r}: {reason}")
+    return CheckResult(name, check, "failed", f"tracker {name!r}: {reason}", hung=ended.ending == "timeout")
 
 
 @functools.cache

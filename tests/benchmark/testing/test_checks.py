@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
+import time
 import types
 from typing import Any
 
@@ -522,6 +523,38 @@ def test_a_tracker_that_hangs_fails_its_check_and_the_kit_goes_on(registry: Regi
     assert "did not finish within 1 s" in failed["hard_observations"]
     assert "'saturated' observations" in failed["hard_observations"]
     assert [result.check for result in results] == ["hard_observations", *(c for c in ALL_CHECKS if c != "hard_observations")]
+
+
+class Drowsy(Steady):
+    """Sleeps through its second frame: it hangs without using the processor."""
+
+    name = "drowsy"
+
+    def step(self, frame: Frame) -> Any:
+        if frame.index == 1:
+            time.sleep(60.0)
+        return super().step(frame)
+
+
+def test_the_checks_after_one_that_ran_out_of_time_fail_unrun(registry: Registry, fakes: types.ModuleType) -> None:
+    results = {result.check: result for result in run_kit(Drowsy, registry, fakes, time_limit_s=0.1)}
+    assert results["runs"].hung and "does it hang?" in results["runs"].message
+    after = [check for check in ALL_CHECKS if check not in ("metadata", "runs")]
+    for check in after:
+        assert results[check].outcome == "failed" and not results[check].hung
+        assert results[check].message == "follows from 'runs': not run: 'runs' ran out of time"
+    assert results["metadata"].outcome == "passed" and not results["metadata"].hung
+
+
+def test_an_unrun_check_the_tracker_expects_to_fail_is_an_expected_failure(
+    registry: Registry, fakes: types.ModuleType
+) -> None:
+    class Excused(Drowsy):
+        name = "excused"
+        expected_failed_checks = {"pickles": "holds a lock"}
+
+    results = {result.check: result for result in run_kit(Excused, registry, fakes, time_limit_s=0.1)}
+    assert results["pickles"].outcome == "xfailed" and results["seed_matters"].outcome == "failed"
 
 
 def test_global_state_is_restored_after_the_check(registry: Registry, fakes: types.ModuleType) -> None:

@@ -34,6 +34,8 @@ def test_a_hanging_tracker_fails_each_check_at_the_time_limit(invoke: Callable[.
     assert " ok " in rows["metadata"]
     assert "FAIL" in rows["runs"] and "did not finish within 2 s of waiting (0.2 s of CPU time allowed) (step, frame 1)" in rows["runs"]
     assert "does it hang?" in rows["runs"]
+    after_runs = [check for check, line in rows.items() if "follows from 'runs': not run: 'runs' ran out of time" in line]
+    assert len(after_runs) == 12 and all("FAIL" in rows[check] for check in after_runs)  # not waited out again
 
 
 def test_check_of_an_unknown_tracker_is_a_usage_error(invoke: Callable[..., Result]) -> None:
