@@ -293,7 +293,11 @@ def group_free(
     The free segments are kept in index order and the taken ones dropped
     after each group, so a round meets the free segments in the order
     ``lines._group`` meets them and tests them alike: the same groups, their
-    sums grown in the same order.
+    sums grown in the same order.  A round first lists, without branching,
+    the free segments its angle test lets through (the test as
+    ``lines._group`` writes it, so a NaN angle passes it there as here),
+    and tests only those against the strip; a segment the group takes is
+    given an infinite angle, which no later round lets through.
     """
     count = n.shape[0]
     a = np.empty(count)
@@ -303,6 +307,8 @@ def group_free(
     angle = np.arctan(b)
     labels = np.full(count, -1, dtype=np.int64)
     free = np.arange(count)
+    free_angle = angle.copy()
+    passed = np.empty(count, dtype=np.int64)
     n_free = count
     groups = 0
     for seed in order:
@@ -316,14 +322,19 @@ def group_free(
             ga, gb = _fit(g0, g1, g2, g3, g4)
             scale = np.sqrt(1.0 + gb * gb)
             group_angle = np.arctan(gb)
+            n_passed = 0
             for f in range(n_free):
-                j = free[f]
-                if labels[j] >= 0 or abs(angle[j] - group_angle) > max_angle:
+                passed[n_passed] = f
+                n_passed += not abs(free_angle[f] - group_angle) > max_angle
+            for p in range(n_passed):
+                j = free[passed[p]]
+                if labels[j] >= 0:
                     continue
                 top = abs(a[j] + b[j] * v_low[j] - ga - gb * v_low[j]) / scale
                 bottom = abs(a[j] + b[j] * v_high[j] - ga - gb * v_high[j]) / scale
                 if top <= strip and bottom <= strip:
                     labels[j] = groups
+                    free_angle[passed[p]] = np.inf  # taken: no later round's angle test lets it through
                     g0 += n[j]
                     g1 += sv[j]
                     g2 += su[j]
@@ -333,7 +344,7 @@ def group_free(
         kept = 0
         for f in range(n_free):
             if labels[free[f]] < 0:
-                free[kept] = free[f]
+                free[kept], free_angle[kept] = free[f], free_angle[f]
                 kept += 1
         n_free = kept
         groups += 1

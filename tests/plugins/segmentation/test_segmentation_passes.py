@@ -159,6 +159,35 @@ def test_groups_grown_over_the_free_segments_are_the_same(scene, count, seed, st
     assert np.array_equal(group_free(*args), _group(*args))
 
 
+@settings(max_examples=150, deadline=None)
+@given(
+    lines=st.lists(
+        st.tuples(
+            st.sampled_from([-40.0, 0.0, 25.0, math.nan]),  # u at v = 0: few, so that lines coincide
+            st.sampled_from([-0.1, -0.05, 0.0, 0.05, 0.1, math.inf, math.nan]),  # du / dv
+            st.integers(0, 60),
+            st.integers(1, 40),
+        ),
+        min_size=1,
+        max_size=30,
+    ),
+    strip=st.sampled_from([0.5, 2.0, 1e9]),
+    max_angle_deg=st.sampled_from([0.0, 2.0, 3.0, 45.0]),
+)
+def test_groups_of_lines_with_nan_and_infinite_slopes_are_the_same(lines, strip, max_angle_deg):
+    """Coinciding, parallel, NaN and infinite lines: the rounds' angle test lets NaN angles through, as ``_group``'s."""
+    sums = []
+    for a, b, top, length in lines:
+        v = np.arange(top, top + length, dtype=np.float64)
+        u = a + b * v if math.isfinite(b) else np.full(length, b)
+        sums.append((float(length), v.sum(), u.sum(), (v * v).sum(), (u * v).sum(), (u * u).sum(), v[0], v[-1]))
+    n, sv, su, svv, suv, suu, v_low, v_high = (np.array(column) for column in zip(*sums))
+    order = np.argsort(-n, kind="stable")
+    args = (n, sv, su, svv, suv, suu, v_low, v_high, order, strip, math.radians(max_angle_deg))
+    with np.errstate(all="ignore"):
+        assert np.array_equal(group_free(*args), _group(*args))
+
+
 @settings(max_examples=100, deadline=None)
 @given(shape=st.tuples(st.integers(1, 20), st.integers(1, 20)), seed=st.integers(0, 2**16), share=st.floats(0, 1))
 def test_row_extents_span_each_row_s_pixels(shape, seed, share):
