@@ -77,6 +77,10 @@ Set by reasoning, not fitted to any split: 2 % of a 250-frame sequence is five f
 failure run of the trackers here (their longest failures run 0-136 frames on the default board).
 """
 
+VERDICTS = ("regression", "improvement", "unconfirmed", "unjudged")
+"""Every verdict a change can have: the two judged ones, a speed change a repeat did not hold, and a speed change
+on a machine with too few earlier runs to estimate its noise."""
+
 GROUP_COLUMNS = ["verdict", "kind", "tracker", "cause", "datasets", "metrics", "count", "largest", "headline", "rows"]
 """Columns of :func:`group_changes`'s table."""
 

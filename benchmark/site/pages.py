@@ -28,7 +28,7 @@ from markupsafe import Markup, escape
 
 from benchmark.closedloop.topview import has_loop_values, top_view
 from benchmark.history.database import DETAILED_RUNS, RECORDED, REPLAY_COLUMNS, SERIES, History
-from benchmark.history.regressions import Step, Thresholds, find_changes, group_changes, steps
+from benchmark.history.regressions import VERDICTS, Step, Thresholds, find_changes, group_changes, steps
 from benchmark.history.replays import shown_size
 from benchmark.leaderboard import error_columns, is_pooled, key_labels, leaderboards
 from benchmark.metrics import Metric, Metrics, error_columns_of
@@ -283,7 +283,7 @@ def grouped_changes(
     metrics, and ``rows``, its changes as shown (with links to ``cells``).
     """
     shown: dict[str, dict[str, list[dict[str, Any]]]] = {
-        verdict: {"accuracy": [], "speed": []} for verdict in ("regression", "improvement", "unconfirmed")
+        verdict: {"accuracy": [], "speed": []} for verdict in VERDICTS
     }
     if changes is None or changes.empty:
         return shown

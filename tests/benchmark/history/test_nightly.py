@@ -153,6 +153,14 @@ def test_nightlies_with_nothing_changed_stay_green_while_another_process_loads_b
     assert reported.exit_code == 0 and "regression" in reported.stdout and "held" in reported.stdout, reported.output
 
 
+def test_a_speed_change_too_early_to_judge_is_on_the_site_as_unjudged(invoke_busy: Invoke, tmp_path: Path) -> None:
+    assert busy_nightly(invoke_busy, tmp_path).exit_code == 0
+    slower = busy_nightly(invoke_busy, tmp_path, "--param", "busy.work=3")  # one earlier run: no noise estimate
+    assert slower.exit_code == 0, slower.output
+    page = (tmp_path / "site" / "index.html").read_text()
+    assert "Speed changes not judged" in page and "not judged: 1 earlier run on this machine" in page
+
+
 def test_changes_are_described_one_entry_per_tracker_and_cause_within_the_width() -> None:
     from benchmark.history.nightly import describe_changes
 
