@@ -290,7 +290,19 @@ def _group(
     strip: float,
     max_angle: float,
 ) -> np.ndarray:
-    """Group label of each segment (see :func:`group_collinear`), groups numbered in the order they start."""
+    """Group label of each segment (see :func:`group_collinear`), groups numbered in the order they start.
+
+    Each group's rounds visit only the segments no group took before it:
+    the free segments are kept in index order and the taken ones dropped
+    after each group.  A round first lists, without branching, the free
+    segments whose angle differs from the group's by no more than
+    ``max_angle`` (the test written as ``not abs(...) > max_angle``, so a
+    NaN angle is let through and then fails the strip), and tests only
+    those against the strip; a segment the group takes is given an infinite
+    angle, which no later round lets through.  Every segment is so tested
+    in the order, and with the sums, of a full scan of all segments each
+    round (the test's reference form).
+    """
     count = n.shape[0]
     a = np.empty(count)
     b = np.empty(count)
@@ -298,31 +310,47 @@ def _group(
         a[k], b[k] = _fit(n[k], sv[k], su[k], svv[k], suv[k])
     angle = np.arctan(b)
     labels = np.full(count, -1, dtype=np.int64)
+    free = np.arange(count)
+    free_angle = angle.copy()
+    passed = np.empty(count, dtype=np.int64)
+    n_free = count
     groups = 0
     for seed in order:
         if labels[seed] >= 0:
             continue
         labels[seed] = groups
-        g = np.array([n[seed], sv[seed], su[seed], svv[seed], suv[seed]])
+        g0, g1, g2, g3, g4 = n[seed], sv[seed], su[seed], svv[seed], suv[seed]
         joined = True
         while joined:
             joined = False
-            ga, gb = _fit(g[0], g[1], g[2], g[3], g[4])
+            ga, gb = _fit(g0, g1, g2, g3, g4)
             scale = np.sqrt(1.0 + gb * gb)
             group_angle = np.arctan(gb)
-            for j in range(count):
-                if labels[j] >= 0 or abs(angle[j] - group_angle) > max_angle:
+            n_passed = 0
+            for f in range(n_free):
+                passed[n_passed] = f
+                n_passed += not abs(free_angle[f] - group_angle) > max_angle
+            for p in range(n_passed):
+                j = free[passed[p]]
+                if labels[j] >= 0:
                     continue
                 top = abs(a[j] + b[j] * v_low[j] - ga - gb * v_low[j]) / scale
                 bottom = abs(a[j] + b[j] * v_high[j] - ga - gb * v_high[j]) / scale
                 if top <= strip and bottom <= strip:
                     labels[j] = groups
-                    g[0] += n[j]
-                    g[1] += sv[j]
-                    g[2] += su[j]
-                    g[3] += svv[j]
-                    g[4] += suv[j]
+                    free_angle[passed[p]] = np.inf  # taken: no later round's angle test lets it through
+                    g0 += n[j]
+                    g1 += sv[j]
+                    g2 += su[j]
+                    g3 += svv[j]
+                    g4 += suv[j]
                     joined = True
+        kept = 0
+        for f in range(n_free):
+            if labels[free[f]] < 0:
+                free[kept], free_angle[kept] = free[f], free_angle[f]
+                kept += 1
+        n_free = kept
         groups += 1
     return labels
 

@@ -40,7 +40,7 @@ from benchmark.modalities.camera.geometry_kernels import cable_of_borders, pytho
 from benchmark.modalities.camera.model import CableState
 from trackbench_segmentation.lines import Segments, group_collinear, pixel_line, select_long
 from trackbench_segmentation.lines import _NAMES as _FIELDS
-from trackbench_segmentation.passes import group_and_select
+from trackbench_segmentation.passes import group_and_select, take_segments
 
 
 @dataclass(frozen=True, slots=True)
@@ -394,12 +394,7 @@ def _best_pair_lines(
         for k in range(min(pairs_per_cell, firsts.shape[0])):
             chosen[firsts[k]] = True
             chosen[seconds[k]] = True
-    index = np.flatnonzero(chosen)
-    taken = np.empty((9, index.shape[0]))
-    for k in range(index.shape[0]):
-        for f in range(9):
-            taken[f, k] = fields[f, index[k]]
-    return taken, True
+    return take_segments(fields, np.flatnonzero(chosen)), True
 
 
 @numba.njit(cache=True, nogil=True)

@@ -22,7 +22,8 @@ a frame in two compiled passes:
    :mod:`trackbench_segmentation.contours`, cuts the chains into straight
    pieces, drops the short pieces before their points are snapped
    (:func:`trackbench_segmentation.contours.snap_to_edges`) and summed (:func:`piece_sums`), and groups
-   (:func:`group_free`) and filters the segments (:func:`group_and_select`).
+   (:func:`trackbench_segmentation.lines.group_collinear`'s kernel) and filters the segments
+   (:func:`group_and_select`).
 
 Every number is computed with the same operations in the same order as the
 one-cell form, so the lines are the same to the last bit: the segments'
@@ -45,7 +46,7 @@ import numpy as np
 
 from trackbench_segmentation.contours import _follow, _snap, _split, label_changes
 from trackbench_segmentation.histogram import GREY_LEVELS, _is_power_of_two, _smoothing_kernel, _valleys, mountain_starts
-from trackbench_segmentation.lines import Segments, _fit, _is_long, _join
+from trackbench_segmentation.lines import Segments, _fit, _group, _is_long, _join
 from trackbench_segmentation.params import SegmentationParams
 
 EMPTY, READY, GIVEN = 0, 1, 2
@@ -275,84 +276,7 @@ def _segments_of(
 
 
 @numba.njit(cache=True, nogil=True)
-def group_free(
-    n: np.ndarray,
-    sv: np.ndarray,
-    su: np.ndarray,
-    svv: np.ndarray,
-    suv: np.ndarray,
-    suu: np.ndarray,
-    v_low: np.ndarray,
-    v_high: np.ndarray,
-    order: np.ndarray,
-    strip: float,
-    max_angle: float,
-) -> np.ndarray:
-    """``lines._group``'s labels, each group's rounds visiting only the segments no group took before it.
-
-    The free segments are kept in index order and the taken ones dropped
-    after each group, so a round meets the free segments in the order
-    ``lines._group`` meets them and tests them alike: the same groups, their
-    sums grown in the same order.  A round first lists, without branching,
-    the free segments its angle test lets through (the test as
-    ``lines._group`` writes it, so a NaN angle passes it there as here),
-    and tests only those against the strip; a segment the group takes is
-    given an infinite angle, which no later round lets through.
-    """
-    count = n.shape[0]
-    a = np.empty(count)
-    b = np.empty(count)
-    for k in range(count):
-        a[k], b[k] = _fit(n[k], sv[k], su[k], svv[k], suv[k])
-    angle = np.arctan(b)
-    labels = np.full(count, -1, dtype=np.int64)
-    free = np.arange(count)
-    free_angle = angle.copy()
-    passed = np.empty(count, dtype=np.int64)
-    n_free = count
-    groups = 0
-    for seed in order:
-        if labels[seed] >= 0:
-            continue
-        labels[seed] = groups
-        g0, g1, g2, g3, g4 = n[seed], sv[seed], su[seed], svv[seed], suv[seed]
-        joined = True
-        while joined:
-            joined = False
-            ga, gb = _fit(g0, g1, g2, g3, g4)
-            scale = np.sqrt(1.0 + gb * gb)
-            group_angle = np.arctan(gb)
-            n_passed = 0
-            for f in range(n_free):
-                passed[n_passed] = f
-                n_passed += not abs(free_angle[f] - group_angle) > max_angle
-            for p in range(n_passed):
-                j = free[passed[p]]
-                if labels[j] >= 0:
-                    continue
-                top = abs(a[j] + b[j] * v_low[j] - ga - gb * v_low[j]) / scale
-                bottom = abs(a[j] + b[j] * v_high[j] - ga - gb * v_high[j]) / scale
-                if top <= strip and bottom <= strip:
-                    labels[j] = groups
-                    free_angle[passed[p]] = np.inf  # taken: no later round's angle test lets it through
-                    g0 += n[j]
-                    g1 += sv[j]
-                    g2 += su[j]
-                    g3 += svv[j]
-                    g4 += suv[j]
-                    joined = True
-        kept = 0
-        for f in range(n_free):
-            if labels[free[f]] < 0:
-                free[kept], free_angle[kept] = free[f], free_angle[f]
-                kept += 1
-        n_free = kept
-        groups += 1
-    return labels
-
-
-@numba.njit(cache=True, nogil=True)
-def _take(fields: np.ndarray, index: np.ndarray) -> np.ndarray:
+def take_segments(fields: np.ndarray, index: np.ndarray) -> np.ndarray:
     """The segments at ``index`` of a ``(9, n)`` array of segments."""
     taken = np.empty((9, index.shape[0]))
     for k in range(index.shape[0]):
@@ -378,11 +302,11 @@ def group_and_select(
     :func:`trackbench_segmentation.lines.select_long`, with the same kernels
     and the same stable sorts.
     """
-    s = _take(s, np.flatnonzero(s[8] - s[7] + 1.0 >= min_segment_rows))
+    s = take_segments(s, np.flatnonzero(s[8] - s[7] + 1.0 >= min_segment_rows))
     if s.shape[1] == 0:
         return s
     order = np.argsort(-s[0], kind="mergesort")
-    labels = group_free(s[0], s[1], s[2], s[3], s[4], s[5], s[7], s[8], order, strip, max_angle)
+    labels = _group(s[0], s[1], s[2], s[3], s[4], s[5], s[7], s[8], order, strip, max_angle)
     n_groups = np.int64(0)
     for label in labels:
         n_groups = max(n_groups, label + 1)
@@ -391,11 +315,11 @@ def group_and_select(
     for f in range(9):
         for k in range(grouped.shape[1]):
             grouped[f, k] = joined[f][k]
-    grouped = _take(grouped, np.argsort(-grouped[0], kind="mergesort"))
+    grouped = take_segments(grouped, np.argsort(-grouped[0], kind="mergesort"))
     g = grouped
     keep = np.flatnonzero(_is_long(g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7], g[8], min_rows, min_gradient, max_rms))
     ranked = keep[np.argsort(-g[0][keep], kind="mergesort")[:max_count]]
-    return _take(g, ranked)
+    return take_segments(g, ranked)
 
 
 @numba.njit(cache=True, nogil=True)

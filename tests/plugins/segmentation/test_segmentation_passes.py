@@ -4,8 +4,9 @@
 lines in two compiled passes; the oracle is
 :func:`trackbench_segmentation.detector.cell_long_lines`, one cell at a time
 with the numpy and Python steps of the method.  Its pieces have oracles of
-their own: ``numpy.add.reduceat`` for :func:`piece_sums`, ``lines._group`` for
-:func:`group_free`.
+their own: ``numpy.add.reduceat`` for :func:`piece_sums`, and the grouping as first
+written, every round scanning every segment (:func:`full_scan_group`), for
+:func:`trackbench_segmentation.lines._group`.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import numba
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -29,11 +31,11 @@ from trackbench_segmentation.detector import (
 )
 from trackbench_segmentation.grey import normalised_grey
 from trackbench_segmentation.histogram import gradient_bins, gradient_modulus
-from trackbench_segmentation.lines import _NAMES, Segments, _group
+from trackbench_segmentation.lines import _NAMES, Segments, _fit, _group
 from trackbench_segmentation.pairing import fuse
 from trackbench_segmentation.params import PAPER, SegmentationParams
 from trackbench_segmentation.contours import _snap
-from trackbench_segmentation.passes import cell_table, group_free, piece_sums, pyramid_lines, row_extents
+from trackbench_segmentation.passes import cell_table, piece_sums, pyramid_lines, row_extents
 from trackbench_segmentation.scaling import frame_params
 
 from benchmark.modalities.camera.model import CableState
@@ -139,6 +141,45 @@ def test_piece_sums_are_numpy_s_reduceat(values, cuts):
     assert np.array_equal(piece_sums(values, pieces), np.add.reduceat(values, firsts))
 
 
+@numba.njit(cache=True, nogil=True)
+def full_scan_group(n, sv, su, svv, suv, suu, v_low, v_high, order, strip, max_angle):  # pragma: no cover - compiled
+    """The grouping as first written: every round scans every segment, in index order (the reference form)."""
+    count = n.shape[0]
+    a = np.empty(count)
+    b = np.empty(count)
+    for k in range(count):
+        a[k], b[k] = _fit(n[k], sv[k], su[k], svv[k], suv[k])
+    angle = np.arctan(b)
+    labels = np.full(count, -1, dtype=np.int64)
+    groups = 0
+    for seed in order:
+        if labels[seed] >= 0:
+            continue
+        labels[seed] = groups
+        g = np.array([n[seed], sv[seed], su[seed], svv[seed], suv[seed]])
+        joined = True
+        while joined:
+            joined = False
+            ga, gb = _fit(g[0], g[1], g[2], g[3], g[4])
+            scale = np.sqrt(1.0 + gb * gb)
+            group_angle = np.arctan(gb)
+            for j in range(count):
+                if labels[j] >= 0 or abs(angle[j] - group_angle) > max_angle:
+                    continue
+                top = abs(a[j] + b[j] * v_low[j] - ga - gb * v_low[j]) / scale
+                bottom = abs(a[j] + b[j] * v_high[j] - ga - gb * v_high[j]) / scale
+                if top <= strip and bottom <= strip:
+                    labels[j] = groups
+                    g[0] += n[j]
+                    g[1] += sv[j]
+                    g[2] += su[j]
+                    g[3] += svv[j]
+                    g[4] += suv[j]
+                    joined = True
+        groups += 1
+    return labels
+
+
 @settings(max_examples=150, deadline=None)
 @given(
     count=st.integers(1, 40),
@@ -156,7 +197,7 @@ def test_groups_grown_over_the_free_segments_are_the_same(scene, count, seed, st
     s = Segments.concatenate(parts)
     order = np.argsort(-s.n, kind="stable")
     args = (s.n, s.sv, s.su, s.svv, s.suv, s.suu, s.v_low, s.v_high, order, strip, math.radians(max_angle_deg))
-    assert np.array_equal(group_free(*args), _group(*args))
+    assert np.array_equal(_group(*args), full_scan_group(*args))
 
 
 @settings(max_examples=150, deadline=None)
@@ -175,7 +216,7 @@ def test_groups_grown_over_the_free_segments_are_the_same(scene, count, seed, st
     max_angle_deg=st.sampled_from([0.0, 2.0, 3.0, 45.0]),
 )
 def test_groups_of_lines_with_nan_and_infinite_slopes_are_the_same(lines, strip, max_angle_deg):
-    """Coinciding, parallel, NaN and infinite lines: the rounds' angle test lets NaN angles through, as ``_group``'s."""
+    """Coinciding, parallel, NaN and infinite lines: the rounds' angle test lets NaN angles through, as the full scan's."""
     sums = []
     with np.errstate(all="ignore"):  # inf * 0 at row 0: a NaN sum, which the test wants
         for a, b, top, length in lines:
@@ -185,7 +226,7 @@ def test_groups_of_lines_with_nan_and_infinite_slopes_are_the_same(lines, strip,
     n, sv, su, svv, suv, suu, v_low, v_high = (np.array(column) for column in zip(*sums))
     order = np.argsort(-n, kind="stable")
     args = (n, sv, su, svv, suv, suu, v_low, v_high, order, strip, math.radians(max_angle_deg))
-    assert np.array_equal(group_free(*args), _group(*args))
+    assert np.array_equal(_group(*args), full_scan_group(*args))
 
 
 @settings(max_examples=100, deadline=None)
