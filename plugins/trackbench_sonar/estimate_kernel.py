@@ -7,6 +7,8 @@ import math
 import numba
 import numpy as np
 
+from trackbench_sonar.evidence_kernel import window_bounds
+
 
 @numba.njit(cache=True, nogil=True)
 def heaviest_window_mean(
@@ -17,7 +19,7 @@ def heaviest_window_mean(
     The steps of the array form :func:`~trackbench_sonar.estimate.peak_mean` took, to the last bit: a
     stable sort of the positions, running sums of the weights and of the weights times the positions in
     that order (sums taken one after the other, as ``numpy.cumsum`` takes them), each window's
-    bounds as ``numpy.searchsorted`` finds them (here by walking up the sorted positions) and the first
+    bounds as ``numpy.searchsorted`` finds them (:func:`~trackbench_sonar.evidence_kernel.window_bounds`) and the first
     window of most weight.
     """
     order = np.argsort(positions, kind="mergesort")
@@ -30,16 +32,11 @@ def heaviest_window_mean(
         # The first sum is the first term itself, as numpy.cumsum has it (0.0 + -0.0 would be 0.0).
         mass[k + 1] = mass[k] + w if k > 0 else w
         moment[k + 1] = moment[k] + w * x[k] if k > 0 else w * x[k]
-    first = last = 0
+    low, high = window_bounds(x, x, halfwidth)
     best = -math.inf
     low_best = high_best = 0
     for k in range(size):
-        start, end = x[k] - halfwidth, x[k] + halfwidth
-        while first < size and x[first] < start:
-            first += 1
-        while last < size and x[last] <= end:
-            last += 1
-        window = mass[last] - mass[first]
+        window = mass[high[k]] - mass[low[k]]
         if window > best:
-            best, low_best, high_best = window, first, last
+            best, low_best, high_best = window, low[k], high[k]
     return best, (moment[high_best] - moment[low_best]) / best if best > 0.0 else math.nan

@@ -674,17 +674,9 @@ def _fused_fit(
 
 
 @numba.njit(cache=True, nogil=True)
-def candidate_windows(
-    x: np.ndarray, centre: np.ndarray, depth: np.ndarray, reach: float, beam_width: float, fwhm_per_sigma: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover - compiled
-    """Each candidate's window of returns ``x[low:high]`` within ``reach`` and the footprint's sigma there.
-
-    As :meth:`~trackbench_sonar.evidence.FootprintLikelihood.windows` gives them: the indices of
-    ``numpy.searchsorted(x, centre - reach, side="left")`` and ``numpy.searchsorted(x, centre + reach,
-    side="right")``, found by walking up ``x`` (sorted, finite) as the centres (increasing) move on, and
-    :func:`~trackbench_sonar.footprint.footprint_sigma`'s arithmetic, ``(c^2 + z^2) phi / z`` over
-    ``fwhm_per_sigma`` (``inf`` at or above the transducer, 0 for rays).
-    """
+def window_bounds(x: np.ndarray, centre: np.ndarray, reach: float) -> tuple[np.ndarray, np.ndarray]:  # pragma: no cover
+    """``numpy.searchsorted(x, centre - reach, side="left")`` and ``numpy.searchsorted(x, centre + reach,
+    side="right")``, found by walking up ``x`` (sorted) as the centres (increasing) move on."""
     count, size = centre.size, x.size
     low = np.empty(count, dtype=np.int64)
     high = np.empty(count, dtype=np.int64)
@@ -696,6 +688,22 @@ def candidate_windows(
         while last < size and x[last] <= end:
             last += 1
         low[i], high[i] = first, last
+    return low, high
+
+
+@numba.njit(cache=True, nogil=True)
+def candidate_windows(
+    x: np.ndarray, centre: np.ndarray, depth: np.ndarray, reach: float, beam_width: float, fwhm_per_sigma: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover - compiled
+    """Each candidate's window of returns ``x[low:high]`` within ``reach`` and the footprint's sigma there.
+
+    As :meth:`~trackbench_sonar.evidence.FootprintLikelihood.windows` gives them: :func:`window_bounds`
+    (``x`` sorted and finite), and
+    :func:`~trackbench_sonar.footprint.footprint_sigma`'s arithmetic, ``(c^2 + z^2) phi / z`` over
+    ``fwhm_per_sigma`` (``inf`` at or above the transducer, 0 for rays).
+    """
+    count = centre.size
+    low, high = window_bounds(x, centre, reach)
     sigma = np.zeros(count)
     if beam_width > 0.0:
         for i in range(centre.size):
