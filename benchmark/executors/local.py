@@ -133,11 +133,16 @@ def worker_pool(workers: int) -> Any:
 
     This process is limited to one native thread first, so that the workers
     forked from it inherit pools of one (:func:`benchmark.workers.limit_native_threads`).
+    A worker is stopped (past a cell's limit, or with the run) by ``SIGKILL``
+    at once: it ignores the ``SIGTERM`` pebble sends first, which is the
+    parent's to act on, so pebble's wait for that signal to work
+    (``CONSTS.term_timeout``, 3 s) would only delay each stop.
     """
-    from pebble import ProcessPool
+    from pebble import CONSTS, ProcessPool
 
     from benchmark.workers import init_worker, limit_native_threads
 
+    CONSTS.term_timeout = 0.0
     limit_native_threads()
     return ProcessPool(max_workers=workers, initializer=init_worker, initargs=(os.getpid(),))
 

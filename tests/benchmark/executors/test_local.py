@@ -1,4 +1,4 @@
-"""How a task of the local pool ended, from its future, and the cell's row it becomes."""
+"""How a task of the local pool ended, from its future, and the cell's row it becomes; how its workers are stopped."""
 
 from __future__ import annotations
 
@@ -6,9 +6,9 @@ import concurrent.futures
 import signal
 
 import pytest
-from pebble import ProcessExpired
+from pebble import CONSTS, ProcessExpired
 
-from benchmark.executors.local import WorkerDied, call_of_future, value_from_future
+from benchmark.executors.local import WorkerDied, call_of_future, value_from_future, worker_pool
 from benchmark.workers import RETIRED_STATUS
 
 
@@ -47,3 +47,12 @@ def test_value_from_future_raises_the_worker_s_fate_or_the_task_s_own_exception(
         value_from_future(finished(error=ProcessExpired("gone", code=7)), 1.0)
     with pytest.raises(KeyError, match="own"):
         value_from_future(finished(error=KeyError("own")), 1.0)
+
+
+def test_a_worker_is_killed_at_once_rather_than_sent_the_sigterm_it_ignores_and_waited_for() -> None:
+    pool = worker_pool(1)
+    try:
+        assert CONSTS.term_timeout == 0
+    finally:
+        pool.stop()
+        pool.join()
