@@ -152,7 +152,7 @@ class SuiteFile:
 def _read(text: str, source: str) -> tuple[SuiteHeader, Mapping[str, Any], list[Mapping[str, Any]]]:
     """The ``[suite]`` header, ``[defaults]`` and ``[[sequence]]`` entries of a TOML document, checked."""
     try:
-        document = tomllib.loads(text)
+        document = _copied(_parsed(text))
     except tomllib.TOMLDecodeError as exc:
         raise DataError(f"{source}: not valid TOML: {exc}") from exc
     layout = validate_table(SuiteFile, document, source)
@@ -201,9 +201,14 @@ def shipped_world(name: Any, where: str) -> dict[str, Any]:
         raise DataError(f"{WORLDS_FOLDER}/{name}.toml: not valid TOML: {exc}") from exc
 
 
-@functools.lru_cache(maxsize=16)
+@functools.lru_cache(maxsize=64)
 def _parsed(text: str) -> dict[str, Any]:
-    """``text`` parsed as TOML, once for every sequence drawn in the same world (:func:`_copied` before use)."""
+    """``text`` parsed as TOML once in a process (:func:`_copied` before use).
+
+    A registry load reads each shipped suite again for every ``based_on``
+    that names it, and each world for every sequence drawn in it; every
+    load (each command of a process, or a test's) reads them all again.
+    """
     return tomllib.loads(text)
 
 

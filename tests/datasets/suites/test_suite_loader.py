@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from trackbench_suites.loader import merge_tables, parse_suite
+from trackbench_suites.loader import _parsed, merge_tables, parse_suite
 
 from benchmark.errors import DataError
 
@@ -102,6 +102,24 @@ def test_a_suite_may_name_any_kind_it_is_given_and_its_factory_builds_each_seque
     assert (b["focal_px"], b["optics"]["noise_grey"]) == (500.0, 1.0)
     with pytest.raises(DataError, match=r"^scan\.toml: suite\.kind: must be one of the registered scene kinds \[\], got 'scan'$"):
         parse_suite(text, "scan.toml", {})
+
+
+def test_a_text_is_parsed_once_and_what_a_factory_does_to_its_tables_reaches_no_later_read() -> None:
+    built = []
+
+    def vandal(table, where):
+        built.append(repr(table))
+        table.pop("n_frames", None)
+        table.get("optics", {}).clear()
+        return table["name"]
+
+    text = GOOD.replace('kind = "camera"', 'kind = "vandalised"')
+    parse_suite(text, "v.toml", {"vandalised": vandal})
+    before = _parsed.cache_info()
+    parse_suite(text, "v.toml", {"vandalised": vandal})
+    after = _parsed.cache_info()
+    assert (after.misses, after.hits) == (before.misses, before.hits + 1)
+    assert built[2:] == built[:2] and "'noise_grey': 2.0" in built[0]
 
 
 def test_a_suite_names_its_training_split_and_a_split_is_not_scored(kinds) -> None:
