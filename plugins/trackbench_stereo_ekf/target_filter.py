@@ -79,6 +79,7 @@ class TargetFilter:
     def __init__(self, interval_s: float, acceleration: float, sigma_a: float) -> None:
         self.acceleration = float(acceleration)
         self.sigma_a = float(sigma_a)
+        _kernels.compile_kernels()
         self.state = np.zeros((_kernels.ROWS, STATE_SIZE))
         self._advance = _kernels.advance
         self._predict_ahead = _kernels.predict_ahead

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -102,6 +103,24 @@ def test_the_inputs_are_the_layout_the_kernel_reads() -> None:
     assert list(inputs[k.CHASE_POSITION : k.CHASE_POSITION + 2]) == [2.0, 3.0]
     assert inputs[k.CHASE_HEADING] == 0.5
     assert list(inputs[k.NOISE_ENTRIES :]) == [1.0, 0.2, 0.3, 4.0]
+
+
+def test_a_new_filter_has_its_kernels_compiled_for_every_call_its_steps_make(monkeypatch: pytest.MonkeyPatch) -> None:
+    calls = []
+    monkeypatch.setattr(filter_kernels, "compile_kernels", lambda: calls.append("compiled"))
+    TargetFilter(0.2, 0.1, 0.4)
+    assert calls == ["compiled"]
+    monkeypatch.undo()
+    steps = TargetFilter(0.2, 0.1, 0.4)
+    steps.start(Gaussian(np.zeros(4), np.eye(4)))
+    steps.predict()
+    steps.advance(measurement_inputs(*_frame(np.random.default_rng(3), 1.0)))
+    steps.advance(NO_MEASUREMENT)
+    steps.predict_over(3)
+    state, inputs = numba.typeof(steps.state), numba.typeof(NO_MEASUREMENT)
+    # one compiled form each, the one compile_kernels made: no step of a filter compiles anything
+    assert filter_kernels.predict_ahead.signatures == [(state,)]
+    assert filter_kernels.advance.signatures == [(state, inputs)]
 
 
 def test_a_bad_state_bad_inputs_or_a_singular_innovation_are_refused() -> None:
