@@ -277,6 +277,18 @@ def _fit(n: float, sv: float, su: float, svv: float, suv: float) -> tuple[float,
 
 
 @numba.njit(cache=True, nogil=True)
+def _lines_and_angles(
+    n: np.ndarray, sv: np.ndarray, su: np.ndarray, svv: np.ndarray, suv: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``a``, ``b`` (:func:`_fit`) and the angle ``arctan(b)`` of each segment's line from its sums."""
+    a = np.empty(n.shape[0])
+    b = np.empty(n.shape[0])
+    for k in range(n.shape[0]):
+        a[k], b[k] = _fit(n[k], sv[k], su[k], svv[k], suv[k])
+    return a, b, np.arctan(b)
+
+
+@numba.njit(cache=True, nogil=True)
 def _group(
     n: np.ndarray,
     sv: np.ndarray,
@@ -304,11 +316,7 @@ def _group(
     round (the test's reference form).
     """
     count = n.shape[0]
-    a = np.empty(count)
-    b = np.empty(count)
-    for k in range(count):
-        a[k], b[k] = _fit(n[k], sv[k], su[k], svv[k], suv[k])
-    angle = np.arctan(b)
+    a, b, angle = _lines_and_angles(n, sv, su, svv, suv)
     labels = np.full(count, -1, dtype=np.int64)
     free = np.arange(count)
     free_angle = angle.copy()

@@ -31,7 +31,7 @@ from trackbench_segmentation.detector import (
 )
 from trackbench_segmentation.grey import normalised_grey
 from trackbench_segmentation.histogram import gradient_bins, gradient_modulus
-from trackbench_segmentation.lines import _NAMES, Segments, _fit, _group
+from trackbench_segmentation.lines import _NAMES, Segments, _fit, _group, _lines_and_angles
 from trackbench_segmentation.pairing import fuse
 from trackbench_segmentation.params import PAPER, SegmentationParams
 from trackbench_segmentation.contours import _snap
@@ -145,11 +145,7 @@ def test_piece_sums_are_numpy_s_reduceat(values, cuts):
 def full_scan_group(n, sv, su, svv, suv, suu, v_low, v_high, order, strip, max_angle):  # pragma: no cover - compiled
     """The grouping as first written: every round scans every segment, in index order (the reference form)."""
     count = n.shape[0]
-    a = np.empty(count)
-    b = np.empty(count)
-    for k in range(count):
-        a[k], b[k] = _fit(n[k], sv[k], su[k], svv[k], suv[k])
-    angle = np.arctan(b)
+    a, b, angle = _lines_and_angles(n, sv, su, svv, suv)
     labels = np.full(count, -1, dtype=np.int64)
     groups = 0
     for seed in order:
