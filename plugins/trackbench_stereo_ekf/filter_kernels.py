@@ -67,7 +67,6 @@ INPUTS = NOISE_ENTRIES + M * M
 """Length of a frame's inputs."""
 
 
-
 @numba.njit(cache=True, nogil=True, inline="always")
 def _sandwich_add(a: np.ndarray, g: int, p: int, out: int, rows: int, cols: int) -> None:
     """Add ``G P G^T`` to the block at row ``out``: ``G`` (``rows x cols``) at row ``g``, ``P`` at row ``p``.
