@@ -26,7 +26,7 @@ import pandas as pd
 from benchmark import __version__
 from benchmark.history.database import History
 from benchmark.history.machine import LoadMeter, describe_machine, git_commit, machine_key
-from benchmark.history.regressions import Thresholds, confirm_speed, find_changes, group_changes
+from benchmark.history.regressions import Thresholds, confirm_speed, find_changes, group_changes, judged_speed
 from benchmark.history.replays import ReplayPlan, ReplaySummary, record_replays
 from benchmark.metrics import CORE, Metrics
 from benchmark.modality import Modality
@@ -103,7 +103,7 @@ class Nightly:
 
 def speed_series(changes: pd.DataFrame) -> Series:
     """The tracker and dataset names of the speed changes that a repeat is to hold or drop."""
-    judged = changes[changes["kind"].eq("speed") & changes["verdict"].isin(["regression", "improvement"])]
+    judged = changes[judged_speed(changes)]
     return frozenset(zip(judged["tracker"], judged["dataset"]))
 
 

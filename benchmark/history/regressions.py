@@ -77,7 +77,10 @@ Set by reasoning, not fitted to any split: 2 % of a 250-frame sequence is five f
 failure run of the trackers here (their longest failures run 0-136 frames on the default board).
 """
 
-VERDICTS = ("regression", "improvement", "unconfirmed", "unjudged")
+JUDGED = ("regression", "improvement")
+"""The verdicts of a change judged beyond its noise."""
+
+VERDICTS = (*JUDGED, "unconfirmed", "unjudged")
 """Every verdict a change can have: the two judged ones, a speed change a repeat did not hold, and a speed change
 on a machine with too few earlier runs to estimate its noise."""
 
@@ -317,6 +320,11 @@ def _speed_change(
     return dict(row, verdict=verdict, noise=noise, effects=_effects(change, noise), note=note)
 
 
+def judged_speed(changes: pd.DataFrame) -> pd.Series:
+    """Which rows of :func:`find_changes`'s table are speed changes judged a regression or an improvement."""
+    return changes["kind"].eq("speed") & changes["verdict"].isin(JUDGED)
+
+
 def confirm_speed(changes: pd.DataFrame, repeat: pd.DataFrame) -> pd.DataFrame:
     """The changes with each speed change held against a repeat of its cells.
 
@@ -340,7 +348,7 @@ def confirm_speed(changes: pd.DataFrame, repeat: pd.DataFrame) -> pd.DataFrame:
         gives the repeat's median.  Regressions stay first.
     """
     changes = changes.copy()
-    judged = changes["kind"].eq("speed") & changes["verdict"].isin(["regression", "improvement"])
+    judged = judged_speed(changes)
     for index in changes.index[judged]:
         row = changes.loc[index]
         cells = repeat[(repeat["tracker"] == row["tracker"]) & (repeat["dataset"] == row["dataset"])]
