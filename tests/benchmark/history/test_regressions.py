@@ -9,10 +9,12 @@ import pytest
 from benchmark.history.regressions import (
     CHANGE_COLUMNS,
     NOISE_RUNS,
+    VERDICTS,
     Thresholds,
     confirm_speed,
     find_changes,
     group_changes,
+    judged_speed,
     speed_noise,
     steps,
 )
@@ -243,3 +245,10 @@ def test_groups_put_regressions_first_then_accuracy_before_speed_then_the_larges
         ]
     )
     assert group_changes(rows)["tracker"].tolist() == ["d", "c", "a", "b"]
+
+
+def test_only_a_speed_change_judged_a_regression_or_an_improvement_is_a_judged_speed_change() -> None:
+    kinds = ["speed", "accuracy"]
+    table = pd.DataFrame(list(itertools.product(kinds, VERDICTS)), columns=["kind", "verdict"])
+    judged = table[judged_speed(table)]
+    assert sorted(zip(judged["kind"], judged["verdict"])) == [("speed", "improvement"), ("speed", "regression")]
