@@ -187,7 +187,11 @@ class LocalExecutor:
         return cls(options.jobs, in_process=options.in_process)
 
     def run(self, cells: Sequence[Cell], timeout_s: float | None) -> Iterator[CellResult]:
-        """Yield the result of each cell, in order of completion (input order in process)."""
+        """Yield the result of each cell, in order of completion (input order in process).
+
+        Cells found finished together are yielded in the order they were scheduled,
+        so one worker yields them in input order.
+        """
         if self.in_process:
             from benchmark.workers import limit_native_threads
 
@@ -212,7 +216,7 @@ class LocalExecutor:
                 schedule(cell)
             while self._futures:
                 done, _ = concurrent.futures.wait(self._futures, return_when=concurrent.futures.FIRST_COMPLETED)
-                for future in done:
+                for future in [future for future in self._futures if future in done]:  # scheduled order
                     cell = self._futures.pop(future)
                     ended = call_of_future(future, CELL_PHASE, timeout_s)
                     if ended.ending == "retired":

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import concurrent.futures
 import signal
+import types
 
 import pytest
 from pebble import CONSTS, ProcessExpired
 
-from benchmark.executors.local import WorkerDied, call_of_future, value_from_future, worker_pool
+from benchmark.executors.local import LocalExecutor, WorkerDied, call_of_future, value_from_future, worker_pool
+from benchmark.selection import Selection, select_cells
 from benchmark.workers import RETIRED_STATUS
 
 
@@ -56,3 +58,18 @@ def test_a_worker_is_killed_at_once_rather_than_sent_the_sigterm_it_ignores_and_
     finally:
         pool.stop()
         pool.join()
+
+
+def test_cells_found_finished_together_are_yielded_in_the_order_they_were_scheduled(
+    fakes: types.ModuleType, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    cells = select_cells(fakes.make_registry(), Selection(trackers=("perfect", "raising"), suites=("fake",)))
+    wait = concurrent.futures.wait
+
+    def all_at_once_latest_first(futures, timeout=None, return_when=None):  # type: ignore[no-untyped-def]
+        done, not_done = wait(futures, timeout, concurrent.futures.ALL_COMPLETED)
+        return [future for future in reversed(list(futures)) if future in done], not_done
+
+    monkeypatch.setattr(concurrent.futures, "wait", all_at_once_latest_first)
+    results = list(LocalExecutor(1).run(cells, 60.0))
+    assert [f"{result.tracker} on {result.dataset}, seed {result.seed}" for result in results] == [cell.label() for cell in cells]
