@@ -72,4 +72,5 @@ def test_cells_found_finished_together_are_yielded_in_the_order_they_were_schedu
 
     monkeypatch.setattr(concurrent.futures, "wait", all_at_once_latest_first)
     results = list(LocalExecutor(1).run(cells, 60.0))
-    assert [f"{result.tracker} on {result.dataset}, seed {result.seed}" for result in results] == [cell.label() for cell in cells]
+    ran = [(result.tracker, result.dataset, result.seed) for result in results]
+    assert ran == [(cell.tracker.name, cell.dataset, cell.seed) for cell in cells]
